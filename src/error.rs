@@ -1,0 +1,181 @@
+//! The one error type of the library.
+//!
+//! Every fallible public function returns [`Result<T>`]. Variants carry the offending numbers so
+//! that the message names the problem ("coefficient 2 of the denominator is NaN", "order 300
+//! exceeds the supported maximum 200"). The binary wraps these in `anyhow` for context; the
+//! library never panics on user-reachable input.
+
+use thiserror::Error;
+
+/// Result alias used throughout the crate.
+pub type Result<T> = std::result::Result<T, LtiError>;
+
+/// Everything that can go wrong in ltikit.
+///
+/// ```
+/// use ltikit::{LtiError, TransferFunction};
+/// let err = TransferFunction::from_descending(&[1.0], &[0.0, 0.0]).unwrap_err();
+/// assert!(matches!(err, LtiError::ZeroPolynomial { .. }));
+/// assert_eq!(err.to_string(), "the denominator is the zero polynomial");
+/// ```
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum LtiError {
+    /// A coefficient, parameter or time value is NaN or infinite.
+    #[error("{what} is {value} (must be a finite number)")]
+    NonFinite {
+        /// Which quantity, e.g. "coefficient 2 of the denominator".
+        what: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A polynomial was given with no coefficients.
+    #[error("the {what} has no coefficients")]
+    EmptyPolynomial {
+        /// "numerator", "denominator", …
+        what: String,
+    },
+    /// A polynomial that must not vanish is identically zero.
+    #[error("the {what} is the zero polynomial")]
+    ZeroPolynomial {
+        /// "numerator", "denominator", …
+        what: String,
+    },
+    /// The order is beyond what the root finder supports.
+    #[error("order {order} exceeds the supported maximum {max}")]
+    OrderTooHigh {
+        /// Requested order.
+        order: usize,
+        /// Supported maximum ([`crate::MAX_ORDER`]).
+        max: usize,
+    },
+    /// The coefficients span a range that overflows once the polynomial is made monic.
+    #[error(
+        "the {what} cannot be scaled: coefficient ratio {ratio:e} overflows (leading coefficient {leading:e})"
+    )]
+    BadScaling {
+        /// "numerator", "denominator", …
+        what: String,
+        /// The ratio that overflowed.
+        ratio: f64,
+        /// The leading coefficient.
+        leading: f64,
+    },
+    /// An operation needs a proper (or strictly proper) transfer function.
+    #[error(
+        "{operation} needs a {required} transfer function, but the numerator degree {num_degree} exceeds {limit} (denominator degree {den_degree})"
+    )]
+    Improper {
+        /// What was attempted ("step response", "state-space realisation", …).
+        operation: String,
+        /// "proper" or "strictly proper".
+        required: String,
+        /// Degree of the numerator.
+        num_degree: usize,
+        /// Degree of the denominator.
+        den_degree: usize,
+        /// The largest numerator degree allowed.
+        limit: usize,
+    },
+    /// A parameter is outside its valid range.
+    #[error("parameter {name} = {value} is invalid: {reason}")]
+    InvalidParameter {
+        /// Parameter name.
+        name: String,
+        /// Its value.
+        value: f64,
+        /// Why it is rejected.
+        reason: String,
+    },
+    /// An argument has the wrong shape or content (dimensions, empty lists, …).
+    #[error("{0}")]
+    InvalidInput(String),
+    /// A named model does not exist.
+    #[error("unknown model '{name}' (known: {known})")]
+    UnknownModel {
+        /// The requested name.
+        name: String,
+        /// Comma-separated list of known names.
+        known: String,
+    },
+    /// A model has no parameter of this name.
+    #[error("model '{model}' has no parameter '{name}' (parameters: {known})")]
+    UnknownParameter {
+        /// Model name.
+        model: String,
+        /// Requested parameter.
+        name: String,
+        /// Comma-separated list of known parameters.
+        known: String,
+    },
+    /// A time value is outside the valid range (negative, or not increasing).
+    #[error("time {value} is invalid: {reason}")]
+    InvalidTime {
+        /// The time.
+        value: f64,
+        /// Why.
+        reason: String,
+    },
+    /// An iterative algorithm did not converge.
+    #[error("{what} did not converge after {iterations} iterations")]
+    NoConvergence {
+        /// Which algorithm.
+        what: String,
+        /// Iterations spent.
+        iterations: usize,
+    },
+    /// A quantity is not defined for this system (e.g. step metrics of an unstable plant).
+    #[error("{what} is undefined: {reason}")]
+    Undefined {
+        /// The quantity.
+        what: String,
+        /// Why.
+        reason: String,
+    },
+    /// A simulation left the finite numbers.
+    #[error("simulation diverged at t = {t} (|x| = {norm:e})")]
+    Diverged {
+        /// Time at which the state became too large or non-finite.
+        t: f64,
+        /// Size of the state then.
+        norm: f64,
+    },
+    /// A simulation needed more steps than allowed.
+    #[error("simulation stopped after {steps} steps at t = {t} (step limit reached)")]
+    StepLimit {
+        /// Steps taken.
+        steps: usize,
+        /// Time reached.
+        t: f64,
+    },
+    /// Reading or writing a file failed.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The operating system's or parser's message.
+        message: String,
+    },
+    /// A plot could not be drawn.
+    #[error("plot: {0}")]
+    Plot(String),
+}
+
+impl LtiError {
+    /// Shorthand for [`LtiError::InvalidInput`].
+    pub fn invalid(msg: impl Into<String>) -> Self {
+        LtiError::InvalidInput(msg.into())
+    }
+}
+
+/// Checks that `value` is finite, naming it `what` in the error.
+pub(crate) fn check_finite(what: impl FnOnce() -> String, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(LtiError::NonFinite {
+            what: what(),
+            value,
+        })
+    }
+}

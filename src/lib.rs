@@ -1,0 +1,18 @@
+//! # ltikit
+//!
+//! Linear time-invariant input-output models from ODE coefficients.
+//!
+//! ## Conventions
+//! - Polynomial coefficients are given in **descending** powers of s, as in MATLAB,
+//!   python-control and ControlSystems.jl: `[1.0, 0.8, 4.0]` is s² + 0.8 s + 4.
+//! - Frequencies are in rad/s, phases in degrees, magnitudes as ratios or in dB (20 log₁₀).
+//! - Complex numbers in JSON are `[re, im]`; roots are listed with repetition.
+#![deny(clippy::float_cmp)]
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod numeric;
+pub mod poly;
+
+pub use error::{LtiError, Result};
+pub use poly::{MAX_ORDER, Poly, Root};

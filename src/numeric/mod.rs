@@ -1,0 +1,15 @@
+//! Numerical building blocks shared by the upper layers: tolerances, safe eigenvalues,
+//! scalar root bracketing, the matrix exponential and the Dormand–Prince integrator.
+//!
+//! Nothing here knows about transfer functions; everything works on plain `f64`,
+//! [`Complex64`](num_complex::Complex64) and nalgebra matrices.
+
+pub mod dd;
+pub mod eig;
+pub mod expm;
+pub mod scalar;
+pub mod tol;
+
+pub use eig::{eigenvalues, eigenvalues_checked};
+pub use expm::expm;
+pub use scalar::{brent, Bracket};
