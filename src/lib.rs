@@ -10,9 +10,12 @@
 #![deny(clippy::float_cmp)]
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod error;
+pub mod lti;
 pub mod numeric;
 pub mod poly;
 
 pub use error::{LtiError, Result};
+pub use lti::{StateSpace, TransferFunction};
 pub use poly::{MAX_ORDER, Poly, Root};

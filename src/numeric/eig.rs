@@ -202,7 +202,11 @@ mod tests {
         assert!(eigenvalues(&m).is_err());
         let m = DMatrix::<f64>::zeros(2, 3);
         assert!(eigenvalues(&m).is_err());
-        assert!(eigenvalues(&DMatrix::<f64>::zeros(0, 0)).unwrap().is_empty());
+        assert!(
+            eigenvalues(&DMatrix::<f64>::zeros(0, 0))
+                .unwrap()
+                .is_empty()
+        );
     }
 
     #[test]

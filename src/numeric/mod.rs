@@ -12,4 +12,4 @@ pub mod tol;
 
 pub use eig::{eigenvalues, eigenvalues_checked};
 pub use expm::expm;
-pub use scalar::{brent, Bracket};
+pub use scalar::{Bracket, brent};

@@ -104,7 +104,10 @@ impl Poly {
             check_finite(|| format!("real part of root {i}"), r.re)?;
             check_finite(|| format!("imaginary part of root {i}"), r.im)?;
             if r.im == 0.0 {
-                p = &p * &Poly { c: vec![1.0, -r.re] };
+                p = &p
+                    * &Poly {
+                        c: vec![1.0, -r.re],
+                    };
             } else if r.im > 0.0 {
                 upper.push(r);
             } else {
@@ -316,7 +319,7 @@ impl Poly {
     /// ```
     /// use ltikit::Poly;
     /// // (s + 1)³ (s² + 4s + 13): a triple root and a simple complex pair.
-    /// let p = Poly::from_descending(&[1.0, 7.0, 28.0, 66.0, 83.0, 39.0]).unwrap();
+    /// let p = Poly::from_descending(&[1.0, 7.0, 28.0, 52.0, 43.0, 13.0]).unwrap();
     /// let r = p.roots().unwrap();
     /// assert_eq!(r.len(), 3);
     /// assert_eq!(r[0].multiplicity, 3);
@@ -405,6 +408,49 @@ pub fn fmt_num(x: f64) -> String {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
         s
+    }
+}
+
+/// Formats a number with at most `sig` significant digits (trailing zeros trimmed), for
+/// human-readable reasons and reports: `fmt_sig(1.3229, 3)` is "1.32".
+pub fn fmt_sig(x: f64, sig: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 { "0".into() } else { format!("{x}") };
+    }
+    let ax = x.abs();
+    if !(1e-4..1e7).contains(&ax) {
+        let s = format!("{:.*e}", sig.saturating_sub(1), x);
+        if let Some((m, e)) = s.split_once('e') {
+            let m = if m.contains('.') {
+                m.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                m
+            };
+            return format!("{m}e{e}");
+        }
+        return s;
+    }
+    let digits = sig as i32 - 1 - ax.log10().floor() as i32;
+    let s = format!("{:.*}", digits.max(0) as usize, x);
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Formats a root for messages: `-2`, `0.25 ± 1.32j` (a conjugate pair), `±1j`, `0`, with
+/// `sig` significant digits. A root with positive or negative imaginary part is shown as its
+/// pair.
+pub fn fmt_root(z: Complex64, sig: usize) -> String {
+    if z.im == 0.0 {
+        return fmt_sig(z.re, sig);
+    }
+    let im = fmt_sig(z.im.abs(), sig);
+    if z.re == 0.0 {
+        format!("±{im}j")
+    } else {
+        format!("{} ± {im}j", fmt_sig(z.re, sig))
     }
 }
 
@@ -503,5 +549,8 @@ mod tests {
         assert_eq!(fmt_num(1.0 / 3.0), "0.333333");
         assert_eq!(fmt_num(2.5e-7), "2.5e-7");
         assert_eq!(fmt_num(-12.0), "-12");
+        assert_eq!(fmt_sig(1.32287, 3), "1.32");
+        assert_eq!(fmt_root(Complex64::new(0.25, -1.3229), 3), "0.25 ± 1.32j");
+        assert_eq!(fmt_root(Complex64::new(0.0, 2.0), 3), "±2j");
     }
 }

@@ -199,7 +199,11 @@ fn resolve_multiplicities(q: &Poly, cand: &[Complex64]) -> Vec<Root> {
     // find the structure from the derivatives instead.
     let max_weight = link_groups(&upper)
         .iter()
-        .map(|g| g.iter().map(|z| if z.im == 0.0 { 1 } else { 2 }).sum::<usize>())
+        .map(|g| {
+            g.iter()
+                .map(|z| if z.im == 0.0 { 1 } else { 2 })
+                .sum::<usize>()
+        })
         .max()
         .unwrap_or(1);
     if let Some(found) = structure_from_derivatives(q, max_weight) {
@@ -348,7 +352,11 @@ fn refine_structured(q: &Poly, found: &[Found]) -> Option<Vec<Found>> {
                 value: Complex64::new(-f.value.norm(), 0.0),
                 multiplicity: f.multiplicity,
             };
-            if f.value.im == 0.0 { vec![r] } else { vec![r, r] }
+            if f.value.im == 0.0 {
+                vec![r]
+            } else {
+                vec![r, r]
+            }
         })
         .collect();
     let scale = Poly::from_root_list(&abs_roots).ok()?;
@@ -562,10 +570,7 @@ fn accept(q: &Poly, group: &[Complex64], all: &[Complex64]) -> Option<Found> {
     let n_up = group.len() - n_real;
     let mean = group.iter().sum::<Complex64>() / group.len() as f64;
     let max_im = group.iter().map(|z| z.im).fold(0.0, f64::max);
-    let spread = group
-        .iter()
-        .map(|z| (z - mean).norm())
-        .fold(0.0, f64::max);
+    let spread = group.iter().map(|z| (z - mean).norm()).fold(0.0, f64::max);
     // Neighbourhood used to guard Newton steps: never move farther than half the distance to
     // the nearest candidate outside the group (or a relative GROUP_REL if there is none).
     let outside = all
@@ -946,7 +951,10 @@ mod tests {
     fn imaginary_double_and_zero_triple() {
         let r = p(&[1.0, 0.0, 2.0, 0.0, 1.0]).roots().unwrap(); // (s^2+1)^2
         assert_eq!(r.len(), 2);
-        assert!(r.iter().all(|x| x.multiplicity == 2 && x.value.re.abs() < 1e-14));
+        assert!(
+            r.iter()
+                .all(|x| x.multiplicity == 2 && x.value.re.abs() < 1e-14)
+        );
         let r = p(&[1.0, 0.0, 0.0, 0.0]).roots().unwrap();
         assert_eq!(
             r,
@@ -968,8 +976,8 @@ mod tests {
 
     #[test]
     fn close_distinct_roots_stay_distinct() {
-        let a = Poly::from_roots(&[Complex64::new(-1.0, 0.0), Complex64::new(-1.0005, 0.0)])
-            .unwrap();
+        let a =
+            Poly::from_roots(&[Complex64::new(-1.0, 0.0), Complex64::new(-1.0005, 0.0)]).unwrap();
         let d = &a * &p(&[1.0, 3.0]);
         let r = d.roots().unwrap();
         assert_eq!(r.len(), 3, "{r:?}");
@@ -992,10 +1000,7 @@ mod tests {
         let mut c = vec![0.0; MAX_ORDER + 2];
         c[0] = 1.0;
         c[MAX_ORDER + 1] = 1.0;
-        assert!(matches!(
-            p(&c).roots(),
-            Err(LtiError::OrderTooHigh { .. })
-        ));
+        assert!(matches!(p(&c).roots(), Err(LtiError::OrderTooHigh { .. })));
         assert!(Poly::zero().roots().is_err());
         assert!(Poly::constant(3.0).roots().unwrap().is_empty());
     }

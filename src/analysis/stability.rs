@@ -1,0 +1,248 @@
+//! BIBO and internal stability, with the reason in words.
+//!
+//! **BIBO stable** ⇔ every pole of G in lowest terms has Re p < 0 (seed Theorem 3.1, which
+//! holds for the reduced form). **Internally stable** ⇔ every root of the characteristic
+//! polynomial (the denominator as given) has Re p < 0. A root within a relative 1e-9 of the
+//! imaginary axis is *on* it: s² + 1 is never called stable because Re p came out −4e-16.
+//! Simple imaginary-axis poles make a system marginally stable; repeated ones unstable.
+
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::lti::TransferFunction;
+use crate::numeric::tol::AXIS_REL_TOL;
+use crate::poly::{Root, fmt_root};
+
+/// Where a root lies relative to the imaginary axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HalfPlane {
+    /// Re p < 0.
+    Left,
+    /// On the imaginary axis (to a relative 1e-9).
+    Axis,
+    /// Re p > 0.
+    Right,
+}
+
+/// Which half plane `p` is in, with the on-axis tolerance.
+pub fn half_plane(p: Complex64) -> HalfPlane {
+    if p.re.abs() <= AXIS_REL_TOL * p.norm() {
+        HalfPlane::Axis
+    } else if p.re < 0.0 {
+        HalfPlane::Left
+    } else {
+        HalfPlane::Right
+    }
+}
+
+/// Stability class of a set of roots.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StabilityClass {
+    /// All roots in the open left half plane.
+    Stable,
+    /// No right-half-plane roots; simple roots on the imaginary axis.
+    MarginallyStable,
+    /// A right-half-plane root or a repeated imaginary-axis root.
+    Unstable,
+}
+
+/// Stability verdicts with reasons.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Stability {
+    /// BIBO stable (poles of the reduced transfer function).
+    pub bibo_stable: bool,
+    /// Class of the reduced transfer function's poles.
+    pub bibo: StabilityClass,
+    /// Why, for the reduced transfer function.
+    pub bibo_reason: String,
+    /// Internally stable (roots of the characteristic polynomial).
+    pub internally_stable: bool,
+    /// Class of the characteristic roots.
+    pub internal: StabilityClass,
+    /// Why, for the characteristic polynomial.
+    pub internal_reason: String,
+    /// One sentence covering both (they differ only when an unstable root cancels).
+    pub reason: String,
+}
+
+/// Classifies a set of roots and says why.
+pub fn classify(roots: &[Root]) -> (StabilityClass, String) {
+    if roots.is_empty() {
+        return (StabilityClass::Stable, "no poles".into());
+    }
+    let rhp: Vec<&Root> = roots
+        .iter()
+        .filter(|r| half_plane(r.value) == HalfPlane::Right && r.value.im >= 0.0)
+        .collect();
+    if let Some(worst) = rhp.iter().max_by(|a, b| a.value.re.total_cmp(&b.value.re)) {
+        let more = if rhp.len() > 1 {
+            format!(" (and {} more)", rhp.len() - 1)
+        } else {
+            String::new()
+        };
+        let mult = if worst.multiplicity > 1 {
+            format!(" of multiplicity {}", worst.multiplicity)
+        } else {
+            String::new()
+        };
+        return (
+            StabilityClass::Unstable,
+            format!(
+                "pole at s = {}{mult} in the right half plane{more}",
+                fmt_root(worst.value, 3)
+            ),
+        );
+    }
+    let axis: Vec<&Root> = roots
+        .iter()
+        .filter(|r| half_plane(r.value) == HalfPlane::Axis && r.value.im >= 0.0)
+        .collect();
+    let axis_list = |rs: &[&Root]| {
+        rs.iter()
+            .map(|r| fmt_root(Complex64::new(0.0, r.value.im), 3))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let repeated: Vec<&Root> = axis
+        .iter()
+        .copied()
+        .filter(|r| r.multiplicity > 1)
+        .collect();
+    if !repeated.is_empty() {
+        let m = repeated.iter().map(|r| r.multiplicity).max().unwrap_or(2);
+        return (
+            StabilityClass::Unstable,
+            format!(
+                "repeated imaginary-axis poles at s = {} (multiplicity {m}): unstable",
+                axis_list(&repeated)
+            ),
+        );
+    }
+    if !axis.is_empty() {
+        return (
+            StabilityClass::MarginallyStable,
+            format!(
+                "simple poles on the imaginary axis at s = {}: marginally stable",
+                axis_list(&axis)
+            ),
+        );
+    }
+    (
+        StabilityClass::Stable,
+        "all poles in the open left half plane".into(),
+    )
+}
+
+impl TransferFunction {
+    /// BIBO stability of the reduced transfer function and internal stability of the
+    /// characteristic polynomial.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// // (s − 1)/((s − 1)(s + 2)): BIBO stable, internally unstable.
+    /// let g = TransferFunction::from_descending(&[1.0, -1.0], &[1.0, 1.0, -2.0]).unwrap();
+    /// let st = g.bibo_stability().unwrap();
+    /// assert!(st.bibo_stable && !st.internally_stable);
+    /// // s² + 1 in the denominator: marginally stable, not BIBO stable.
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.0, 1.0]).unwrap();
+    /// let st = g.bibo_stability().unwrap();
+    /// assert!(!st.bibo_stable);
+    /// assert_eq!(st.bibo_reason, "simple poles on the imaginary axis at s = ±1j: marginally stable");
+    /// ```
+    pub fn bibo_stability(&self) -> Result<Stability> {
+        let pz = self.pole_zero()?;
+        Ok(stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled))
+    }
+}
+
+/// Stability from the characteristic roots, the reduced poles and the cancelled roots.
+pub fn stability_of(poles: &[Root], reduced_poles: &[Root], cancelled: &[Root]) -> Stability {
+    let (bibo, bibo_reason) = classify(reduced_poles);
+    let (internal, internal_reason) = classify(poles);
+    let reason = if bibo == internal {
+        bibo_reason.clone()
+    } else {
+        let (_, cancelled_reason) = classify(cancelled);
+        format!(
+            "BIBO {}: {bibo_reason}; internally {}: cancelled {}",
+            if bibo == StabilityClass::Stable {
+                "stable"
+            } else {
+                "not stable"
+            },
+            match internal {
+                StabilityClass::Stable => "stable",
+                StabilityClass::MarginallyStable => "marginally stable",
+                StabilityClass::Unstable => "unstable",
+            },
+            cancelled_reason
+        )
+    };
+    Stability {
+        bibo_stable: bibo == StabilityClass::Stable,
+        bibo,
+        bibo_reason,
+        internally_stable: internal == StabilityClass::Stable,
+        internal,
+        internal_reason,
+        reason,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn st(num: &[f64], den: &[f64]) -> Stability {
+        TransferFunction::from_descending(num, den)
+            .unwrap()
+            .bibo_stability()
+            .unwrap()
+    }
+
+    #[test]
+    fn seed_section_3_5_examples() {
+        // (s−1)/((s+1)(s+2)(s+7)) is BIBO stable.
+        assert!(st(&[1.0, -1.0], &[1.0, 10.0, 23.0, 14.0]).bibo_stable);
+        // (s−1)/((s+1)(s−2)(s+7)) is not.
+        let s = st(&[1.0, -1.0], &[1.0, 6.0, -9.0, -14.0]);
+        assert!(!s.bibo_stable);
+        assert_eq!(s.bibo, StabilityClass::Unstable);
+        assert_eq!(s.bibo_reason, "pole at s = 2 in the right half plane");
+        // (s+1)/(s(s+1)(s+2)): the pole at 0 remains after cancelling s+1.
+        let s = st(&[1.0, 1.0], &[1.0, 3.0, 2.0, 0.0]);
+        assert_eq!(s.bibo, StabilityClass::MarginallyStable);
+        // 1/(s²+1)
+        assert!(!st(&[1.0], &[1.0, 0.0, 1.0]).bibo_stable);
+    }
+
+    #[test]
+    fn repeated_axis_poles_are_unstable() {
+        let s = st(&[1.0], &[1.0, 0.0, 2.0, 0.0, 1.0]);
+        assert_eq!(s.bibo, StabilityClass::Unstable);
+        assert!(s.bibo_reason.contains("repeated"), "{}", s.bibo_reason);
+        let s = st(&[1.0], &[1.0, 0.0, 0.0]);
+        assert_eq!(s.bibo, StabilityClass::Unstable);
+    }
+
+    #[test]
+    fn right_half_plane_pair_reason() {
+        // (s − 0.25)² + 1.75 = s² − 0.5 s + 1.8125: poles 0.25 ± 1.32j
+        let s = st(&[1.0], &[1.0, -0.5, 1.8125]);
+        assert_eq!(
+            s.bibo_reason,
+            "pole at s = 0.25 ± 1.32j in the right half plane"
+        );
+    }
+
+    #[test]
+    fn hidden_unstable_mode() {
+        let s = st(&[1.0, -1.0], &[1.0, 1.0, -2.0]);
+        assert!(s.bibo_stable);
+        assert!(!s.internally_stable);
+        assert!(s.reason.contains("cancelled pole at s = 1"), "{}", s.reason);
+    }
+}

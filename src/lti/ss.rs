@@ -1,0 +1,279 @@
+//! State-space models ẋ = A x + B u, y = C x + D u.
+
+use nalgebra::{DMatrix, DVector};
+use num_complex::Complex64;
+
+use crate::error::{LtiError, Result};
+use crate::lti::TransferFunction;
+use crate::numeric::eigenvalues;
+use crate::poly::Poly;
+
+/// A continuous-time state-space model (any number of inputs and outputs; conversions to a
+/// transfer function need one input and one output).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StateSpace {
+    /// n × n state matrix.
+    pub a: DMatrix<f64>,
+    /// n × m input matrix.
+    pub b: DMatrix<f64>,
+    /// p × n output matrix.
+    pub c: DMatrix<f64>,
+    /// p × m feedthrough matrix.
+    pub d: DMatrix<f64>,
+}
+
+impl StateSpace {
+    /// Checks dimensions and finiteness.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::StateSpace;
+    /// let ss = StateSpace::new(
+    ///     DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -0.8]),
+    ///     DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
+    ///     DMatrix::from_row_slice(1, 2, &[4.0, 0.0]),
+    ///     DMatrix::zeros(1, 1),
+    /// ).unwrap();
+    /// let g = ss.to_tf().unwrap();
+    /// assert!((g.eval(num_complex::Complex64::new(0.0, 0.0)).re - 1.0).abs() < 1e-14);
+    /// ```
+    pub fn new(a: DMatrix<f64>, b: DMatrix<f64>, c: DMatrix<f64>, d: DMatrix<f64>) -> Result<Self> {
+        let n = a.nrows();
+        if a.ncols() != n {
+            return Err(LtiError::invalid(format!(
+                "A must be square, got {}×{}",
+                a.nrows(),
+                a.ncols()
+            )));
+        }
+        if b.nrows() != n || c.ncols() != n || d.nrows() != c.nrows() || d.ncols() != b.ncols() {
+            return Err(LtiError::invalid(format!(
+                "inconsistent dimensions: A {}×{}, B {}×{}, C {}×{}, D {}×{}",
+                a.nrows(),
+                a.ncols(),
+                b.nrows(),
+                b.ncols(),
+                c.nrows(),
+                c.ncols(),
+                d.nrows(),
+                d.ncols()
+            )));
+        }
+        for (m, name) in [(&a, "A"), (&b, "B"), (&c, "C"), (&d, "D")] {
+            if let Some(x) = m.iter().find(|x| !x.is_finite()) {
+                return Err(LtiError::NonFinite {
+                    what: format!("an entry of {name}"),
+                    value: *x,
+                });
+            }
+        }
+        Ok(StateSpace { a, b, c, d })
+    }
+
+    /// Number of states.
+    pub fn order(&self) -> usize {
+        self.a.nrows()
+    }
+
+    /// Controllable canonical realisation of a proper transfer function (MATLAB's `tf2ss`
+    /// form): A is the companion matrix of the monic denominator, B = e₁.
+    ///
+    /// ```
+    /// use ltikit::{StateSpace, TransferFunction};
+    /// let g = TransferFunction::from_descending(&[1.0, 3.0], &[1.0, 3.0, 2.0]).unwrap();
+    /// let ss = StateSpace::from_tf(&g).unwrap();
+    /// assert_eq!(ss.a.as_slice(), &[-3.0, 1.0, -2.0, 0.0]); // column-major
+    /// ```
+    pub fn from_tf(g: &TransferFunction) -> Result<Self> {
+        g.require_proper("a state-space realisation", false)?;
+        let n = g.order();
+        let lead = g.den().leading();
+        let den: Vec<f64> = g.den().coeffs().iter().map(|a| a / lead).collect();
+        // Numerator padded to degree n, divided by the denominator's leading coefficient.
+        let mut num = vec![0.0; n + 1];
+        let nc = g.num().coeffs();
+        for (i, &b) in nc.iter().enumerate() {
+            num[n + 1 - nc.len() + i] = b / lead;
+        }
+        if g.num().is_zero() {
+            num = vec![0.0; n + 1];
+        }
+        let d = num[0];
+        let mut a = DMatrix::zeros(n, n);
+        let mut b = DMatrix::zeros(n, 1);
+        let mut c = DMatrix::zeros(1, n);
+        for j in 0..n {
+            a[(0, j)] = -den[j + 1];
+            c[(0, j)] = num[j + 1] - den[j + 1] * d;
+        }
+        for i in 1..n {
+            a[(i, i - 1)] = 1.0;
+        }
+        if n > 0 {
+            b[(0, 0)] = 1.0;
+        }
+        StateSpace::new(a, b, c, DMatrix::from_element(1, 1, d))
+    }
+
+    /// A diagonally similar realisation (D⁻¹AD, D⁻¹B, CD) with row and column norms of A
+    /// balanced (Parlett–Reinsch, powers of two: exact). Improves the accuracy of `exp(A t)`
+    /// for companion matrices with coefficients of very different sizes.
+    pub fn balanced(&self) -> StateSpace {
+        let mut a = self.a.clone();
+        if a.nrows() == 0 {
+            return self.clone();
+        }
+        let d = nalgebra::linalg::balancing::balance_parlett_reinsch(&mut a);
+        let mut b = self.b.clone();
+        let mut c = self.c.clone();
+        for i in 0..d.len() {
+            b.row_mut(i).scale_mut(1.0 / d[i]);
+            c.column_mut(i).scale_mut(d[i]);
+        }
+        StateSpace {
+            a,
+            b,
+            c,
+            d: self.d.clone(),
+        }
+    }
+
+    /// Transfer function of a single-input single-output model, from the identity
+    /// C·adj(sI − A)·B = det(sI − A + BC) − det(sI − A):
+    /// G(s) = [det(sI − A + BC) + (D − 1)·det(sI − A)] / det(sI − A). Characteristic
+    /// polynomials come from the eigenvalues (conjugate pairs exact, so the coefficients are
+    /// real).
+    pub fn to_tf(&self) -> Result<TransferFunction> {
+        if self.b.ncols() != 1 || self.c.nrows() != 1 {
+            return Err(LtiError::invalid(format!(
+                "a transfer function needs one input and one output, the model has {} and {}",
+                self.b.ncols(),
+                self.c.nrows()
+            )));
+        }
+        let d = self.d[(0, 0)];
+        let n = self.order();
+        let den = charpoly(&self.a)?;
+        if d != 0.0 || n == 0 {
+            let closed = &self.a - &self.b * &self.c;
+            let num = &charpoly(&closed)? + &den.scale(d - 1.0);
+            return TransferFunction::new(num, den);
+        }
+        // D = 0: the numerator has degree n − r where r is the relative degree, the index of
+        // the first non-zero Markov parameter C·A^(r−1)·B, which is also its leading
+        // coefficient. The difference of characteristic polynomials below carries rounding
+        // residue in the structurally zero coefficients above that degree; drop it.
+        let Some((r, h)) = self.first_markov_parameter() else {
+            return TransferFunction::new(Poly::zero(), den);
+        };
+        let closed = &self.a - &self.b * &self.c;
+        let diff = &charpoly(&closed)? - &den;
+        let asc = diff.ascending();
+        let mut coeffs: Vec<f64> = (0..=n - r)
+            .map(|k| asc.get(k).copied().unwrap_or(0.0))
+            .collect();
+        coeffs[n - r] = h;
+        coeffs.reverse();
+        let num = Poly::trimmed(coeffs);
+        TransferFunction::new(num, den)
+    }
+
+    /// The first Markov parameter C·A^(k−1)·B that is not zero to rounding level, with its
+    /// index k (the relative degree), for a SISO model with D = 0. None when all n vanish
+    /// (the transfer function is zero).
+    fn first_markov_parameter(&self) -> Option<(usize, f64)> {
+        let n = self.order();
+        let norm_a = self.a.norm().max(f64::MIN_POSITIVE);
+        let scale_bc = self.b.norm() * self.c.norm();
+        let mut v = self.b.column(0).into_owned();
+        let mut a_pow = 1.0;
+        for k in 1..=n {
+            let h = (&self.c * &v)[(0, 0)];
+            let tol = 1e3 * (n as f64) * f64::EPSILON * scale_bc * a_pow;
+            if h.abs() > tol {
+                return Some((k, h));
+            }
+            v = &self.a * v;
+            a_pow *= norm_a;
+        }
+        None
+    }
+
+    /// Output at time t of the free response from x(0): C e^{At} x₀.
+    pub fn free_response(&self, x0: &DVector<f64>, t: f64) -> Result<DVector<f64>> {
+        let e = crate::numeric::expm(&(&self.a * t))?;
+        Ok(&self.c * (e * x0))
+    }
+
+    /// Eigenvalues of A.
+    pub fn eigenvalues(&self) -> Result<Vec<Complex64>> {
+        eigenvalues(&self.a)
+    }
+}
+
+/// Characteristic polynomial det(sI − M) from the eigenvalues of M.
+pub fn charpoly(m: &DMatrix<f64>) -> Result<Poly> {
+    let ev = eigenvalues(m)?;
+    Poly::from_roots(&ev)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tf_ss_tf_round_trip() {
+        let g = TransferFunction::from_descending(&[2.0, 1.0, 5.0], &[3.0, 1.0, 4.0, 2.0]).unwrap();
+        let h = StateSpace::from_tf(&g).unwrap().to_tf().unwrap();
+        for w in [0.0, 0.3, 1.0, 7.0] {
+            let s = Complex64::new(0.0, w);
+            assert!((g.eval(s) - h.eval(s)).norm() <= 1e-12 * g.eval(s).norm());
+        }
+    }
+
+    #[test]
+    fn relative_degree_is_kept() {
+        // 1/(s² + s + 1): the numerator must come back as the constant 1, no spurious zeros.
+        let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0, 1.0]).unwrap();
+        let h = StateSpace::from_tf(&g).unwrap().to_tf().unwrap();
+        assert_eq!(h.num().degree(), 0);
+        assert!((h.num().leading() - 1.0).abs() < 1e-15);
+        let g = TransferFunction::from_descending(&[2.0, 0.0], &[1.0, 4.0, 6.0, 4.0]).unwrap();
+        let h = StateSpace::from_tf(&g).unwrap().to_tf().unwrap();
+        assert_eq!(h.num().degree(), 1);
+        assert!(h.num().coeff(0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn biproper_feedthrough() {
+        let g = TransferFunction::from_descending(&[2.0, 3.0], &[1.0, 1.0]).unwrap();
+        let ss = StateSpace::from_tf(&g).unwrap();
+        assert_eq!(ss.d[(0, 0)], 2.0);
+        assert_eq!(ss.c[(0, 0)], 1.0);
+        let h = ss.to_tf().unwrap();
+        assert!((h.eval(Complex64::new(0.0, 0.0)).re - 3.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn rejects_improper_and_bad_dims() {
+        let g = TransferFunction::from_descending(&[1.0, 0.0, 0.0], &[1.0, 1.0]).unwrap();
+        assert!(StateSpace::from_tf(&g).is_err());
+        let e = StateSpace::new(
+            DMatrix::zeros(2, 2),
+            DMatrix::zeros(3, 1),
+            DMatrix::zeros(1, 2),
+            DMatrix::zeros(1, 1),
+        );
+        assert!(e.is_err());
+    }
+
+    #[test]
+    fn balancing_preserves_transfer_function() {
+        let g = TransferFunction::from_descending(&[1e6], &[1.0, 2e3, 1e6]).unwrap();
+        let ss = StateSpace::from_tf(&g).unwrap();
+        let b = ss.balanced();
+        let h = b.to_tf().unwrap();
+        let s = Complex64::new(0.0, 500.0);
+        assert!((g.eval(s) - h.eval(s)).norm() <= 1e-12 * g.eval(s).norm());
+    }
+}

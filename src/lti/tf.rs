@@ -1,0 +1,302 @@
+//! Transfer functions G(s) = N(s)/D(s) built from ODE coefficients.
+//!
+//! The ODE `a_n y^(n) + … + a_0 y = b_m u^(m) + … + b_0 u` becomes
+//! `TransferFunction::from_descending(&[b_m, …, b_0], &[a_n, …, a_0])`. The denominator as given
+//! is the characteristic polynomial: its roots are the poles (common factors with the numerator
+//! are *not* removed here; see [`crate::analysis::PoleZero`] for the reduced form).
+
+use num_complex::Complex64;
+use std::fmt;
+
+use crate::error::{LtiError, Result};
+use crate::poly::{MAX_ORDER, Poly, Root};
+
+/// A SISO transfer function with real coefficients.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransferFunction {
+    num: Poly,
+    den: Poly,
+}
+
+impl TransferFunction {
+    /// From numerator and denominator coefficients in **descending** powers of s.
+    ///
+    /// Leading zeros are trimmed; the leading coefficient need not be 1; the numerator degree
+    /// may exceed the denominator's (an improper G, e.g. a differentiator `s`), although some
+    /// analyses then refuse with [`LtiError::Improper`].
+    ///
+    /// Errors: empty or all-zero denominator, NaN/∞ coefficients, order above [`MAX_ORDER`].
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// // 4 y'' + 0.8·4 y' + 16 y = 16 u, i.e. 4 / (s² + 0.8 s + 4)
+    /// let g = TransferFunction::from_descending(&[16.0], &[4.0, 3.2, 16.0]).unwrap();
+    /// assert_eq!(g.order(), 2);
+    /// assert_eq!(g.to_string(), "16 / (4 s^2 + 3.2 s + 16)");
+    /// ```
+    pub fn from_descending(num: &[f64], den: &[f64]) -> Result<Self> {
+        let num = Poly::from_descending_named(num, "numerator")?;
+        let den = Poly::from_descending_named(den, "denominator")?;
+        Self::new(num, den)
+    }
+
+    /// From numerator and denominator polynomials.
+    pub fn new(num: Poly, den: Poly) -> Result<Self> {
+        if den.is_zero() {
+            return Err(LtiError::ZeroPolynomial {
+                what: "denominator".into(),
+            });
+        }
+        if den.degree() > MAX_ORDER {
+            return Err(LtiError::OrderTooHigh {
+                order: den.degree(),
+                max: MAX_ORDER,
+            });
+        }
+        if num.degree() > MAX_ORDER {
+            return Err(LtiError::InvalidInput(format!(
+                "numerator degree {} exceeds the supported maximum {MAX_ORDER}",
+                num.degree()
+            )));
+        }
+        Ok(TransferFunction { num, den })
+    }
+
+    /// From zeros, poles and the gain k: G(s) = k·Π(s − zᵢ)/Π(s − pᵢ). Complex zeros and poles
+    /// must come in conjugate pairs.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// use num_complex::Complex64 as C;
+    /// let g = TransferFunction::from_zpk(&[C::new(-2.0, 0.0)], &[C::new(-1.0, 1.0), C::new(-1.0, -1.0)], 3.0).unwrap();
+    /// assert_eq!(g.num().coeffs(), &[3.0, 6.0]);
+    /// assert_eq!(g.den().coeffs(), &[1.0, 2.0, 2.0]);
+    /// ```
+    pub fn from_zpk(zeros: &[Complex64], poles: &[Complex64], gain: f64) -> Result<Self> {
+        crate::error::check_finite(|| "the gain".into(), gain)?;
+        let num = Poly::from_roots(zeros)?.scale(gain);
+        let den = Poly::from_roots(poles)?;
+        Self::new(num, den)
+    }
+
+    /// The Laplace variable s as a transfer function (s/1), for building G from expressions.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let s = TransferFunction::s();
+    /// let g = (&s + &TransferFunction::constant(1.0)).inv().unwrap(); // 1/(s+1)
+    /// assert_eq!(g.den().coeffs(), &[1.0, 1.0]);
+    /// ```
+    pub fn s() -> Self {
+        TransferFunction {
+            num: Poly::s(),
+            den: Poly::constant(1.0),
+        }
+    }
+
+    /// The constant transfer function k.
+    pub fn constant(k: f64) -> Self {
+        TransferFunction {
+            num: Poly::constant(k),
+            den: Poly::constant(1.0),
+        }
+    }
+
+    /// Numerator polynomial.
+    pub fn num(&self) -> &Poly {
+        &self.num
+    }
+
+    /// Denominator (characteristic) polynomial.
+    pub fn den(&self) -> &Poly {
+        &self.den
+    }
+
+    /// System order: the degree of the denominator.
+    pub fn order(&self) -> usize {
+        self.den.degree()
+    }
+
+    /// deg D − deg N (negative for an improper G). The zero transfer function has relative
+    /// degree 0 by convention.
+    pub fn relative_degree(&self) -> i64 {
+        if self.num.is_zero() {
+            return 0;
+        }
+        self.den.degree() as i64 - self.num.degree() as i64
+    }
+
+    /// True when deg N ≤ deg D.
+    pub fn is_proper(&self) -> bool {
+        self.num.is_zero() || self.num.degree() <= self.den.degree()
+    }
+
+    /// True when deg N < deg D (or N = 0).
+    pub fn is_strictly_proper(&self) -> bool {
+        self.num.is_zero() || self.num.degree() < self.den.degree()
+    }
+
+    /// Errors with [`LtiError::Improper`] unless proper (or strictly proper when `strict`).
+    pub fn require_proper(&self, operation: &str, strict: bool) -> Result<()> {
+        let ok = if strict {
+            self.is_strictly_proper()
+        } else {
+            self.is_proper()
+        };
+        if ok {
+            return Ok(());
+        }
+        let n = self.den.degree();
+        Err(LtiError::Improper {
+            operation: operation.into(),
+            required: if strict { "strictly proper" } else { "proper" }.into(),
+            num_degree: self.num.degree(),
+            den_degree: n,
+            limit: if strict { n.saturating_sub(1) } else { n },
+        })
+    }
+
+    /// G(s) at a complex point (Horner on both polynomials).
+    pub fn eval(&self, s: Complex64) -> Complex64 {
+        self.num.eval_complex(s) / self.den.eval_complex(s)
+    }
+
+    /// Poles: roots of the denominator as given, with multiplicities.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 2.0, 1.0]).unwrap();
+    /// let p = g.poles().unwrap();
+    /// assert_eq!(p.len(), 1);
+    /// assert_eq!(p[0].multiplicity, 2); // critically damped: an exact double pole at −1
+    /// ```
+    pub fn poles(&self) -> Result<Vec<Root>> {
+        self.den.roots()
+    }
+
+    /// Finite zeros: roots of the numerator (none for the zero transfer function).
+    pub fn zeros(&self) -> Result<Vec<Root>> {
+        if self.num.is_zero() {
+            return Ok(Vec::new());
+        }
+        self.num.roots()
+    }
+
+    /// 1/G. Errors if G is the zero transfer function.
+    pub fn inv(&self) -> Result<Self> {
+        if self.num.is_zero() {
+            return Err(LtiError::ZeroPolynomial {
+                what: "numerator (cannot invert the zero transfer function)".into(),
+            });
+        }
+        Self::new(self.den.clone(), self.num.clone())
+    }
+
+    /// Negative unity-feedback-free closed loop G/(1 + k·G) with a constant gain k in the
+    /// feedback path.
+    pub fn feedback(&self, k: f64) -> Result<Self> {
+        let den = &self.den + &self.num.scale(k);
+        Self::new(self.num.clone(), den)
+    }
+
+    /// Non-zero leading coefficients ratio b_m / a_n (the high-frequency gain coefficient).
+    pub fn gain(&self) -> f64 {
+        self.num.leading() / self.den.leading()
+    }
+}
+
+impl std::ops::Mul for &TransferFunction {
+    type Output = TransferFunction;
+    /// Series connection G₁·G₂ (no cancellation is performed).
+    fn mul(self, o: &TransferFunction) -> TransferFunction {
+        TransferFunction {
+            num: &self.num * &o.num,
+            den: &self.den * &o.den,
+        }
+    }
+}
+
+impl std::ops::Add for &TransferFunction {
+    type Output = TransferFunction;
+    /// Parallel connection G₁ + G₂ over the common denominator D₁D₂.
+    fn add(self, o: &TransferFunction) -> TransferFunction {
+        if self.den == o.den {
+            return TransferFunction {
+                num: &self.num + &o.num,
+                den: self.den.clone(),
+            };
+        }
+        TransferFunction {
+            num: &(&self.num * &o.den) + &(&o.num * &self.den),
+            den: &self.den * &o.den,
+        }
+    }
+}
+
+impl std::ops::Neg for &TransferFunction {
+    type Output = TransferFunction;
+    fn neg(self) -> TransferFunction {
+        TransferFunction {
+            num: -&self.num,
+            den: self.den.clone(),
+        }
+    }
+}
+
+impl fmt::Display for TransferFunction {
+    /// `N / (D)` with polynomials in descending powers, e.g. `4 / (s^2 + 0.8 s + 4)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let n = self.num.to_string();
+        let d = self.den.to_string();
+        let wrap = |s: &str, p: &Poly| {
+            if p.degree() == 0 || (p.coeffs().iter().filter(|c| **c != 0.0).count() == 1) {
+                s.to_string()
+            } else {
+                format!("({s})")
+            }
+        };
+        if self.den.degree() == 0 && self.den.leading() == 1.0 {
+            return write!(f, "{n}");
+        }
+        write!(f, "{} / {}", wrap(&n, &self.num), wrap(&d, &self.den))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_bad_input() {
+        assert!(TransferFunction::from_descending(&[1.0], &[]).is_err());
+        assert!(TransferFunction::from_descending(&[1.0], &[0.0]).is_err());
+        assert!(TransferFunction::from_descending(&[f64::NAN], &[1.0]).is_err());
+        assert!(TransferFunction::from_descending(&[1.0], &[1.0, f64::INFINITY]).is_err());
+        let mut big = vec![0.0; 302];
+        big[0] = 1.0;
+        assert!(TransferFunction::from_descending(&[1.0], &big).is_err());
+    }
+
+    #[test]
+    fn properness_and_degrees() {
+        let g = TransferFunction::from_descending(&[1.0, 0.0, 0.0], &[1.0, 1.0]).unwrap();
+        assert!(!g.is_proper());
+        assert_eq!(g.relative_degree(), -1);
+        assert!(g.require_proper("step response", false).is_err());
+        let g = TransferFunction::from_descending(&[0.0, 2.0], &[0.0, 1.0, 1.0]).unwrap();
+        assert!(g.is_strictly_proper());
+        assert_eq!(g.num().coeffs(), &[2.0]);
+    }
+
+    #[test]
+    fn algebra() {
+        let s = TransferFunction::s();
+        let one = TransferFunction::constant(1.0);
+        let g = (&s + &one).inv().unwrap();
+        let h = &g * &g;
+        assert_eq!(h.den().coeffs(), &[1.0, 2.0, 1.0]);
+        let cl = g.feedback(1.0).unwrap();
+        assert_eq!(cl.den().coeffs(), &[1.0, 2.0]);
+        assert_eq!(format!("{}", -&g), "-1 / (s + 1)");
+    }
+}
