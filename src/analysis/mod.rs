@@ -1,10 +1,18 @@
 //! Analyses of transfer functions: poles and zeros, stability, modes, partial fractions and
 //! closed-form responses, exact time responses, step metrics, frequency response, margins.
 
+pub mod freq;
+pub mod margins;
 pub mod modes;
 pub mod pz;
 pub mod stability;
+pub mod step_info;
+pub mod time;
 
+pub use freq::FrequencyResponse;
+pub use margins::{GainCrossing, Margins, PhaseCrossing};
 pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use pz::PoleZero;
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
+pub use step_info::StepInfo;
+pub use time::TimeResponse;
