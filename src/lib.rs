@@ -13,7 +13,10 @@
 pub mod analysis;
 pub mod error;
 pub mod lti;
+pub mod nonlinear;
 pub mod numeric;
+#[cfg(feature = "plot")]
+pub mod plot;
 pub mod poly;
 
 pub use error::{LtiError, Result};

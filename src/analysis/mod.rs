@@ -1,9 +1,14 @@
 //! Analyses of transfer functions: poles and zeros, stability, modes, partial fractions and
 //! closed-form responses, exact time responses, step metrics, frequency response, margins.
 
+pub mod closed_form;
 pub mod freq;
+pub mod grid;
+pub mod input;
+pub mod laplace;
 pub mod margins;
 pub mod modes;
+pub mod pfe;
 pub mod pz;
 pub mod stability;
 pub mod step_info;

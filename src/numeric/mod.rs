@@ -7,6 +7,7 @@
 pub mod dd;
 pub mod eig;
 pub mod expm;
+pub mod rk45;
 pub mod scalar;
 pub mod tol;
 

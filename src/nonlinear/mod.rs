@@ -1,0 +1,1 @@
+//! Nonlinear models: equilibria, exact linearisation, simulation (in progress).
