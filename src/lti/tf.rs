@@ -3,7 +3,7 @@
 //! The ODE `a_n y^(n) + … + a_0 y = b_m u^(m) + … + b_0 u` becomes
 //! `TransferFunction::from_descending(&[b_m, …, b_0], &[a_n, …, a_0])`. The denominator as given
 //! is the characteristic polynomial: its roots are the poles (common factors with the numerator
-//! are *not* removed here; see [`crate::analysis::PoleZero`] for the reduced form).
+//! are *not* removed here; the analysis layer's `pole_zero()` gives the reduced form).
 
 use num_complex::Complex64;
 use std::fmt;
