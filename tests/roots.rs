@@ -108,8 +108,8 @@ fn eval_dd(p: &Poly, z: C) -> C {
     let (mut re, mut im) = (Dd::ZERO, Dd::ZERO);
     let (zr, zi) = (Dd::from(z.re), Dd::from(z.im));
     for &a in p.coeffs() {
-        let nr = re.mul(zr).sub(im.mul(zi)).add(Dd::from(a));
-        let ni = re.mul(zi).add(im.mul(zr));
+        let nr = re * zr - im * zi + Dd::from(a);
+        let ni = re * zi + im * zr;
         re = nr;
         im = ni;
     }

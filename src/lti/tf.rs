@@ -245,6 +245,7 @@ impl std::ops::Neg for &TransferFunction {
 
 impl fmt::Display for TransferFunction {
     /// `N / (D)` with polynomials in descending powers, e.g. `4 / (s^2 + 0.8 s + 4)`.
+    #[allow(clippy::float_cmp)] // exact 1 means "no denominator to show"
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.num.to_string();
         let d = self.den.to_string();
