@@ -11,6 +11,8 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+#[cfg(feature = "cli")]
+pub mod cli;
 pub mod error;
 pub mod lti;
 pub mod nonlinear;

@@ -1,1 +1,5 @@
-fn main() {}
+//! The `ltikit` binary: see `ltikit --help`.
+
+fn main() {
+    std::process::exit(ltikit::cli::main());
+}

@@ -12,6 +12,7 @@ pub mod pfe;
 pub mod pz;
 pub mod stability;
 pub mod step_info;
+pub mod summary;
 pub mod time;
 
 pub use freq::FrequencyResponse;
@@ -20,4 +21,5 @@ pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use pz::PoleZero;
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
 pub use step_info::StepInfo;
+pub use summary::Analysis;
 pub use time::TimeResponse;

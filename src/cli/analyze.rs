@@ -1,0 +1,246 @@
+//! `ltikit analyze`.
+
+use anyhow::Result;
+use clap::Args;
+use serde::Serialize;
+
+use super::output::{finite, pair, print, print_json};
+use super::{Plant, PlantArgs};
+use crate::analysis::Analysis;
+use crate::poly::{fmt_num, fmt_root, fmt_sig, roots::flatten};
+
+#[derive(Args, Debug)]
+pub struct AnalyzeArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    /// Print one JSON document (the stable contract) instead of the report.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(a: &AnalyzeArgs) -> Result<()> {
+    let plant = a.plant.single()?;
+    let analysis = plant.tf.analyze()?;
+    if a.json {
+        print_json(&AnalyzeJson::from(&analysis))
+    } else {
+        print(&report(&plant, &analysis))
+    }
+}
+
+/// The `analyze` JSON contract (DESIGN §1.2).
+#[derive(Serialize)]
+pub struct AnalyzeJson {
+    order: usize,
+    relative_degree: i64,
+    poles: Vec<[f64; 2]>,
+    zeros: Vec<[f64; 2]>,
+    zeros_at_infinity: usize,
+    cancelled: Vec<[f64; 2]>,
+    dc_gain: Option<f64>,
+    bibo_stable: bool,
+    internally_stable: bool,
+    stability_reason: String,
+    modes: Vec<ModeJson>,
+    second_order: Option<SecondOrderJson>,
+    step_info: Option<StepInfoJson>,
+}
+
+#[derive(Serialize)]
+struct ModeJson {
+    pole: [f64; 2],
+    multiplicity: usize,
+    wn: f64,
+    zeta: Option<f64>,
+    time_constant: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct SecondOrderJson {
+    class: &'static str,
+    wn: Option<f64>,
+    zeta: Option<f64>,
+    wd: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct StepInfoJson {
+    rise_time: f64,
+    settling_time: f64,
+    overshoot_percent: f64,
+    peak: f64,
+    peak_time: f64,
+    steady_state: f64,
+}
+
+impl From<&Analysis> for AnalyzeJson {
+    fn from(a: &Analysis) -> Self {
+        let pz = &a.pole_zero;
+        AnalyzeJson {
+            order: a.order,
+            relative_degree: a.relative_degree,
+            poles: flatten(&pz.poles).into_iter().map(pair).collect(),
+            zeros: flatten(&pz.zeros).into_iter().map(pair).collect(),
+            zeros_at_infinity: pz.zeros_at_infinity,
+            cancelled: flatten(&pz.cancelled).into_iter().map(pair).collect(),
+            dc_gain: a.dc_gain.and_then(finite),
+            bibo_stable: a.stability.bibo_stable,
+            internally_stable: a.stability.internally_stable,
+            stability_reason: a.stability.reason.clone(),
+            modes: a
+                .modes
+                .iter()
+                .map(|m| ModeJson {
+                    pole: pair(m.pole),
+                    multiplicity: m.multiplicity,
+                    wn: m.wn,
+                    zeta: m.zeta,
+                    time_constant: m.time_constant,
+                })
+                .collect(),
+            second_order: a.second_order.map(|s| SecondOrderJson {
+                class: match s.class {
+                    crate::analysis::DampingClass::Undamped => "undamped",
+                    crate::analysis::DampingClass::Underdamped => "underdamped",
+                    crate::analysis::DampingClass::CriticallyDamped => "critically_damped",
+                    crate::analysis::DampingClass::Overdamped => "overdamped",
+                    crate::analysis::DampingClass::Unstable => "unstable",
+                },
+                wn: s.wn,
+                zeta: s.zeta,
+                wd: s.wd,
+            }),
+            step_info: a.step_info.map(|s| StepInfoJson {
+                rise_time: s.rise_time,
+                settling_time: s.settling_time,
+                overshoot_percent: s.overshoot_percent,
+                peak: s.peak,
+                peak_time: s.peak_time,
+                steady_state: s.steady_state,
+            }),
+        }
+    }
+}
+
+fn roots_line(roots: &[crate::Root]) -> String {
+    if roots.is_empty() {
+        return "none".into();
+    }
+    roots
+        .iter()
+        .filter(|r| r.value.im >= 0.0)
+        .map(|r| {
+            let m = if r.multiplicity > 1 {
+                format!(" (×{})", r.multiplicity)
+            } else {
+                String::new()
+            };
+            format!("{}{m}", fmt_root(r.value, 6))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The human-readable report.
+pub fn report(plant: &Plant, a: &Analysis) -> String {
+    let pz = &a.pole_zero;
+    let mut s = String::new();
+    s.push_str(&format!("G(s) = {}\n", plant.tf));
+    if !plant.name.contains(" / ") {
+        s.push_str(&format!("  {}\n", plant.name));
+    }
+    if let Some(d) = &plant.description {
+        s.push_str(&format!("  {d}\n"));
+    }
+    s.push_str(&format!(
+        "  order {}, relative degree {}\n\n",
+        a.order, a.relative_degree
+    ));
+    s.push_str(&format!("Poles:     {}\n", roots_line(&pz.poles)));
+    s.push_str(&format!("Zeros:     {}", roots_line(&pz.zeros)));
+    if pz.zeros_at_infinity > 0 {
+        s.push_str(&format!("; {} at infinity", pz.zeros_at_infinity));
+    }
+    s.push('\n');
+    if !pz.cancelled.is_empty() {
+        s.push_str(&format!(
+            "Cancelled: {} (common to numerator and denominator; reduced G = {})\n",
+            roots_line(&pz.cancelled),
+            pz.reduced
+        ));
+    }
+    s.push_str(&format!(
+        "dc gain:   {}\n\n",
+        match a.dc_gain {
+            Some(g) => fmt_num(g),
+            None => "infinite (pole at s = 0)".into(),
+        }
+    ));
+    let st = &a.stability;
+    s.push_str(&format!(
+        "Stability: {}, {} — {}\n\n",
+        if st.bibo_stable {
+            "BIBO stable"
+        } else {
+            "not BIBO stable"
+        },
+        if st.internally_stable {
+            "internally stable"
+        } else {
+            "not internally stable"
+        },
+        st.reason
+    ));
+    if !a.modes.is_empty() {
+        s.push_str("Modes:\n");
+        s.push_str(&format!(
+            "  {:<28} {:>12} {:>10} {:>14}\n",
+            "pole", "wn [rad/s]", "zeta", "tau [s]"
+        ));
+        for m in a.modes.iter().filter(|m| m.pole.im >= 0.0) {
+            let mult = if m.multiplicity > 1 {
+                format!(" (×{})", m.multiplicity)
+            } else {
+                String::new()
+            };
+            s.push_str(&format!(
+                "  {:<28} {:>12} {:>10} {:>14}\n",
+                format!("{}{mult}", fmt_root(m.pole, 6)),
+                fmt_sig(m.wn, 6),
+                m.zeta.map(|z| fmt_sig(z, 6)).unwrap_or_else(|| "-".into()),
+                m.time_constant
+                    .map(|t| fmt_sig(t, 6))
+                    .unwrap_or_else(|| "-".into())
+            ));
+        }
+        s.push('\n');
+    }
+    if let Some(so) = &a.second_order {
+        s.push_str(&format!("Second order: {}", so.class.words()));
+        if let (Some(wn), Some(z)) = (so.wn, so.zeta) {
+            s.push_str(&format!(
+                ", wn = {} rad/s, zeta = {}",
+                fmt_sig(wn, 6),
+                fmt_sig(z, 6)
+            ));
+        }
+        if let Some(wd) = so.wd {
+            s.push_str(&format!(", wd = {} rad/s", fmt_sig(wd, 6)));
+        }
+        s.push_str("\n\n");
+    }
+    match &a.step_info {
+        Some(si) => s.push_str(&format!(
+            "Step response (exact):\n  rise time {} s (10–90 %), settling time {} s (2 %)\n  \
+             overshoot {} %, peak {} at t = {} s, final value {}\n",
+            fmt_sig(si.rise_time, 7),
+            fmt_sig(si.settling_time, 7),
+            fmt_sig(si.overshoot_percent, 7),
+            fmt_sig(si.peak, 7),
+            fmt_sig(si.peak_time, 7),
+            fmt_sig(si.steady_state, 7)
+        )),
+        None => s.push_str("Step response: does not settle (no step metrics)\n"),
+    }
+    s
+}

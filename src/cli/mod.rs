@@ -1,0 +1,102 @@
+//! The `ltikit` command line: argument parsing, text reports and JSON output. The only layer
+//! that prints. Errors go to stderr as one line with exit code 1 (2 for usage errors).
+
+mod analyze;
+mod output;
+mod parse;
+mod plant;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+pub use plant::{Plant, PlantArgs};
+
+/// A usage error (exit code 2): a missing or inconsistent option, as opposed to bad values.
+#[derive(Debug)]
+pub struct UsageError(pub String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for UsageError {}
+
+/// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
+/// partial fractions and closed-form responses, frequency response, plots, nonlinear models.
+///
+/// Coefficients are given in descending powers of s: --den "1 0.8 4" is s^2 + 0.8 s + 4.
+/// Frequencies in rad/s, phases in degrees, magnitudes as ratios and dB.
+#[derive(Parser, Debug)]
+#[command(name = "ltikit", version, about, long_about = None, max_term_width = 100)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Poles and zeros with multiplicities, cancellations, dc gain, stability with the reason,
+    /// modes (wn, zeta, time constant), second-order class and step metrics.
+    Analyze(analyze::AnalyzeArgs),
+}
+
+/// Entry point of the binary: parses the arguments, runs the command, returns the exit code.
+pub fn main() -> i32 {
+    install_panic_hook();
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return code;
+        }
+    };
+    match run(cli) {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {}", one_line(&e));
+            if e.downcast_ref::<UsageError>().is_some() {
+                2
+            } else {
+                1
+            }
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Analyze(a) => analyze::run(&a),
+    }
+}
+
+/// The error and its causes on one line.
+fn one_line(e: &anyhow::Error) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for cause in e.chain() {
+        let s = cause.to_string();
+        if !parts.iter().any(|p| p.contains(&s)) {
+            parts.push(s);
+        }
+    }
+    parts.join(": ").replace('\n', " ")
+}
+
+/// A panic is a bug; print one line instead of a trace.
+fn install_panic_hook() {
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown".into());
+        let at = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        eprintln!("error: internal error (a bug, please report it): {msg}{at}");
+    }));
+}
