@@ -219,6 +219,7 @@ pub fn charpoly(m: &DMatrix<f64>) -> Result<Poly> {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // these tests expect exact values
     use super::*;
 
     #[test]

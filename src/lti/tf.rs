@@ -3,7 +3,7 @@
 //! The ODE `a_n y^(n) + … + a_0 y = b_m u^(m) + … + b_0 u` becomes
 //! `TransferFunction::from_descending(&[b_m, …, b_0], &[a_n, …, a_0])`. The denominator as given
 //! is the characteristic polynomial: its roots are the poles (common factors with the numerator
-//! are *not* removed here; see [`crate::analysis::PoleZero`] for the reduced form).
+//! are *not* removed here; the analysis layer's `pole_zero()` gives the reduced form).
 
 use num_complex::Complex64;
 use std::fmt;
@@ -245,6 +245,7 @@ impl std::ops::Neg for &TransferFunction {
 
 impl fmt::Display for TransferFunction {
     /// `N / (D)` with polynomials in descending powers, e.g. `4 / (s^2 + 0.8 s + 4)`.
+    #[allow(clippy::float_cmp)] // exact 1 means "no denominator to show"
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let n = self.num.to_string();
         let d = self.den.to_string();

@@ -43,28 +43,42 @@ impl Dd {
     pub fn to_f64(self) -> f64 {
         self.hi + self.lo
     }
+}
 
-    /// Sum.
+impl std::ops::Add for Dd {
+    type Output = Dd;
     #[inline]
-    pub fn add(self, o: Dd) -> Dd {
+    fn add(self, o: Dd) -> Dd {
         let (s, e) = two_sum(self.hi, o.hi);
         let e = e + self.lo + o.lo;
         let (hi, lo) = two_sum(s, e);
         Dd { hi, lo }
     }
+}
 
-    /// Difference.
+impl std::ops::Neg for Dd {
+    type Output = Dd;
     #[inline]
-    pub fn sub(self, o: Dd) -> Dd {
-        self.add(Dd {
-            hi: -o.hi,
-            lo: -o.lo,
-        })
+    fn neg(self) -> Dd {
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
     }
+}
 
-    /// Product.
+impl std::ops::Sub for Dd {
+    type Output = Dd;
     #[inline]
-    pub fn mul(self, o: Dd) -> Dd {
+    fn sub(self, o: Dd) -> Dd {
+        self + (-o)
+    }
+}
+
+impl std::ops::Mul for Dd {
+    type Output = Dd;
+    #[inline]
+    fn mul(self, o: Dd) -> Dd {
         let (p, e) = two_prod(self.hi, o.hi);
         let e = e + (self.hi * o.lo + self.lo * o.hi);
         let (hi, lo) = two_sum(p, e);
@@ -77,7 +91,7 @@ pub fn poly_mul(a: &[Dd], b: &[Dd]) -> Vec<Dd> {
     let mut c = vec![Dd::ZERO; a.len() + b.len() - 1];
     for (i, x) in a.iter().enumerate() {
         for (j, y) in b.iter().enumerate() {
-            c[i + j] = c[i + j].add(x.mul(*y));
+            c[i + j] = c[i + j] + *x * *y;
         }
     }
     c
@@ -85,13 +99,14 @@ pub fn poly_mul(a: &[Dd], b: &[Dd]) -> Vec<Dd> {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // these tests expect exact values
     use super::*;
 
     #[test]
     fn captures_what_f64_loses() {
         // (1 + 2^-60) - 1 is lost in f64 but kept in double-double.
-        let a = Dd::from(1.0).add(Dd::from(2f64.powi(-60)));
-        let d = a.sub(Dd::from(1.0));
+        let a = Dd::from(1.0) + Dd::from(2f64.powi(-60));
+        let d = a - Dd::from(1.0);
         assert_eq!(d.to_f64(), 2f64.powi(-60));
         let (p, e) = two_prod(1.0 + 2f64.powi(-30), 1.0 + 2f64.powi(-30));
         assert_eq!(e, 2f64.powi(-60));

@@ -29,6 +29,7 @@ pub struct Bracket {
 /// let r = brent(f, Bracket { a: 0.0, b: 2.0, fa: -2.0, fb: 2.0 }, 1e-15).unwrap();
 /// assert!((r - 2f64.sqrt()).abs() < 1e-14);
 /// ```
+#[allow(clippy::float_cmp)] // `a == c`: the same bracket end, as in Brent's algorithm
 pub fn brent(f: impl Fn(f64) -> f64, bracket: Bracket, xtol: f64) -> Result<f64> {
     let Bracket {
         mut a,

@@ -455,6 +455,7 @@ pub fn fmt_root(z: Complex64, sig: usize) -> String {
 }
 
 /// Formats a polynomial in descending powers of `var`.
+#[allow(clippy::float_cmp)] // a coefficient of exactly 1 is not printed
 pub fn format_poly(p: &Poly, var: &str) -> String {
     if p.is_zero() {
         return "0".into();
@@ -497,6 +498,7 @@ pub fn format_poly(p: &Poly, var: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // these tests expect exact values
     use super::*;
 
     #[test]

@@ -382,8 +382,8 @@ fn refine_structured(q: &Poly, found: &[Found]) -> Option<Vec<Found>> {
                 let quot = t / lead;
                 let (pr, pe) = two_prod(quot, lead);
                 let corr = ((t - pr) - pe) / lead;
-                let tq = Dd { hi: quot, lo: 0.0 }.add(Dd::from(corr));
-                a.sub(tq).to_f64() * wi
+                let tq = Dd { hi: quot, lo: 0.0 } + Dd::from(corr);
+                (*a - tq).to_f64() * wi
             })
             .collect();
         let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -417,7 +417,8 @@ fn refine_structured(q: &Poly, found: &[Found]) -> Option<Vec<Found>> {
         let Some((rn, nn)) = residual(&next) else {
             break;
         };
-        if !(nn < norm) {
+        let improved = nn < norm;
+        if !improved {
             break;
         }
         let size = cur.iter().map(|f| f.value.norm()).fold(0.0, f64::max);
@@ -443,7 +444,7 @@ fn structured_poly_dd(found: &[Found]) -> Vec<Dd> {
         } else {
             let (a2, ea) = two_prod(z.re, z.re);
             let (b2, eb) = two_prod(z.im, z.im);
-            let norm2 = Dd { hi: a2, lo: ea }.add(Dd { hi: b2, lo: eb });
+            let norm2 = Dd { hi: a2, lo: ea } + Dd { hi: b2, lo: eb };
             vec![Dd::from(1.0), Dd::from(-2.0 * z.re), norm2]
         };
         for _ in 0..f.multiplicity {
@@ -538,13 +539,13 @@ fn link_groups(pts: &[Complex64]) -> Vec<Vec<Complex64>> {
     }
     let mut groups: Vec<Vec<Complex64>> = Vec::new();
     let mut root_of: Vec<Option<usize>> = vec![None; n];
-    for i in 0..n {
+    for (i, &pt) in pts.iter().enumerate() {
         let r = find(&mut parent, i);
         match root_of[r] {
-            Some(g) => groups[g].push(pts[i]),
+            Some(g) => groups[g].push(pt),
             None => {
                 root_of[r] = Some(groups.len());
-                groups.push(vec![pts[i]]);
+                groups.push(vec![pt]);
             }
         }
     }
@@ -745,7 +746,8 @@ fn polish_real(p: &Poly, x0: f64, reach: f64) -> f64 {
         }
         let xn = x - p.eval(x) / d;
         let fn_ = p.eval(xn).abs();
-        if !(fn_ < fx) || (xn - x0).abs() > reach || !xn.is_finite() {
+        let improved = fn_ < fx;
+        if !improved || (xn - x0).abs() > reach || !xn.is_finite() {
             break;
         }
         let done = (xn - x).abs() <= 2.0 * EPS * xn.abs();
@@ -772,7 +774,8 @@ fn polish_complex(p: &Poly, z0: Complex64, reach: f64) -> Complex64 {
         }
         let zn = z - p.eval_complex(z) / d;
         let fn_ = p.eval_complex(zn).norm();
-        if !(fn_ < fz) || (zn - z0).norm() > reach || !zn.norm().is_finite() {
+        let improved = fn_ < fz;
+        if !improved || (zn - z0).norm() > reach || !zn.norm().is_finite() {
             break;
         }
         let done = (zn - z).norm() <= 2.0 * EPS * zn.norm();
@@ -907,6 +910,7 @@ fn simple_roots(q: &Poly, cand: &[Complex64]) -> Vec<Root> {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // these tests expect exact values
     use super::*;
 
     fn p(c: &[f64]) -> Poly {
