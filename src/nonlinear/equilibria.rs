@@ -76,13 +76,12 @@ fn residual_unchecked(sys: &dyn DynSystem, x: &[f64], u: &[f64]) -> f64 {
 }
 
 fn inf_norm(v: &[f64]) -> f64 {
-    v.iter().fold(0.0_f64, |m, x| {
-        if x.is_nan() {
-            f64::NAN
-        } else {
-            m.max(x.abs())
-        }
-    })
+    v.iter().fold(
+        0.0_f64,
+        |m, x| {
+            if x.is_nan() { f64::NAN } else { m.max(x.abs()) }
+        },
+    )
 }
 
 /// All equilibria for the constant input `u`: the model's closed form when it has one (and
@@ -192,10 +191,11 @@ pub fn newton_equilibria(
             .fold(1.0_f64, f64::max);
         if let Some((x, res)) = newton(sys, x0, u, search, span) {
             let scale = 1.0 + inf_norm(&x);
-            if let Some(e) = found
-                .iter_mut()
-                .find(|e| e.x.iter().zip(&x).all(|(a, b)| (a - b).abs() <= 1e-7 * scale))
-            {
+            if let Some(e) = found.iter_mut().find(|e| {
+                e.x.iter()
+                    .zip(&x)
+                    .all(|(a, b)| (a - b).abs() <= 1e-7 * scale)
+            }) {
                 if res < e.residual {
                     e.x = x;
                     e.residual = res;

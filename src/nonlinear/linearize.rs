@@ -9,7 +9,7 @@
 //!   linearized system" (seed §2.3).
 //!
 //! An eigenvalue is *on* the axis when |Re λ| ≤ 1e-9·|λ| (`AXIS_REL_TOL`, as for poles) or
-//! |Re λ| ≤ 100·n·eps·‖A‖ (a zero eigenvalue computed as ±1e-17).
+//! |λ| ≤ 10·n·eps·‖A‖_F (a zero eigenvalue computed as ±1e-17: numerically zero).
 
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
@@ -153,9 +153,9 @@ pub fn linearize_at(sys: &dyn DynSystem, x: &[f64], u: &[f64]) -> Result<StateSp
 /// assert_eq!(local_stability(&[c(1e-18, 0.0), c(2.0, 0.0)], 1.0).1, LocalStability::Unstable);
 /// ```
 pub fn local_stability(eigs: &[Complex64], scale: f64) -> (bool, LocalStability, String) {
-    let abs_zero = 100.0 * (eigs.len().max(1) as f64) * EPS * scale;
+    let abs_zero = 10.0 * (eigs.len().max(1) as f64) * EPS * scale;
     let where_is = |l: &Complex64| {
-        if l.re.abs() <= abs_zero {
+        if l.norm() <= abs_zero {
             HalfPlane::Axis
         } else {
             half_plane(*l)

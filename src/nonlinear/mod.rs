@@ -38,7 +38,7 @@ pub use equilibria::{
     Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria, newton_equilibria, residual,
 };
 pub use linearize::{
-    LinearizedEquilibrium, LinearizedTf, Linearization, LocalStability, analyze_equilibrium,
+    Linearization, LinearizedEquilibrium, LinearizedTf, LocalStability, analyze_equilibrium,
     linearize, linearize_at, local_stability,
 };
 pub use params::{Constraint, ModelParam};
@@ -47,12 +47,11 @@ pub use period::{
     pendulum_periods,
 };
 pub use portraits::{
-    Divergence, divergence, lorenz_divergence, pendulum_energy, pendulum_separatrices,
-    trajectories,
+    Divergence, divergence, lorenz_divergence, pendulum_energy, pendulum_separatrices, trajectories,
 };
 pub use pullin::{PullInDiagram, find_pull_in, mems_pullin};
 pub use registry::{ModelInfo, ModelKind, build_model, model_info, model_names, models};
-pub use simulate::{Input, Simulation, sample_times, simulate};
+pub use simulate::{Input, Simulation, SimulationStop, sample_times, simulate};
 pub use system::{
     BoxedSystem, DynSystem, Jacobians, NonlinearSystem, Scalar, SystemInfo, check_point,
     derivative, jacobians,

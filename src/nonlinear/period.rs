@@ -129,7 +129,12 @@ pub fn pendulum_period_simulated(
             if strict {
                 match brent(
                     |t| step.eval_component(t, 1),
-                    Bracket { a: ta, b: tb, fa, fb },
+                    Bracket {
+                        a: ta,
+                        b: tb,
+                        fa,
+                        fb,
+                    },
                     1e-15 * tb.max(1.0),
                 ) {
                     Ok(t) => crossings.push(t),

@@ -52,7 +52,10 @@ fn classify(mems: &Mems, v: f64) -> Result<(Vec<f64>, Vec<f64>)> {
 }
 
 /// Pull-in voltage and gap found by bisection on v ≥ 0 (to ~1e-15 relative): the largest v at
-/// which the device still has an asymptotically stable physical equilibrium.
+/// which the device still has an asymptotically stable physical equilibrium. The gap is the
+/// mean of the stable and the unstable physical gap there (they straddle the fold
+/// symmetrically to first order, l± ≈ l_pi ± c·√(v_pi − v), so the mean errs by O(v_pi − v)
+/// rather than O(√(v_pi − v))).
 ///
 /// ```
 /// use ltikit::nonlinear::{find_pull_in, models::Mems};
@@ -63,8 +66,14 @@ fn classify(mems: &Mems, v: f64) -> Result<(Vec<f64>, Vec<f64>)> {
 /// ```
 pub fn find_pull_in(mems: &Mems) -> Result<(f64, f64)> {
     let stable_at = |v: f64| -> Result<Option<f64>> {
-        let (s, _) = classify(mems, v)?;
-        Ok(s.into_iter().reduce(f64::min))
+        let (s, other) = classify(mems, v)?;
+        Ok(s.into_iter().reduce(f64::min).map(|ls| {
+            // The unstable partner just below the fold, if still distinct.
+            match other.into_iter().filter(|&l| l < ls).reduce(f64::max) {
+                Some(lu) => 0.5 * (ls + lu),
+                None => ls,
+            }
+        }))
     };
     let mut lo = 0.0;
     let mut l_lo = stable_at(lo)?.ok_or_else(|| LtiError::Undefined {

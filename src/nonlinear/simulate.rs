@@ -10,7 +10,9 @@ use serde::Serialize;
 
 use crate::error::{LtiError, Result, check_finite};
 use crate::nonlinear::system::{DynSystem, SystemInfo, check_len, check_point};
-use crate::numeric::rk45::{Rk45Options, Rk45Stats, check_sample_times, solve};
+use crate::numeric::rk45::{
+    DenseStep, Rk45Options, Rk45Stats, StepControl, check_sample_times, integrate,
+};
 
 /// The input signal of a simulation.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -93,6 +95,17 @@ pub struct Simulation {
     pub outputs: Vec<Vec<f64>>,
     /// Integrator work.
     pub stats: Rk45Stats,
+    /// Set when the simulation ended before the last requested time.
+    pub stop: Option<SimulationStop>,
+}
+
+/// Why and when a simulation ended early.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SimulationStop {
+    /// Time of the stop (the last sample).
+    pub t: f64,
+    /// Why.
+    pub reason: String,
 }
 
 impl Simulation {
@@ -137,6 +150,10 @@ pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
 /// Simulates `sys` from x(0) = `x0` under `input`, returning states and outputs at `times`
 /// (non-decreasing, starting at ≥ 0; the last one is the end time and must be > 0).
 ///
+/// If x0 is in the model's domain ([`SystemInfo::in_domain`]) and the trajectory leaves it,
+/// the simulation stops there: the samples end with the last state inside the domain (located
+/// by bisection on the dense output to ~1e-14 s) and [`Simulation::stop`] says when and why.
+///
 /// ```
 /// use ltikit::nonlinear::{simulate, sample_times, Input, models::VanDerPol};
 /// use ltikit::numeric::rk45::Rk45Options;
@@ -180,35 +197,74 @@ pub fn simulate(
         _ => segments.push((0.0, t_end, input.at(0.0).to_vec())),
     }
 
+    let n = sys.nx();
+    let check_domain = sys.in_domain(x0);
+    let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
     let mut stats = Rk45Stats::default();
+    let mut stop: Option<SimulationStop> = None;
     let mut x = x0.to_vec();
     let mut next = 0;
     let nseg = segments.len();
     for (k, (ta, tb, u)) in segments.into_iter().enumerate() {
         // Samples in [ta, tb] (the last segment takes everything left).
-        let end = if k + 1 == nseg {
+        let seg_end = if k + 1 == nseg {
             times.len()
         } else {
             next + times[next..].iter().take_while(|&&t| t <= tb).count()
         };
-        let seg_times = &times[next..end];
-        let sol = solve(
+        let outcome = integrate(
             |_t, xs: &[f64], dx: &mut [f64]| sys.eval_f(xs, &u, dx),
             ta,
             &x,
             tb,
-            seg_times,
             opts,
+            |step| {
+                let mut buf = vec![0.0; n];
+                let cut = (check_domain && !sys.in_domain(step.state_end()))
+                    .then(|| leave_time(sys, step, &mut buf));
+                let limit = cut.unwrap_or(step.t_end());
+                while next < seg_end && times[next] <= limit {
+                    let ts = times[next];
+                    let mut xs = vec![0.0; n];
+                    if ts >= step.t_end() {
+                        xs.copy_from_slice(step.state_end());
+                    } else if ts <= step.t_start() {
+                        xs.copy_from_slice(step.state_start());
+                    } else {
+                        step.eval(ts, &mut xs);
+                    }
+                    t_out.push(ts);
+                    states.push(xs);
+                    next += 1;
+                }
+                match cut {
+                    Some(tc) => {
+                        step.eval(tc, &mut buf);
+                        if t_out.last().is_none_or(|&t| t < tc) {
+                            t_out.push(tc);
+                            states.push(buf);
+                        }
+                        stop = Some(SimulationStop {
+                            t: tc,
+                            reason: "the state left the model's domain".into(),
+                        });
+                        StepControl::Stop
+                    }
+                    None => StepControl::Continue,
+                }
+            },
         )?;
-        states.extend(sol.x);
-        stats.add(&sol.stats);
-        x = sol.x_end;
-        next = end;
+        stats.add(&outcome.stats);
+        x = outcome.x;
+        if stop.is_some() {
+            break;
+        }
+        next = seg_end;
     }
 
-    let mut outputs = Vec::with_capacity(times.len());
-    for (t, xs) in times.iter().zip(&states) {
+    let mut outputs = Vec::with_capacity(t_out.len());
+    for (t, xs) in t_out.iter().zip(&states) {
         let mut y = vec![0.0; sys.ny()];
         sys.eval_h(xs, input.at(*t), &mut y);
         outputs.push(y);
@@ -217,9 +273,29 @@ pub fn simulate(
         model: SystemInfo::model_name(sys),
         state_names: sys.state_names(),
         output_names: sys.output_names(),
-        t: times.to_vec(),
+        t: t_out,
         states,
         outputs,
         stats,
+        stop,
     })
+}
+
+/// The last time in the step at which the state is still in the domain (bisection on the
+/// dense output; the step starts inside and ends outside).
+fn leave_time(sys: &dyn DynSystem, step: &DenseStep<'_>, buf: &mut [f64]) -> f64 {
+    let (mut lo, mut hi) = (step.t_start(), step.t_end());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        step.eval(mid, buf);
+        if sys.in_domain(buf) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
 }

@@ -71,8 +71,15 @@ pub trait SystemInfo {
         None
     }
 
-    /// Whether a state is physically meaningful (e.g. a positive gap); default true.
+    /// Whether an equilibrium state is physically meaningful (e.g. a gap in (0, l0]); default
+    /// true.
     fn is_physical(&self, _x: &[f64]) -> bool {
+        true
+    }
+
+    /// Whether the model's equations hold at x (default true). A simulation started inside the
+    /// domain stops where the trajectory leaves it (the MEMS plates touch at l = 0).
+    fn in_domain(&self, _x: &[f64]) -> bool {
         true
     }
 }
@@ -215,7 +222,10 @@ pub fn check_point(sys: &dyn DynSystem, x: &[f64], u: &[f64]) -> Result<()> {
 }
 
 fn name_or_index(names: &[String], i: usize) -> String {
-    names.get(i).cloned().unwrap_or_else(|| format!("{}", i + 1))
+    names
+        .get(i)
+        .cloned()
+        .unwrap_or_else(|| format!("{}", i + 1))
 }
 
 /// Error unless a vector has the expected length.

@@ -18,7 +18,13 @@ pub const LORENZ_PARAMS: &[ModelParam] = &[
         "Rayleigh number ratio r",
         Constraint::NonNegative,
     ),
-    param("b", 8.0 / 3.0, "1", "geometric factor b", Constraint::Positive),
+    param(
+        "b",
+        8.0 / 3.0,
+        "1",
+        "geometric factor b",
+        Constraint::Positive,
+    ),
 ];
 
 /// The Lorenz system.

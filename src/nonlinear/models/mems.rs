@@ -10,6 +10,9 @@
 //! they merge at l = 2 l0/3 when |v| = v_pi (a saddle-node), and above it only the negative
 //! root is left. For v = 0 the double root l = 0 carries the charged, touching states
 //! q = ±√(2εA k l0), which are reported too (non-physical: `physical` is 0 < l ≤ l0).
+//!
+//! The equations hold while the plates are apart: a simulation stops at contact, l = 0
+//! ([`SystemInfo::in_domain`]); beyond it the model would blow up (q grows like e^{|l|t/(RεA)}).
 
 use crate::error::Result;
 use crate::nonlinear::params::{Constraint, ModelParam, check_values, named, param};
@@ -185,6 +188,11 @@ impl SystemInfo for Mems {
 
     fn is_physical(&self, x: &[f64]) -> bool {
         x[0] > 0.0 && x[0] <= self.l0
+    }
+
+    /// The model holds while the plates are apart, l > 0 (a simulation stops at contact).
+    fn in_domain(&self, x: &[f64]) -> bool {
+        x[0] > 0.0
     }
 }
 

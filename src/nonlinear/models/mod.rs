@@ -1,8 +1,8 @@
 //! The seed's models (DESIGN §4): `pendulum`, `mems`, `lorenz`, `vanderpol`, and the linear
 //! textbook plants wrapped as [`LinearModel`].
 
-pub mod lorenz;
 pub mod linear;
+pub mod lorenz;
 pub mod mems;
 pub mod pendulum;
 pub mod vanderpol;
