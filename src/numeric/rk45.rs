@@ -296,6 +296,22 @@ where
     }
     let n = x0.len();
     let mut stats = Rk45Stats::default();
+    if n == 0 {
+        // Nothing evolves: one trivial step covers the interval.
+        observer(&DenseStep {
+            t0,
+            t1: t_end,
+            h: t_end - t0,
+            n: 0,
+            coef: &[],
+            x1: &[],
+        });
+        return Ok(Rk45Outcome {
+            t: t_end,
+            x: Vec::new(),
+            stats,
+        });
+    }
     let mut t = t0;
     let mut y = x0.to_vec();
     let norm0 = inf_norm(x0).max(1.0);
@@ -729,6 +745,21 @@ mod tests {
         ));
         assert!(solve(f, 0.0, &[1.0], 1.0, &[0.5, 0.2], &o).is_err());
         assert!(solve(f, 0.0, &[1.0], 1.0, &[2.0], &o).is_err());
+    }
+
+    #[test]
+    fn empty_state_is_trivial() {
+        let sol = solve(
+            |_t, _x, _dx| {},
+            0.0,
+            &[],
+            3.0,
+            &[0.0, 1.5, 3.0],
+            &Rk45Options::default(),
+        )
+        .unwrap();
+        assert_eq!(sol.x, vec![Vec::<f64>::new(); 3]);
+        assert_eq!(sol.stats.evaluations, 0);
     }
 
     #[test]
