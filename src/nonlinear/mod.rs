@@ -1,1 +1,58 @@
-//! Nonlinear models: equilibria, exact linearisation, simulation (in progress).
+//! Nonlinear models ẋ = f(x, u), y = h(x, u): equilibria, exact linearisation, local
+//! stability, simulation (seed chapter 2).
+//!
+//! # Conventions
+//! - States, inputs and outputs are plain `f64` slices in the model's declared order
+//!   ([`SystemInfo::state_names`]); the seed's models fix these orders (DESIGN §4):
+//!   `pendulum` x = [θ, θ̇], u = [τ], y = θ; `mems` x = [l, l̇, q], u = [v], y = l; `lorenz`
+//!   x = [x₁, x₂, x₃], no input, y = x; `vanderpol` x = [x₁, x₂], no input, y = x.
+//! - Angles in rad, time in s, SI units for parameters ([`ModelParam::unit`]).
+//! - Jacobians are exact: models are generic over the scalar type ([`Scalar`]) and are
+//!   differentiated by forward-mode automatic differentiation (num-dual), like ForwardDiff in
+//!   ControlSystems.jl — never by finite differences.
+//! - Matrices in JSON are arrays of rows; complex numbers `[re, im]`.
+//!
+//! # Pieces
+//! | concept | items |
+//! |---|---|
+//! | model traits | [`SystemInfo`], [`NonlinearSystem`], [`DynSystem`], [`jacobians`] |
+//! | seed models | [`models`]: [`models::Pendulum`], [`models::Mems`], [`models::Lorenz`], [`models::VanDerPol`], [`models::LinearModel`] |
+//! | registry | [`model_names`], [`model_info`], [`build_model`] |
+//! | equilibria | [`equilibria()`], [`newton_equilibria`] |
+//! | linearisation | [`linearize()`], [`linearize_at`], [`local_stability`] |
+//! | simulation | [`simulate()`], [`Input`], [`sample_times`] (Dormand–Prince in [`crate::numeric::rk45`]) |
+//! | picture data | [`trajectories`], [`pendulum_separatrices`], [`lorenz_divergence`], [`mems_pullin`], [`pendulum_periods`] |
+
+pub mod equilibria;
+pub mod linearize;
+pub mod models;
+pub mod params;
+pub mod period;
+pub mod portraits;
+pub mod pullin;
+pub mod registry;
+pub mod simulate;
+pub mod system;
+
+pub use equilibria::{
+    Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria, newton_equilibria, residual,
+};
+pub use linearize::{
+    Linearization, LinearizedEquilibrium, LinearizedTf, LocalStability, analyze_equilibrium,
+    linearize, linearize_at, local_stability,
+};
+pub use params::{Constraint, ModelParam};
+pub use period::{
+    PeriodPoint, agm, elliptic_k, pendulum_period_exact, pendulum_period_simulated,
+    pendulum_periods,
+};
+pub use portraits::{
+    Divergence, divergence, lorenz_divergence, pendulum_energy, pendulum_separatrices, trajectories,
+};
+pub use pullin::{PullInDiagram, find_pull_in, mems_pullin};
+pub use registry::{ModelInfo, ModelKind, build_model, model_info, model_names, models};
+pub use simulate::{Input, Simulation, SimulationStop, sample_times, simulate};
+pub use system::{
+    BoxedSystem, DynSystem, Jacobians, NonlinearSystem, Scalar, SystemInfo, check_point,
+    derivative, jacobians,
+};

@@ -1,0 +1,301 @@
+//! Simulation of a model with the adaptive Dormand–Prince integrator
+//! ([`crate::numeric::rk45`]): a constant or step input, outputs at requested times from the
+//! dense output.
+//!
+//! A step input u(t) = u₀ for t < t_step, u₁ after is handled by stopping exactly at t_step
+//! and restarting from the state reached there: the right-hand side is discontinuous in t, and
+//! stepping across the jump would make the controller reject steps until it has located it.
+
+use serde::Serialize;
+
+use crate::error::{LtiError, Result, check_finite};
+use crate::nonlinear::system::{DynSystem, SystemInfo, check_len, check_point};
+use crate::numeric::rk45::{
+    DenseStep, Rk45Options, Rk45Stats, StepControl, check_sample_times, integrate,
+};
+
+/// The input signal of a simulation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Input {
+    /// u(t) = u for all t ≥ 0.
+    Constant(Vec<f64>),
+    /// u(t) = `before` for t < `t_step`, `after` for t ≥ `t_step`.
+    Step {
+        /// Time of the jump.
+        t_step: f64,
+        /// Value before the jump.
+        before: Vec<f64>,
+        /// Value from the jump on.
+        after: Vec<f64>,
+    },
+}
+
+impl Input {
+    /// No input (for autonomous models).
+    pub fn none() -> Self {
+        Input::Constant(Vec::new())
+    }
+
+    /// The value at time t.
+    pub fn at(&self, t: f64) -> &[f64] {
+        match self {
+            Input::Constant(u) => u,
+            Input::Step {
+                t_step,
+                before,
+                after,
+            } => {
+                if t < *t_step {
+                    before
+                } else {
+                    after
+                }
+            }
+        }
+    }
+
+    fn check(&self, nu: usize) -> Result<()> {
+        let check_vec = |u: &[f64]| -> Result<()> {
+            check_len("input", u.len(), nu)?;
+            for (i, &v) in u.iter().enumerate() {
+                check_finite(|| format!("input component {}", i + 1), v)?;
+            }
+            Ok(())
+        };
+        match self {
+            Input::Constant(u) => check_vec(u),
+            Input::Step {
+                t_step,
+                before,
+                after,
+            } => {
+                check_finite(|| "the step time".into(), *t_step)?;
+                check_vec(before)?;
+                check_vec(after)
+            }
+        }
+    }
+}
+
+/// A simulated trajectory.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Simulation {
+    /// Model name.
+    pub model: String,
+    /// State names.
+    pub state_names: Vec<String>,
+    /// Output names.
+    pub output_names: Vec<String>,
+    /// Sample times.
+    pub t: Vec<f64>,
+    /// State at each sample time.
+    pub states: Vec<Vec<f64>>,
+    /// Output y = h(x, u(t)) at each sample time.
+    pub outputs: Vec<Vec<f64>>,
+    /// Integrator work.
+    pub stats: Rk45Stats,
+    /// Set when the simulation ended before the last requested time.
+    pub stop: Option<SimulationStop>,
+}
+
+/// Why and when a simulation ended early.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SimulationStop {
+    /// Time of the stop (the last sample).
+    pub t: f64,
+    /// Why.
+    pub reason: String,
+}
+
+impl Simulation {
+    /// The time series of state component `i`.
+    pub fn state(&self, i: usize) -> Vec<f64> {
+        self.states.iter().map(|x| x[i]).collect()
+    }
+
+    /// The time series of output component `i`.
+    pub fn output(&self, i: usize) -> Vec<f64> {
+        self.outputs.iter().map(|y| y[i]).collect()
+    }
+}
+
+/// `points` equally spaced times from 0 to `t_end` (both included); `t_end` must be > 0 and
+/// `points` ≥ 2.
+///
+/// ```
+/// let t = ltikit::nonlinear::sample_times(2.0, 5).unwrap();
+/// assert_eq!(t, vec![0.0, 0.5, 1.0, 1.5, 2.0]);
+/// assert!(ltikit::nonlinear::sample_times(0.0, 5).is_err());
+/// ```
+pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
+    check_finite(|| "the end time".into(), t_end)?;
+    if t_end <= 0.0 {
+        return Err(LtiError::InvalidTime {
+            value: t_end,
+            reason: "the end time must be > 0".into(),
+        });
+    }
+    if points < 2 {
+        return Err(LtiError::invalid(format!(
+            "at least 2 sample points are needed, got {points}"
+        )));
+    }
+    let last = (points - 1) as f64;
+    let mut t: Vec<f64> = (0..points).map(|k| t_end * k as f64 / last).collect();
+    t[points - 1] = t_end;
+    Ok(t)
+}
+
+/// Simulates `sys` from x(0) = `x0` under `input`, returning states and outputs at `times`
+/// (non-decreasing, starting at ≥ 0; the last one is the end time and must be > 0).
+///
+/// If x0 is in the model's domain ([`SystemInfo::in_domain`]) and the trajectory leaves it,
+/// the simulation stops there: the samples end with the last state inside the domain (located
+/// by bisection on the dense output to ~1e-14 s) and [`Simulation::stop`] says when and why.
+///
+/// ```
+/// use ltikit::nonlinear::{simulate, sample_times, Input, models::VanDerPol};
+/// use ltikit::numeric::rk45::Rk45Options;
+/// let t = sample_times(20.0, 201).unwrap();
+/// let sim = simulate(&VanDerPol, &[0.1, 0.0], &Input::none(), &t, &Rk45Options::default()).unwrap();
+/// let end = sim.states.last().unwrap();
+/// assert!((end[0].hypot(end[1]) - 1.0).abs() < 1e-6); // on the unit-circle limit cycle
+/// ```
+pub fn simulate(
+    sys: &dyn DynSystem,
+    x0: &[f64],
+    input: &Input,
+    times: &[f64],
+    opts: &Rk45Options,
+) -> Result<Simulation> {
+    check_point(sys, x0, &vec![0.0; sys.nu()])?;
+    input.check(sys.nu())?;
+    let Some(&t_end) = times.last() else {
+        return Err(LtiError::invalid("no sample times given"));
+    };
+    check_finite(|| "the end time".into(), t_end)?;
+    if t_end <= 0.0 {
+        return Err(LtiError::InvalidTime {
+            value: t_end,
+            reason: "the end time must be > 0".into(),
+        });
+    }
+    check_sample_times(times, 0.0, t_end)?;
+
+    // Segments of constant input: [0, t_step] and [t_step, t_end] for a step inside (0, t_end).
+    let mut segments: Vec<(f64, f64, Vec<f64>)> = Vec::new();
+    match input {
+        Input::Step {
+            t_step,
+            before,
+            after,
+        } if *t_step > 0.0 && *t_step < t_end => {
+            segments.push((0.0, *t_step, before.clone()));
+            segments.push((*t_step, t_end, after.clone()));
+        }
+        _ => segments.push((0.0, t_end, input.at(0.0).to_vec())),
+    }
+
+    let n = sys.nx();
+    let check_domain = sys.in_domain(x0);
+    let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
+    let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
+    let mut stats = Rk45Stats::default();
+    let mut stop: Option<SimulationStop> = None;
+    let mut x = x0.to_vec();
+    let mut next = 0;
+    let nseg = segments.len();
+    for (k, (ta, tb, u)) in segments.into_iter().enumerate() {
+        // Samples in [ta, tb] (the last segment takes everything left).
+        let seg_end = if k + 1 == nseg {
+            times.len()
+        } else {
+            next + times[next..].iter().take_while(|&&t| t <= tb).count()
+        };
+        let outcome = integrate(
+            |_t, xs: &[f64], dx: &mut [f64]| sys.eval_f(xs, &u, dx),
+            ta,
+            &x,
+            tb,
+            opts,
+            |step| {
+                let mut buf = vec![0.0; n];
+                let cut = (check_domain && !sys.in_domain(step.state_end()))
+                    .then(|| leave_time(sys, step, &mut buf));
+                let limit = cut.unwrap_or(step.t_end());
+                while next < seg_end && times[next] <= limit {
+                    let ts = times[next];
+                    let mut xs = vec![0.0; n];
+                    if ts >= step.t_end() {
+                        xs.copy_from_slice(step.state_end());
+                    } else if ts <= step.t_start() {
+                        xs.copy_from_slice(step.state_start());
+                    } else {
+                        step.eval(ts, &mut xs);
+                    }
+                    t_out.push(ts);
+                    states.push(xs);
+                    next += 1;
+                }
+                match cut {
+                    Some(tc) => {
+                        step.eval(tc, &mut buf);
+                        if t_out.last().is_none_or(|&t| t < tc) {
+                            t_out.push(tc);
+                            states.push(buf);
+                        }
+                        stop = Some(SimulationStop {
+                            t: tc,
+                            reason: "the state left the model's domain".into(),
+                        });
+                        StepControl::Stop
+                    }
+                    None => StepControl::Continue,
+                }
+            },
+        )?;
+        stats.add(&outcome.stats);
+        x = outcome.x;
+        if stop.is_some() {
+            break;
+        }
+        next = seg_end;
+    }
+
+    let mut outputs = Vec::with_capacity(t_out.len());
+    for (t, xs) in t_out.iter().zip(&states) {
+        let mut y = vec![0.0; sys.ny()];
+        sys.eval_h(xs, input.at(*t), &mut y);
+        outputs.push(y);
+    }
+    Ok(Simulation {
+        model: SystemInfo::model_name(sys),
+        state_names: sys.state_names(),
+        output_names: sys.output_names(),
+        t: t_out,
+        states,
+        outputs,
+        stats,
+        stop,
+    })
+}
+
+/// The last time in the step at which the state is still in the domain (bisection on the
+/// dense output; the step starts inside and ends outside).
+fn leave_time(sys: &dyn DynSystem, step: &DenseStep<'_>, buf: &mut [f64]) -> f64 {
+    let (mut lo, mut hi) = (step.t_start(), step.t_end());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        step.eval(mid, buf);
+        if sys.in_domain(buf) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
