@@ -2,9 +2,11 @@
 //! that prints. Errors go to stderr as one line with exit code 1 (2 for usage errors).
 
 mod analyze;
+mod linearize;
 mod output;
 mod parse;
 mod plant;
+mod simulate;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -40,6 +42,11 @@ enum Command {
     /// Poles and zeros with multiplicities, cancellations, dc gain, stability with the reason,
     /// modes (wn, zeta, time constant), second-order class and step metrics.
     Analyze(analyze::AnalyzeArgs),
+    /// Equilibria of a nonlinear model, A, B, C, D at each (exact Jacobians), eigenvalues,
+    /// local stability and the linearised input→output transfer function.
+    Linearize(linearize::LinearizeArgs),
+    /// Simulate a nonlinear model (adaptive Dormand–Prince 5(4)); CSV or JSON.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// Entry point of the binary: parses the arguments, runs the command, returns the exit code.
@@ -69,6 +76,8 @@ pub fn main() -> i32 {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Analyze(a) => analyze::run(&a),
+        Command::Linearize(a) => linearize::run(&a),
+        Command::Simulate(a) => simulate::run(&a),
     }
 }
 

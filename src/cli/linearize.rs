@@ -1,0 +1,219 @@
+//! `ltikit linearize MODEL`: equilibria, A, B, C, D, eigenvalues, local stability and the
+//! linearised transfer function.
+
+use anyhow::Result;
+use clap::Args;
+use serde::Serialize;
+
+use super::output::{pair, print, print_json};
+use super::parse;
+use crate::nonlinear::{
+    EquilibriumSearch, Linearization, LocalStability, build_model, linearize, model_info,
+};
+use crate::poly::{fmt_root, fmt_sig};
+
+#[derive(Args, Debug)]
+pub struct LinearizeArgs {
+    /// Model: pendulum, mems, lorenz, vanderpol, or a linear plant (spring-mass-damper, …).
+    pub model: String,
+    /// A model parameter, NAME=VALUE (repeatable).
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+    /// Constant input at which to find the equilibria (default: the model's operating input).
+    #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
+    pub u: Option<String>,
+    /// Print one JSON document instead of the report.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(a: &LinearizeArgs) -> Result<()> {
+    let params: Vec<(String, f64)> = a
+        .params
+        .iter()
+        .map(|p| parse::param(p))
+        .collect::<Result<_>>()?;
+    let sys = build_model(&a.model, &params)?;
+    let u = a.u.as_deref().map(|s| parse::numbers(s, "--u")).transpose()?;
+    let lin = linearize(sys.as_ref(), u.as_deref(), &EquilibriumSearch::default())?;
+    if a.json {
+        print_json(&LinearizeJson::from(&lin))
+    } else {
+        let title = model_info(&a.model).map(|i| i.title).unwrap_or("model");
+        print(&report(title, &lin))
+    }
+}
+
+/// The `linearize` JSON contract (DESIGN §1.2).
+#[derive(Serialize)]
+pub struct LinearizeJson {
+    model: String,
+    params: serde_json::Map<String, serde_json::Value>,
+    equilibria: Vec<EquilibriumJson>,
+}
+
+#[derive(Serialize)]
+struct EquilibriumJson {
+    x: Vec<f64>,
+    u: Vec<f64>,
+    #[serde(rename = "A")]
+    a: Vec<Vec<f64>>,
+    #[serde(rename = "B")]
+    b: Vec<Vec<f64>>,
+    #[serde(rename = "C")]
+    c: Vec<Vec<f64>>,
+    #[serde(rename = "D")]
+    d: Vec<Vec<f64>>,
+    eigenvalues: Vec<[f64; 2]>,
+    hyperbolic: bool,
+    stability: &'static str,
+    physical: bool,
+    tf: Option<TfJson>,
+}
+
+#[derive(Serialize)]
+struct TfJson {
+    num: Vec<f64>,
+    den: Vec<f64>,
+}
+
+fn stability_word(s: LocalStability) -> &'static str {
+    match s {
+        LocalStability::AsymptoticallyStable => "asymptotically_stable",
+        LocalStability::Unstable => "unstable",
+        LocalStability::Undetermined => "undetermined",
+    }
+}
+
+impl From<&Linearization> for LinearizeJson {
+    fn from(l: &Linearization) -> Self {
+        let mut params = serde_json::Map::new();
+        for (k, v) in &l.params {
+            params.insert(k.clone(), serde_json::json!(v));
+        }
+        LinearizeJson {
+            model: l.model.clone(),
+            params,
+            equilibria: l
+                .equilibria
+                .iter()
+                .map(|e| EquilibriumJson {
+                    x: e.x.clone(),
+                    u: e.u.clone(),
+                    a: e.a.clone(),
+                    b: e.b.clone(),
+                    c: e.c.clone(),
+                    d: e.d.clone(),
+                    eigenvalues: e.eigenvalues.iter().map(|z| pair(*z)).collect(),
+                    hyperbolic: e.hyperbolic,
+                    stability: stability_word(e.stability),
+                    physical: e.physical,
+                    tf: e.tf.as_ref().map(|t| TfJson {
+                        num: t.num.clone(),
+                        den: t.den.clone(),
+                    }),
+                })
+                .collect(),
+        }
+    }
+}
+
+fn vector(v: &[f64]) -> String {
+    format!(
+        "[{}]",
+        v.iter().map(|x| fmt_sig(*x, 6)).collect::<Vec<_>>().join(", ")
+    )
+}
+
+fn matrix(name: &str, m: &[Vec<f64>], out: &mut String) {
+    if m.is_empty() || m[0].is_empty() {
+        out.push_str(&format!("    {name} = []\n"));
+        return;
+    }
+    let cells: Vec<Vec<String>> = m
+        .iter()
+        .map(|r| r.iter().map(|x| fmt_sig(*x, 6)).collect())
+        .collect();
+    let width = cells.iter().flatten().map(|c| c.len()).max().unwrap_or(1);
+    for (i, row) in cells.iter().enumerate() {
+        let lead = if i == 0 {
+            format!("{name} =")
+        } else {
+            String::new()
+        };
+        let body = row
+            .iter()
+            .map(|c| format!("{c:>width$}"))
+            .collect::<Vec<_>>()
+            .join("  ");
+        out.push_str(&format!("    {lead:<4}[ {body} ]\n"));
+    }
+}
+
+/// Human-readable report.
+pub fn report(title: &str, l: &Linearization) -> String {
+    let mut s = format!("{title} ({})\n", l.model);
+    if !l.params.is_empty() {
+        s.push_str(&format!(
+            "  parameters: {}\n",
+            l.params
+                .iter()
+                .map(|(k, v)| format!("{k} = {}", fmt_sig(*v, 6)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    s.push_str(&format!("  {} equilibri{}\n", l.equilibria.len(), if l.equilibria.len() == 1 { "um" } else { "a" }));
+    for (i, e) in l.equilibria.iter().enumerate() {
+        s.push_str(&format!(
+            "\nEquilibrium {}: x = {}{}{}\n",
+            i + 1,
+            vector(&e.x),
+            if e.u.is_empty() {
+                String::new()
+            } else {
+                format!(", u = {}", vector(&e.u))
+            },
+            if e.physical { "" } else { "  (not physical)" }
+        ));
+        matrix("A", &e.a, &mut s);
+        if !e.b.is_empty() && !e.b[0].is_empty() {
+            matrix("B", &e.b, &mut s);
+        }
+        matrix("C", &e.c, &mut s);
+        if !e.d.is_empty() && !e.d[0].is_empty() {
+            matrix("D", &e.d, &mut s);
+        }
+        let ev = e
+            .eigenvalues
+            .iter()
+            .filter(|z| z.im >= 0.0)
+            .map(|z| fmt_root(*z, 6))
+            .collect::<Vec<_>>()
+            .join(", ");
+        s.push_str(&format!("  eigenvalues: {ev}\n"));
+        s.push_str(&format!(
+            "  {}; {}\n",
+            if e.hyperbolic {
+                "hyperbolic"
+            } else {
+                "not hyperbolic"
+            },
+            e.stability_reason
+        ));
+        if let Some(tf) = &e.tf {
+            s.push_str(&format!("  linearised G(s) = {}\n", tf.g));
+            for m in tf.modes.iter().filter(|m| m.pole.im >= 0.0) {
+                s.push_str(&format!(
+                    "    pole {}: wn = {} rad/s{}\n",
+                    fmt_root(m.pole, 6),
+                    fmt_sig(m.wn, 6),
+                    m.zeta
+                        .map(|z| format!(", zeta = {}", fmt_sig(z, 6)))
+                        .unwrap_or_default()
+                ));
+            }
+        }
+    }
+    s
+}

@@ -1,0 +1,161 @@
+//! `ltikit simulate MODEL`: adaptive Dormand–Prince simulation, CSV or JSON output.
+
+use anyhow::{Result, bail};
+use clap::Args;
+use serde::Serialize;
+
+use super::output::{print, print_json};
+use super::parse;
+use crate::nonlinear::{Input, Simulation, build_model, sample_times, simulate};
+use crate::numeric::rk45::Rk45Options;
+
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// Model: pendulum, mems, lorenz, vanderpol, or a linear plant (spring-mass-damper, …).
+    pub model: String,
+    /// A model parameter, NAME=VALUE (repeatable).
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+    /// Initial state, e.g. --x0 "0.5 0" (state order as in `ltikit linearize MODEL`).
+    #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
+    pub x0: String,
+    /// End time (s), > 0.
+    #[arg(long = "t-end", value_name = "SECONDS", allow_hyphen_values = true)]
+    pub t_end: f64,
+    /// Number of output samples, uniform from 0 to the end time.
+    #[arg(long, default_value_t = 1001)]
+    pub points: usize,
+    /// Input: constant values ("0.5"), or a step "step:T:BEFORE:AFTER" (single input).
+    /// Default: the model's operating input (e.g. the MEMS voltage v).
+    #[arg(long, value_name = "U", allow_hyphen_values = true)]
+    pub input: Option<String>,
+    /// Relative tolerance.
+    #[arg(long, default_value_t = 1e-9)]
+    pub rtol: f64,
+    /// Absolute tolerance.
+    #[arg(long, default_value_t = 1e-12)]
+    pub atol: f64,
+    /// Print JSON instead of CSV.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Parses the `--input` value for a model with `nu` inputs.
+pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<Input> {
+    let Some(text) = text else {
+        return Ok(Input::Constant(operating.to_vec()));
+    };
+    if let Some(rest) = text.strip_prefix("step:") {
+        let parts: Vec<&str> = rest.split(':').collect();
+        if parts.len() != 3 {
+            bail!("--input '{text}': a step is step:T:BEFORE:AFTER, e.g. step:1:0:0.5");
+        }
+        let num = |s: &str, what: &str| -> Result<f64> {
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| anyhow::anyhow!("--input '{text}': {what} '{s}' is not a number"))
+        };
+        if operating.len() != 1 {
+            bail!(
+                "--input step: only for single-input models (this one has {} inputs)",
+                operating.len()
+            );
+        }
+        return Ok(Input::Step {
+            t_step: num(parts[0], "the step time")?,
+            before: vec![num(parts[1], "the value before")?],
+            after: vec![num(parts[2], "the value after")?],
+        });
+    }
+    Ok(Input::Constant(parse::numbers(text, "--input")?))
+}
+
+pub fn run(a: &SimulateArgs) -> Result<()> {
+    let params: Vec<(String, f64)> = a
+        .params
+        .iter()
+        .map(|p| parse::param(p))
+        .collect::<Result<_>>()?;
+    let sys = build_model(&a.model, &params)?;
+    let x0 = parse::numbers(&a.x0, "--x0")?;
+    let input = parse_input(a.input.as_deref(), &sys.operating_input())?;
+    if a.points < 2 {
+        bail!("--points must be at least 2");
+    }
+    let times = sample_times(a.t_end, a.points)?;
+    let opts = Rk45Options {
+        rtol: a.rtol,
+        atol: a.atol,
+        ..Default::default()
+    };
+    let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
+    if a.json {
+        print_json(&SimulationJson::from(&sim))
+    } else {
+        print(&csv(&sim))
+    }
+}
+
+#[derive(Serialize)]
+struct SimulationJson<'a> {
+    model: &'a str,
+    state_names: &'a [String],
+    output_names: &'a [String],
+    t: &'a [f64],
+    x: &'a [Vec<f64>],
+    y: &'a [Vec<f64>],
+    steps: usize,
+    rejected_steps: usize,
+    stopped: Option<StopJson<'a>>,
+}
+
+#[derive(Serialize)]
+struct StopJson<'a> {
+    t: f64,
+    reason: &'a str,
+}
+
+impl<'a> From<&'a Simulation> for SimulationJson<'a> {
+    fn from(s: &'a Simulation) -> Self {
+        SimulationJson {
+            model: &s.model,
+            state_names: &s.state_names,
+            output_names: &s.output_names,
+            t: &s.t,
+            x: &s.states,
+            y: &s.outputs,
+            steps: s.stats.steps,
+            rejected_steps: s.stats.rejections,
+            stopped: s.stop.as_ref().map(|st| StopJson {
+                t: st.t,
+                reason: &st.reason,
+            }),
+        }
+    }
+}
+
+/// CSV with a header line: t, the states, the outputs (prefixed y: when a name repeats).
+pub fn csv(s: &Simulation) -> String {
+    let mut header = vec!["t".to_string()];
+    header.extend(s.state_names.iter().cloned());
+    for n in &s.output_names {
+        if header.contains(n) {
+            header.push(format!("y:{n}"));
+        } else {
+            header.push(n.clone());
+        }
+    }
+    let mut out = header.join(",");
+    out.push('\n');
+    for (i, t) in s.t.iter().enumerate() {
+        let mut row = vec![format!("{t}")];
+        row.extend(s.states[i].iter().map(|x| format!("{x}")));
+        row.extend(s.outputs[i].iter().map(|y| format!("{y}")));
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    if let Some(st) = &s.stop {
+        out.push_str(&format!("# stopped at t = {}: {}\n", st.t, st.reason));
+    }
+    out
+}
