@@ -35,6 +35,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, LN_2, PI, TAU};
 
+use crate::analysis::pz::PoleZero;
 use crate::analysis::stability::{HalfPlane, half_plane};
 use crate::error::{LtiError, Result, check_finite};
 use crate::lti::TransferFunction;
@@ -472,25 +473,120 @@ pub(crate) struct BodeForm {
     den: FactorSet,
     /// Above this ω the logarithmic path is used.
     fast_limit: f64,
+    /// Set when the factored form does not reproduce the coefficients (roots too
+    /// ill-conditioned, e.g. an expanded (s+1)^20): magnitude and principal phase then come
+    /// from double-double Horner, the factored form only picks the branch.
+    exact: Option<Box<AxisHorner>>,
+}
+
+/// Reduced numerator and denominator for double-double Horner evaluation on the axis:
+/// coefficients normalised by a power of two to max |c| ∈ [1, 2), zero roots stripped.
+#[derive(Debug, Clone)]
+struct AxisHorner {
+    num: Vec<f64>,
+    den: Vec<f64>,
+    /// zeros at s = 0 minus poles at s = 0
+    int_order: i32,
+    /// ln(max|num| / max|den|)
+    ln_scale: f64,
+}
+
+impl AxisHorner {
+    fn new(reduced: &TransferFunction) -> AxisHorner {
+        let prep = |p: &crate::poly::Poly| -> (Vec<f64>, usize, f64) {
+            let z = p.zero_root_multiplicity();
+            let c = &p.coeffs()[..p.coeffs().len() - z];
+            // normalise by a power of two: exact, so Horner sees the coefficients as given
+            let e = exponent(c.iter().fold(0.0f64, |a, &x| a.max(x.abs())));
+            (
+                c.iter().map(|&x| mul_pow2(x, -e)).collect(),
+                z,
+                e as f64 * LN_2,
+            )
+        };
+        let (num, zn, ln_n) = prep(reduced.num());
+        let (den, zd, ln_d) = prep(reduced.den());
+        AxisHorner {
+            num,
+            den,
+            int_order: zn as i32 - zd as i32,
+            ln_scale: ln_n - ln_d,
+        }
+    }
+
+    /// (ln|G(jω)|, principal-or-not argument of G(jω)) for ω > 0.
+    fn eval(&self, w: f64) -> (f64, f64) {
+        let (ln_n, arg_n) = dd_axis(&self.num, w);
+        let (ln_d, arg_d) = dd_axis(&self.den, w);
+        let k = self.int_order as f64;
+        (
+            self.ln_scale + ln_n - ln_d + k * w.ln(),
+            arg_n - arg_d + k * FRAC_PI_2,
+        )
+    }
+}
+
+/// ln|P(jω)| and an argument of P(jω) (ω > 0) by Horner's rule in double-double; for ω > 1
+/// on the reversed polynomial in 1/(jω), so nothing overflows. `c` descending, c[n] ≠ 0.
+fn dd_axis(c: &[f64], w: f64) -> (f64, f64) {
+    use crate::numeric::dd::Dd;
+    let n = c.len() - 1;
+    let (mut re, mut im) = (Dd::ZERO, Dd::ZERO);
+    if w <= 1.0 {
+        let wd = Dd::from(w);
+        for &a in c {
+            // (re + j·im)(jω) + a = (a − ω·im) + j·ω·re
+            let nre = Dd::from(a).sub(wd.mul(im));
+            im = wd.mul(re);
+            re = nre;
+        }
+        let (r, i) = (re.to_f64(), im.to_f64());
+        (r.hypot(i).ln(), i.atan2(r))
+    } else {
+        // P(jω) = (jω)^n·R(1/(jω)), R the reversed polynomial, 1/(jω) = −j·v, v = 1/ω
+        let hi = 1.0 / w;
+        let v = Dd {
+            hi,
+            lo: (-hi).mul_add(w, 1.0) / w,
+        };
+        for &a in c.iter().rev() {
+            // (re + j·im)(−j·v) + a = (a + v·im) − j·v·re
+            let nre = Dd::from(a).add(v.mul(im));
+            im = Dd::ZERO.sub(v.mul(re));
+            re = nre;
+        }
+        let (r, i) = (re.to_f64(), im.to_f64());
+        (
+            n as f64 * w.ln() + r.hypot(i).ln(),
+            i.atan2(r) + n as f64 * FRAC_PI_2,
+        )
+    }
+}
+
+/// Relative tolerance of the factored form against double-double Horner at the probe
+/// frequencies before it is trusted on its own.
+const FACTORED_CHECK_TOL: f64 = 1e-11;
+
+/// Wraps radians into (−π, π].
+fn wrap_pi(x: f64) -> f64 {
+    let y = x - TAU * (x / TAU).round();
+    if y <= -PI { y + TAU } else { y }
 }
 
 impl BodeForm {
     /// Builds the factored form of the reduced G.
     pub fn new(tf: &TransferFunction) -> Result<BodeForm> {
         if tf.num().is_zero() {
-            return Ok(BodeForm {
-                zero: true,
-                k_mant: 0.0,
-                k_exp: 0,
-                ln_k: f64::NEG_INFINITY,
-                base_quarters: 0,
-                int_order: 0,
-                num: FactorSet::default(),
-                den: FactorSet::default(),
-                fast_limit: 0.0,
-            });
+            return Ok(Self::zero_form());
         }
-        let pz = tf.pole_zero()?;
+        Ok(Self::with_pole_zero(tf, &tf.pole_zero()?))
+    }
+
+    /// As [`BodeForm::new`], reusing an already computed [`PoleZero`] of `tf`.
+    pub fn with_pole_zero(tf: &TransferFunction, pz: &PoleZero) -> BodeForm {
+        if tf.num().is_zero() {
+            return Self::zero_form();
+        }
         // K and k from the coefficients as given: cancelled common factors contribute the
         // same lowest non-zero coefficient to both, so the ratio is that of the reduced G.
         let zn = tf.num().zero_root_multiplicity();
@@ -515,7 +611,7 @@ impl BodeForm {
             let e = (ln_k / LN_2).floor();
             ((ln_k - e * LN_2).exp(), e as i32)
         };
-        Ok(BodeForm {
+        BodeForm {
             zero: false,
             k_mant,
             k_exp,
@@ -525,12 +621,64 @@ impl BodeForm {
             num,
             den,
             fast_limit,
-        })
+            exact: None,
+        }
+        .checked(&pz.reduced)
     }
 
-    /// Order k of the (jω)^k factor (negative for integrators).
-    pub fn integrator_order(&self) -> i32 {
-        self.int_order
+    /// Compares the factored form with double-double Horner on the reduced coefficients at
+    /// probe frequencies (the corner frequencies and a log grid); on disagreement beyond
+    /// [`FACTORED_CHECK_TOL`] switches to Horner magnitudes and principal phases.
+    fn checked(mut self, reduced: &TransferFunction) -> BodeForm {
+        let horner = AxisHorner::new(reduced);
+        let mut probes = self.corner_frequencies();
+        probes.sort_by(f64::total_cmp);
+        probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
+        if probes.len() > 48 {
+            let step = probes.len() as f64 / 48.0;
+            probes = (0..48).map(|i| probes[(i as f64 * step) as usize]).collect();
+        }
+        let (a, b) = self.decade_range();
+        probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
+        let axis: Vec<f64> = self.num.axis.iter().chain(&self.den.axis).copied().collect();
+        for &w in &probes {
+            if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
+                continue;
+            }
+            let f = self.eval(w);
+            if !(f.mant > 0.0 && f.mant.is_finite()) {
+                continue;
+            }
+            let (ln_h, arg_h) = horner.eval(w);
+            let dl = (f.ln_mag() - ln_h).abs();
+            let dp = wrap_pi(f.phase_rad() - arg_h).abs();
+            if !(dl <= FACTORED_CHECK_TOL && dp <= FACTORED_CHECK_TOL) {
+                self.exact = Some(Box::new(horner));
+                break;
+            }
+        }
+        self
+    }
+
+    /// True when evaluation falls back to double-double Horner (see [`BodeForm::checked`]).
+    #[allow(dead_code)]
+    pub fn uses_horner(&self) -> bool {
+        self.exact.is_some()
+    }
+
+    fn zero_form() -> BodeForm {
+        BodeForm {
+            zero: true,
+            k_mant: 0.0,
+            k_exp: 0,
+            ln_k: f64::NEG_INFINITY,
+            base_quarters: 0,
+            int_order: 0,
+            num: FactorSet::default(),
+            den: FactorSet::default(),
+            fast_limit: 0.0,
+            exact: None,
+        }
     }
 
     /// β of the imaginary-axis pole pairs (with repetition).
@@ -567,10 +715,30 @@ impl BodeForm {
                 quarters: self.base_quarters,
             };
         }
-        if w >= f64::MIN_POSITIVE && w <= self.fast_limit {
+        let f = if w >= f64::MIN_POSITIVE && w <= self.fast_limit {
             self.eval_fast(w)
         } else {
             self.eval_log(w)
+        };
+        match &self.exact {
+            None => f,
+            Some(h) => Self::refine(f, h, w),
+        }
+    }
+
+    /// Horner magnitude and principal phase on the branch of the factored phase `f`.
+    #[cold]
+    fn refine(f: Eval, h: &AxisHorner, w: f64) -> Eval {
+        if !(f.mant > 0.0 && f.mant.is_finite()) {
+            return f; // an exact zero or pole on the axis
+        }
+        let (ln, arg) = h.eval(w);
+        let e = (ln / LN_2).floor().clamp(-2.0e9, 2.0e9);
+        Eval {
+            mant: (ln - e * LN_2).exp(),
+            exp2: e as i32,
+            angle: f.angle + wrap_pi(arg - f.phase_rad()),
+            quarters: f.quarters,
         }
     }
 
@@ -651,6 +819,10 @@ impl BodeForm {
     pub fn d_ln_mag(&self, w: f64) -> f64 {
         if self.zero {
             return 0.0;
+        }
+        if self.exact.is_some() {
+            let h = 1e-6 * w;
+            return (self.eval(w + h).ln_mag() - self.eval(w - h).ln_mag()) / (2.0 * h);
         }
         let mut d = self.int_order as f64 / w;
         for (set, sign) in [(&self.num, 1.0), (&self.den, -1.0)] {

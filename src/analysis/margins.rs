@@ -106,7 +106,7 @@ impl TransferFunction {
     pub fn margins(&self) -> Result<Margins> {
         let pz = self.pole_zero()?;
         let reduced = &pz.reduced;
-        let form = BodeForm::new(self)?;
+        let form = BodeForm::with_pole_zero(self, &pz);
         let mut out = Margins {
             gain_margin: None,
             gain_margin_db: None,
@@ -404,6 +404,24 @@ fn polish(f: impl Fn(f64) -> f64, w: f64, walls: &[f64], tangent_tol: f64) -> Op
         }
     }
     (f0.abs() <= tangent_tol).then_some(w)
+}
+
+/// Every local maximum of |G(jω)| at ω > 0 (excluding imaginary-axis poles, where |G| = ∞),
+/// sorted. `reduced` is G in lowest terms and `form` its [`BodeForm`].
+pub(crate) fn local_maxima(reduced: &TransferFunction, form: &BodeForm) -> Result<Vec<f64>> {
+    if reduced.num().is_zero() {
+        return Ok(Vec::new());
+    }
+    let ax = AxisPolys::new(reduced, form)?;
+    let walls: Vec<f64> = form
+        .axis_poles()
+        .iter()
+        .chain(form.axis_zeros())
+        .copied()
+        .collect();
+    let mut out = resonance_candidates(&ax, form, &walls)?;
+    dedup_by_w(&mut out, |&w| w);
+    Ok(out)
 }
 
 /// Local maxima of |G(jω)| at ω > 0: roots of d|G|²/du, polished on d ln|G|/dω. When that
