@@ -40,8 +40,7 @@ fn seed_exercise_3_2_second_order_magnitude_and_phase() {
             let w = logspace(-3.0, 3.0, 601);
             let r = g.freq_response(&w).unwrap();
             for (i, &x) in w.iter().enumerate() {
-                let m = 1.0
-                    / ((wn * wn - x * x).powi(2) + 4.0 * z * z * wn * wn * x * x).sqrt();
+                let m = 1.0 / ((wn * wn - x * x).powi(2) + 4.0 * z * z * wn * wn * x * x).sqrt();
                 let phi = -(2.0 * z * wn * x).atan2(wn * wn - x * x);
                 assert!(
                     (r.magnitude[i] - m).abs() <= 1e-13 * m,
@@ -157,7 +156,11 @@ fn phase_is_grid_independent_and_continuous() {
         .fold(0.0, f64::max);
     assert!(max_jump < 90.0, "jump {max_jump}");
     assert!(rf.phase_deg[0].abs() < 1.0);
-    assert!((rf.phase_deg.last().unwrap() + 1800.0).abs() < 0.1, "{:?}", &rf.phase_deg[rf.phase_deg.len()-3..]);
+    assert!(
+        (rf.phase_deg.last().unwrap() + 1800.0).abs() < 0.1,
+        "{:?}",
+        &rf.phase_deg[rf.phase_deg.len() - 3..]
+    );
     assert!((rc.phase_deg[2] + 1800.0).abs() < 1.0);
 }
 
@@ -264,13 +267,26 @@ fn high_order_high_frequency_magnitude_in_log_form() {
     let g = tf(&[1.0], &den);
     let r = g.freq_response(&[1e10, 1.0]).unwrap();
     let exact_db = -600.0 * (1.0 + 1e20f64).log10();
-    assert!((r.magnitude_db[0] - exact_db).abs() < 1e-9 * exact_db.abs(), "{} vs {exact_db}", r.magnitude_db[0]);
+    assert!(
+        (r.magnitude_db[0] - exact_db).abs() < 1e-9 * exact_db.abs(),
+        "{} vs {exact_db}",
+        r.magnitude_db[0]
+    );
     assert_eq!(r.magnitude[0], 0.0);
     assert!((r.phase_deg[0] + 60.0 * (1e10f64).atan().to_degrees()).abs() < 1e-8);
     let h = horner_dd(&g, 1.0);
-    assert!((r.magnitude[1] - h.norm()).abs() < 1e-10 * h.norm(), "{} vs {}", r.magnitude[1], h.norm());
+    assert!(
+        (r.magnitude[1] - h.norm()).abs() < 1e-10 * h.norm(),
+        "{} vs {}",
+        r.magnitude[1],
+        h.norm()
+    );
     assert!((r.magnitude_db[1] + 600.0 * 2f64.log10()).abs() < 1e-6);
-    assert!((r.phase_deg[1] + 60.0 * 45.0).abs() < 1e-6, "{}", r.phase_deg[1]);
+    assert!(
+        (r.phase_deg[1] + 60.0 * 45.0).abs() < 1e-6,
+        "{}",
+        r.phase_deg[1]
+    );
 }
 
 #[test]
@@ -315,7 +331,11 @@ fn frequency_grid_draws_a_lightly_damped_peak_at_its_height() {
         assert!(w.windows(2).all(|p| p[0] < p[1]), "sorted and unique");
         let r = g.freq_response(&w).unwrap();
         let mr_db = -20.0 * (2.0 * z * (1.0 - z * z).sqrt()).log10();
-        let top = r.magnitude_db.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let top = r
+            .magnitude_db
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
         assert!((top - mr_db).abs() < 0.1, "drawn {top} dB vs {mr_db} dB");
         assert!((top - mr_db).abs() < 1e-9, "ωr is on the grid");
         // and the piecewise-linear curve (in dB over ω) stays within 0.1 dB of the truth
@@ -370,10 +390,10 @@ fn time_span_covers_settling_and_bounds_growth() {
     // stable: the slowest envelope e^(σ t_end) has decayed below 2 %, and not absurdly far
     for (num, den) in [
         (vec![1.0], vec![1.0, 1.0]),
-        (vec![1.0], vec![1.0, 0.2, 1.0]),                     // ζ = 0.1
-        (vec![1.0], vec![1.0, 3.0, 3.0, 1.0]),                // triple pole
-        (vec![1.0, 1.0], vec![1.0, 100.5, 50.0]),             // poles −0.5, −100
-        (vec![5.0], vec![1.0, 1e-3 * 2.0, 1.0 + 1e-6]),       // ζ = 1e-3
+        (vec![1.0], vec![1.0, 0.2, 1.0]),               // ζ = 0.1
+        (vec![1.0], vec![1.0, 3.0, 3.0, 1.0]),          // triple pole
+        (vec![1.0, 1.0], vec![1.0, 100.5, 50.0]),       // poles −0.5, −100
+        (vec![5.0], vec![1.0, 1e-3 * 2.0, 1.0 + 1e-6]), // ζ = 1e-3
     ] {
         let g = tf(&num, &den);
         let span = auto_time_span(&g).unwrap();
@@ -384,7 +404,11 @@ fn time_span_covers_settling_and_bounds_growth() {
             .map(|p| p.value.re)
             .fold(f64::NEG_INFINITY, f64::max);
         let envelope = (slow * span.t_end).exp();
-        assert!(envelope < 0.02, "{g}: e^(σt) = {envelope} at {}", span.t_end);
+        assert!(
+            envelope < 0.02,
+            "{g}: e^(σt) = {envelope} at {}",
+            span.t_end
+        );
         assert!(span.t_end < 10.0 * 6.0 / slow.abs(), "{g}: {}", span.t_end);
         assert!(span.reason.contains("settling"), "{}", span.reason);
     }

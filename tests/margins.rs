@@ -131,14 +131,23 @@ fn check_crossings(g: &TransferFunction) -> ltikit::analysis::Margins {
     let m = g.margins().unwrap();
     for c in &m.gain_crossings {
         let v = g.eval(Complex64::new(0.0, c.w));
-        assert!((v.norm() - 1.0).abs() < 1e-12, "|G(j{})| = {}", c.w, v.norm());
+        assert!(
+            (v.norm() - 1.0).abs() < 1e-12,
+            "|G(j{})| = {}",
+            c.w,
+            v.norm()
+        );
         let pm = 180.0 + v.arg().to_degrees();
         let pm = pm - 360.0 * (pm / 360.0).round();
         assert!((pm - c.phase_margin_deg).abs() < 1e-9);
     }
     for c in &m.phase_crossings {
         let v = g.eval(Complex64::new(0.0, c.w));
-        assert!(v.re < 0.0 && v.im.abs() < 1e-12 * v.norm(), "G(j{}) = {v}", c.w);
+        assert!(
+            v.re < 0.0 && v.im.abs() < 1e-12 * v.norm(),
+            "G(j{}) = {v}",
+            c.w
+        );
         assert!(rel(c.gain_margin, 1.0 / v.norm()) < 1e-12);
     }
     m

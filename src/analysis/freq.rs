@@ -84,12 +84,11 @@ impl TransferFunction {
         let mut magnitude = Vec::with_capacity(n);
         let mut magnitude_db = Vec::with_capacity(n);
         let mut phase_deg = Vec::with_capacity(n);
-        for &wi in w {
-            let e = form.eval(wi);
+        form.eval_many(w, |e| {
             magnitude.push(e.magnitude());
             magnitude_db.push(e.db());
             phase_deg.push(e.phase_deg());
-        }
+        });
         Ok(FrequencyResponse {
             w: w.to_vec(),
             magnitude,
@@ -283,114 +282,114 @@ fn rescale(re: &mut f64, im: &mut f64, e: &mut i32) {
     *e += ex;
 }
 
-/// Running product of factors with positive real part, tracking full turns of its argument.
+/// Number of frequencies evaluated side by side on the fast path: independent dependency
+/// chains let the CPU overlap the complex multiplications.
+const LANES: usize = 4;
+
+/// Running products of factors with positive real part at `L` frequencies at once, tracking
+/// the full turns of each argument, plus the exact half and quarter turns pulled out.
 #[derive(Clone, Copy)]
-struct Acc {
-    re: f64,
-    im: f64,
-    exp: i32,
-    /// The argument is in (0, π] ("upper", Im > 0 or on the negative real axis).
-    upper: bool,
+struct Lanes<const L: usize> {
+    re: [f64; L],
+    im: [f64; L],
+    exp: [i32; L],
+    /// The argument is in (0, π] ("upper": Im > 0, or on the negative real axis).
+    upper: [bool; L],
     /// Full turns (2π) gained by crossing the negative real axis.
-    turns: i32,
+    turns: [i32; L],
+    /// Half turns pulled out of quadratic factors with negative real part.
+    halves: [i32; L],
+    /// Quarter turns of imaginary-axis pairs (2 past β, 1 at β).
+    axis_quarters: [i32; L],
+    /// ω hit an axis root exactly.
+    hit: [bool; L],
 }
 
-impl Acc {
+impl<const L: usize> Lanes<L> {
     #[inline(always)]
-    fn one() -> Acc {
-        Acc {
-            re: 1.0,
-            im: 0.0,
-            exp: 0,
-            upper: false,
-            turns: 0,
+    fn one() -> Self {
+        Lanes {
+            re: [1.0; L],
+            im: [0.0; L],
+            exp: [0; L],
+            upper: [false; L],
+            turns: [0; L],
+            halves: [0; L],
+            axis_quarters: [0; L],
+            hit: [false; L],
         }
     }
 
-    /// Multiplies by (fr + j·fi), fr ≥ 0 (the factor's angle is in [−π/2, π/2]).
+    /// Multiplies lane `l` by (fr + j·fi), fr ≥ 0 (the factor's angle is in [−π/2, π/2]).
     #[inline(always)]
-    fn mul(&mut self, fr: f64, fi: f64) {
-        let nr = self.re * fr - self.im * fi;
-        let ni = self.re * fi + self.im * fr;
+    fn mul(&mut self, l: usize, fr: f64, fi: f64) {
+        let (re, im) = (self.re[l], self.im[l]);
+        let nr = re * fr - im * fi;
+        let ni = re * fi + im * fr;
         let nup = ni > 0.0 || (ni == 0.0 && nr < 0.0);
-        if nup != self.upper {
-            // The argument passed the real axis: through π when the point nearer to the
-            // axis (in angle) has Re < 0. One of the two is within π/4 of the crossing.
-            let s = if self.re.abs() >= self.im.abs() {
-                self.re
-            } else {
-                nr
-            };
-            if s < 0.0 {
-                self.turns += if self.upper { 1 } else { -1 };
-            }
-        }
-        self.re = nr;
-        self.im = ni;
-        self.upper = nup;
+        // When the argument passes the real axis it does so through π iff the point nearer
+        // to the axis (in angle) has Re < 0: one of the two is within π/4 of the crossing.
+        let s = if re.abs() >= im.abs() { re } else { nr };
+        let cross = (nup != self.upper[l]) & (s < 0.0);
+        let dir = if self.upper[l] { 1 } else { -1 };
+        self.turns[l] += if cross { dir } else { 0 };
+        self.re[l] = nr;
+        self.im[l] = ni;
+        self.upper[l] = nup;
     }
 
     #[inline(always)]
     fn rescale(&mut self) {
-        rescale(&mut self.re, &mut self.im, &mut self.exp);
-    }
-}
-
-/// Accumulated factors of one polynomial at one ω (fast path).
-struct SetValue {
-    acc: Acc,
-    /// Half turns pulled out of quadratic factors with negative real part.
-    halves: i32,
-    /// Quarter turns of imaginary-axis pairs (2 past β, 1 at β).
-    axis_quarters: i32,
-    /// ω hit an axis root exactly.
-    hit: bool,
-}
-
-#[inline(always)]
-fn set_value(s: &FactorSet, w: f64, w2: f64) -> SetValue {
-    let mut acc = Acc::one();
-    for chunk in s.real_c.chunks(4) {
-        for &c in chunk {
-            acc.mul(1.0, c * w);
+        for l in 0..L {
+            rescale(&mut self.re[l], &mut self.im[l], &mut self.exp[l]);
         }
-        acc.rescale();
     }
-    let mut halves = 0;
-    for chunk in s.quad.chunks(4) {
-        for q in chunk {
-            let x = 1.0 - q.a * w2;
-            let y = q.b * w;
-            let neg = x < 0.0;
-            let (fr, fi) = if neg { (-x, -y) } else { (x, y) };
-            halves += if neg { q.sb } else { 0 };
-            acc.mul(fr, fi);
-        }
-        acc.rescale();
-    }
-    let mut axis_quarters = 0;
-    let mut hit = false;
-    for (&beta, &ib) in s.axis.iter().zip(&s.axis_inv) {
-        let x = ((beta - w) * ib) * ((beta + w) * ib);
-        if x == 0.0 {
-            hit = true;
-            axis_quarters += 1;
-        } else {
-            if x < 0.0 {
-                axis_quarters += 2;
+
+    /// The product of every factor of `s` at the frequencies `w` (`w2` = ω²).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lanes index several parallel arrays
+    fn of_set(s: &FactorSet, w: &[f64; L], w2: &[f64; L]) -> Self {
+        let mut a = Self::one();
+        for chunk in s.real_c.chunks(4) {
+            for &c in chunk {
+                for l in 0..L {
+                    a.mul(l, 1.0, c * w[l]);
+                }
             }
-            let ax = x.abs();
-            acc.re *= ax;
-            acc.im *= ax;
-            acc.rescale();
+            a.rescale();
         }
-    }
-    acc.rescale();
-    SetValue {
-        acc,
-        halves,
-        axis_quarters,
-        hit,
+        for chunk in s.quad.chunks(4) {
+            for q in chunk {
+                for l in 0..L {
+                    let x = 1.0 - q.a * w2[l];
+                    let y = q.b * w[l];
+                    let neg = x < 0.0;
+                    a.halves[l] += if neg { q.sb } else { 0 };
+                    let (fr, fi) = if neg { (-x, -y) } else { (x, y) };
+                    a.mul(l, fr, fi);
+                }
+            }
+            a.rescale();
+        }
+        for (&beta, &ib) in s.axis.iter().zip(&s.axis_inv) {
+            for l in 0..L {
+                let x = ((beta - w[l]) * ib) * ((beta + w[l]) * ib);
+                if x == 0.0 {
+                    a.hit[l] = true;
+                    a.axis_quarters[l] += 1;
+                } else {
+                    if x < 0.0 {
+                        a.axis_quarters[l] += 2;
+                    }
+                    let ax = x.abs();
+                    a.re[l] *= ax;
+                    a.im[l] *= ax;
+                }
+            }
+            a.rescale();
+        }
+        a.rescale();
+        a
     }
 }
 
@@ -438,7 +437,9 @@ fn set_log(s: &FactorSet, w: f64) -> (f64, f64, bool) {
         }
     }
     for &beta in &s.axis {
-        if w == beta {
+        #[allow(clippy::float_cmp)] // exactly at the axis root: |G| is 0 or ∞ there
+        let at_root = w == beta;
+        if at_root {
             hit = true;
             ang += FRAC_PI_2;
             ln = f64::NEG_INFINITY;
@@ -636,11 +637,19 @@ impl BodeForm {
         probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
         if probes.len() > 48 {
             let step = probes.len() as f64 / 48.0;
-            probes = (0..48).map(|i| probes[(i as f64 * step) as usize]).collect();
+            probes = (0..48)
+                .map(|i| probes[(i as f64 * step) as usize])
+                .collect();
         }
         let (a, b) = self.decade_range();
         probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
-        let axis: Vec<f64> = self.num.axis.iter().chain(&self.den.axis).copied().collect();
+        let axis: Vec<f64> = self
+            .num
+            .axis
+            .iter()
+            .chain(&self.den.axis)
+            .copied()
+            .collect();
         for &w in &probes {
             if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
                 continue;
@@ -744,46 +753,92 @@ impl BodeForm {
 
     #[inline(always)]
     fn eval_fast(&self, w: f64) -> Eval {
-        let w2 = w * w;
-        let n = set_value(&self.num, w, w2);
-        let d = set_value(&self.den, w, w2);
-        let (nr, ni, dr, di) = (n.acc.re, n.acc.im, d.acc.re, d.acc.im);
-        if !(nr.is_finite() && ni.is_finite() && dr.is_finite() && di.is_finite())
-            || (nr == 0.0 && ni == 0.0)
-            || (dr == 0.0 && di == 0.0)
-        {
-            return self.eval_log(w);
+        self.eval_fast_lanes::<1>(&[w])[0]
+    }
+
+    /// The fast path at `L` frequencies side by side (each must be normal and
+    /// ≤ `fast_limit`); lanes whose product is not a normal number are redone by the
+    /// logarithmic path.
+    #[inline(always)]
+    fn eval_fast_lanes<const L: usize>(&self, w: &[f64; L]) -> [Eval; L] {
+        let w2: [f64; L] = std::array::from_fn(|l| w[l] * w[l]);
+        let n = Lanes::<L>::of_set(&self.num, w, &w2);
+        let d = Lanes::<L>::of_set(&self.den, w, &w2);
+        std::array::from_fn(|l| {
+            let (nr, ni, dr, di) = (n.re[l], n.im[l], d.re[l], d.im[l]);
+            if !(nr.is_finite() && ni.is_finite() && dr.is_finite() && di.is_finite())
+                || (nr == 0.0 && ni == 0.0)
+                || (dr == 0.0 && di == 0.0)
+            {
+                return self.eval_log(w[l]);
+            }
+            // Q = P_N · conj(P_D): its principal argument differs from ∠P_N − ∠P_D
+            // (principal values) by a multiple of 2π that the quadrant estimates pin down:
+            // the estimate is within π/2 of the truth, so (est − angle)/2π is within 1/4
+            // of an integer in {−1, 0, 1}.
+            let qr = nr * dr + ni * di;
+            let qi = ni * dr - nr * di;
+            let angle = qi.atan2(qr);
+            let t = (quadrant_centre(nr, ni) - quadrant_centre(dr, di) - angle) * (1.0 / TAU);
+            let fix: i64 = if t > 0.5 {
+                1
+            } else if t < -0.5 {
+                -1
+            } else {
+                0
+            };
+            let quarters = self.base_quarters
+                + 4 * (fix + (n.turns[l] - d.turns[l]) as i64)
+                + 2 * (n.halves[l] - d.halves[l]) as i64
+                + (n.axis_quarters[l] - d.axis_quarters[l]) as i64;
+            // magnitude: |K|·ω^k·|P_N|/|P_D|
+            let ratio = ((nr * nr + ni * ni) / (dr * dr + di * di)).sqrt();
+            let mut mant = self.k_mant * ratio;
+            let mut exp2 = self.k_exp + n.exp[l] - d.exp[l];
+            if self.int_order != 0 {
+                let we = exponent(w[l]);
+                mant *= (w[l] * pow2(-we)).powi(self.int_order);
+                exp2 += self.int_order.saturating_mul(we);
+            }
+            if n.hit[l] {
+                mant = 0.0;
+                exp2 = 0;
+            } else if d.hit[l] {
+                mant = f64::INFINITY;
+                exp2 = 0;
+            }
+            Eval {
+                mant,
+                exp2,
+                angle,
+                quarters,
+            }
+        })
+    }
+
+    /// Evaluates at every ω of `w` (each finite, ≥ 0), calling `out` with the value, in
+    /// order; the fast path runs [`LANES`] frequencies side by side.
+    pub fn eval_many(&self, w: &[f64], mut out: impl FnMut(Eval)) {
+        let mut chunks = w.chunks_exact(LANES);
+        for c in &mut chunks {
+            let block: [f64; LANES] = std::array::from_fn(|k| c[k]);
+            let fast = self.exact.is_none()
+                && !self.zero
+                && block
+                    .iter()
+                    .all(|&x| x >= f64::MIN_POSITIVE && x <= self.fast_limit);
+            if fast {
+                for e in self.eval_fast_lanes(&block) {
+                    out(e);
+                }
+            } else {
+                for &x in &block {
+                    out(self.eval(x));
+                }
+            }
         }
-        // Q = P_N · conj(P_D): its principal argument differs from ∠P_N − ∠P_D (principal
-        // values) by a multiple of 2π that the quadrant estimates pin down.
-        let qr = nr * dr + ni * di;
-        let qi = ni * dr - nr * di;
-        let angle = qi.atan2(qr);
-        let est = quadrant_centre(nr, ni) - quadrant_centre(dr, di);
-        let fix = ((est - angle) / TAU).round() as i64;
-        let quarters = self.base_quarters
-            + 4 * (fix + (n.acc.turns - d.acc.turns) as i64)
-            + 2 * (n.halves - d.halves) as i64
-            + (n.axis_quarters - d.axis_quarters) as i64;
-        // magnitude: |K|·ω^k·|P_N|/|P_D|
-        let we = exponent(w);
-        let wm = w * pow2(-we);
-        let ratio = ((nr * nr + ni * ni) / (dr * dr + di * di)).sqrt();
-        let mut mant = self.k_mant * ratio * wm.powi(self.int_order);
-        let mut exp2 =
-            self.k_exp + n.acc.exp - d.acc.exp + self.int_order.saturating_mul(we);
-        if n.hit {
-            mant = 0.0;
-            exp2 = 0;
-        } else if d.hit {
-            mant = f64::INFINITY;
-            exp2 = 0;
-        }
-        Eval {
-            mant,
-            exp2,
-            angle,
-            quarters,
+        for &x in chunks.remainder() {
+            out(self.eval(x));
         }
     }
 
@@ -975,6 +1030,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::float_cmp)] // an underflow to exactly 0 is what is checked
     fn extreme_frequencies_do_not_overflow() {
         // order 40 with corners at 1: |G| ~ ω^-40 at ω = 1e100 is 1e-4000.
         let mut den = vec![1.0];

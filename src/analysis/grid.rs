@@ -73,7 +73,9 @@ pub fn auto_frequency_grid(tf: &TransferFunction, points: usize) -> Result<Vec<f
             for k in -16..=16 {
                 w.push(wn * (1.0 + 0.25 * z * k as f64));
             }
-            for k in [5.0, 6.0, 7.0, 8.0, 10.0, 12.0, 14.0, 16.0, 20.0, 24.0, 32.0, 40.0, 48.0, 64.0] {
+            for k in [
+                5.0, 6.0, 7.0, 8.0, 10.0, 12.0, 14.0, 16.0, 20.0, 24.0, 32.0, 40.0, 48.0, 64.0,
+            ] {
                 w.push(wn * (1.0 + k * z));
                 w.push(wn * (1.0 - k * z));
             }

@@ -169,11 +169,11 @@ impl TransferFunction {
         }
         dedup_by_w(&mut out.phase_crossings, |c| c.w);
 
-        if let Some(c) = out
-            .gain_crossings
-            .iter()
-            .min_by(|a, b| a.phase_margin_deg.abs().total_cmp(&b.phase_margin_deg.abs()))
-        {
+        if let Some(c) = out.gain_crossings.iter().min_by(|a, b| {
+            a.phase_margin_deg
+                .abs()
+                .total_cmp(&b.phase_margin_deg.abs())
+        }) {
             out.phase_margin_deg = Some(c.phase_margin_deg);
             out.gain_crossover = Some(c.w);
         }
@@ -279,7 +279,10 @@ impl AxisPolys {
             corners.iter().copied().reduce(f64::min),
             corners.iter().copied().reduce(f64::max),
         ) {
-            (Some(lo), Some(hi)) => (lo.sqrt() * hi.sqrt()).log2().round().clamp(-1000.0, 1000.0),
+            (Some(lo), Some(hi)) => (lo.sqrt() * hi.sqrt())
+                .log2()
+                .round()
+                .clamp(-1000.0, 1000.0),
             _ => 0.0,
         };
         let e_w = w0 as i32;
