@@ -1064,6 +1064,98 @@ mod tests {
         }
     }
 
+    use proptest::prelude::*;
+
+    /// Random roots: real and complex pairs in both half planes (including light damping),
+    /// magnitudes 10^[−2, 2], some repeated.
+    fn roots(max: usize) -> impl Strategy<Value = Vec<Complex64>> {
+        prop::collection::vec(
+            (any::<bool>(), -2.0f64..2.0, -1.0f64..1.0, 0usize..4),
+            0..=max,
+        )
+        .prop_map(|spec| {
+            let mut out = Vec::new();
+            for (pair, lm, c, rep) in spec {
+                let m = 10f64.powf(lm);
+                for _ in 0..if rep == 0 { 2 } else { 1 } {
+                    if pair {
+                        // c = cos of the angle from the negative real axis, signed
+                        let re = -c * m;
+                        let im = m * (1.0 - c * c).sqrt();
+                        out.push(Complex64::new(re, im));
+                        out.push(Complex64::new(re, -im));
+                    } else {
+                        out.push(Complex64::new(if c < 0.0 { m } else { -m }, 0.0));
+                    }
+                }
+            }
+            out
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 96, .. ProptestConfig::default() })]
+
+        /// The branch tracking of the fast path (four lanes, crossing counts, half turns, one
+        /// atan2) gives exactly the sum of the per-factor angles of the logarithmic path.
+        #[test]
+        fn fast_path_tracks_the_branch(z in roots(6), p in roots(12), int in -3i32..3) {
+            let mut g = TransferFunction::from_zpk(&z, &p, -1.5).unwrap();
+            let s = TransferFunction::s();
+            for _ in 0..int.abs() {
+                g = if int > 0 { &g * &s } else { &g * &s.inv().unwrap() };
+            }
+            let f = BodeForm::new(&g).unwrap();
+            let mut w: Vec<f64> = (0..301).map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 300.0)).collect();
+            for c in f.corner_frequencies() {
+                w.extend([c, c * (1.0 + 1e-9), c * (1.0 - 1e-9), c * 1.01, c * 0.99]);
+            }
+            let mut fast = Vec::new();
+            let mut f2 = f.clone();
+            f2.exact = None; // compare the factored paths themselves
+            f2.eval_many(&w, |e| fast.push(e));
+            for (i, &x) in w.iter().enumerate() {
+                let l = f2.eval_log(x);
+                let a = fast[i];
+                if !(a.mant > 0.0 && a.mant.is_finite()) { continue; }
+                prop_assert!((a.phase_rad() - l.phase_rad()).abs() < 1e-9,
+                    "ω={} fast {} log {}", x, a.phase_deg(), l.phase_deg());
+                prop_assert!((a.ln_mag() - l.ln_mag()).abs() < 1e-11 * (1.0 + l.ln_mag().abs()));
+            }
+        }
+    }
+
+    #[test]
+    fn ill_conditioned_roots_fall_back_to_horner() {
+        // (s + 1)^20 expanded: the companion eigenvalues scatter the 20-fold root by ~0.3
+        let mut den = vec![1.0];
+        for _ in 0..20 {
+            let mut next = vec![0.0; den.len() + 1];
+            for (i, &c) in den.iter().enumerate() {
+                next[i] += c;
+                next[i + 1] += c;
+            }
+            den = next;
+        }
+        let g = tf(&[1.0], &den);
+        let f = BodeForm::new(&g).unwrap();
+        assert!(f.uses_horner());
+        for &w in &[0.01, 0.5, 1.0, 2.0, 100.0] {
+            let e = f.eval(w);
+            // |G| = (1 + ω²)^−10, φ = −20·atan ω (binomial coefficients ≤ 184756 are exact)
+            let m = (1.0 + w * w).powi(-10);
+            assert!(
+                (e.magnitude() - m).abs() < 1e-12 * m,
+                "{w}: {} vs {m}",
+                e.magnitude()
+            );
+            assert!((e.phase_rad() + 20.0 * w.atan()).abs() < 1e-12);
+        }
+        // a healthy plant does not
+        let g = tf(&[1.0, 2.0], &[1.0, 3.0, 7.0, 9.0, 4.0, 0.5]);
+        assert!(!BodeForm::new(&g).unwrap().uses_horner());
+    }
+
     #[test]
     fn bad_frequencies_are_rejected() {
         let g = tf(&[1.0], &[1.0, 1.0]);
