@@ -235,6 +235,15 @@ proptest! {
             let h = horner_dd(&g, x);
             let rel = (r.magnitude[i] - h.norm()).abs() / h.norm();
             prop_assert!(rel < 1e-10, "ω={} |G|={} Horner {} rel {:e}", x, r.magnitude[i], h.norm(), rel);
+            // and against plain f64 Horner (`TransferFunction::eval`) within its own
+            // rounding-error bound γ·eps·(Σ|nᵢ|ωⁱ + |G|·Σ|dᵢ|ωⁱ)/|D(jω)|
+            let f = g.eval(Complex64::new(0.0, x));
+            let d = g.den().eval_complex(Complex64::new(0.0, x)).norm();
+            let n_abs = g.num().eval_abs(x);
+            let d_abs = g.den().eval_abs(x);
+            let n_deg = g.num().degree().max(g.den().degree()) as f64;
+            let bound = 4.0 * (n_deg + 2.0) * f64::EPSILON * (n_abs + h.norm() * d_abs) / d;
+            prop_assert!((r.magnitude[i] - f.norm()).abs() <= 1e-10 * h.norm() + bound);
             let dphi = wrap(r.phase_deg[i].to_radians() - h.arg());
             prop_assert!(dphi.abs() < 1e-9, "ω={} φ={} Horner {}", x, r.phase_deg[i], h.arg().to_degrees());
         }

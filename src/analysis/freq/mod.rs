@@ -30,6 +30,14 @@
 //! a few comparisons per factor instead of an `atan2` per factor. One `atan2` per ω then
 //! gives the phase exactly to rounding. Frequencies so extreme that a single factor could
 //! overflow (ω beyond ~1e60 × the corner frequency) use a per-factor logarithmic path.
+//!
+//! The factored form is only as good as the roots. When it is built it is compared with
+//! Horner's rule in double-double arithmetic on the reduced coefficients at the corner
+//! frequencies and across the plotting range; if they disagree by more than 1e-11
+//! (relative magnitude, or radians of phase) — roots too ill-conditioned, e.g. an expanded
+//! (s + 1)²⁰ — magnitude and principal phase come from double-double Horner and the factored
+//! phase only selects the branch, so the phase stays continuous and the values match the
+//! coefficients as given.
 
 use serde::Serialize;
 
