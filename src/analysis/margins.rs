@@ -187,11 +187,11 @@ impl TransferFunction {
             out.phase_crossover = Some(c.w);
         }
 
-        let dc = super::pz::dc_gain_of(reduced);
-        let dc = match dc {
-            Some(x) if x != 0.0 => x.abs(),
-            _ => return Ok(out),
-        };
+        // |G(0)| = |K| from the lowest coefficients as given (0 or ∞ with a zero or pole at 0)
+        let dc = form.eval(0.0).magnitude();
+        if !(dc > 0.0 && dc.is_finite()) {
+            return Ok(out);
+        }
 
         // bandwidth: |G| = 10^(−3/20)·|G(0)|
         let c2 = dc * dc * 10f64.powf(-0.3);
