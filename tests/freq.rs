@@ -171,8 +171,8 @@ fn horner_dd(g: &TransferFunction, w: f64) -> Complex64 {
         let wd = Dd::from(w);
         for &a in c {
             // (re + j im)(jω) + a = (a − ω im) + j ω re
-            let nre = Dd::from(a).sub(wd.mul(im));
-            let nim = wd.mul(re);
+            let nre = Dd::from(a) - wd * im;
+            let nim = wd * re;
             re = nre;
             im = nim;
         }

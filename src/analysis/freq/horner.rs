@@ -63,8 +63,8 @@ pub(super) fn dd_axis(c: &[f64], w: f64) -> (f64, f64) {
         let wd = Dd::from(w);
         for &a in c {
             // (re + j·im)(jω) + a = (a − ω·im) + j·ω·re
-            let nre = Dd::from(a).sub(wd.mul(im));
-            im = wd.mul(re);
+            let nre = Dd::from(a) - wd * im;
+            im = wd * re;
             re = nre;
         }
         let (r, i) = (re.to_f64(), im.to_f64());
@@ -78,8 +78,8 @@ pub(super) fn dd_axis(c: &[f64], w: f64) -> (f64, f64) {
         };
         for &a in c.iter().rev() {
             // (re + j·im)(−j·v) + a = (a + v·im) − j·v·re
-            let nre = Dd::from(a).add(v.mul(im));
-            im = Dd::ZERO.sub(v.mul(re));
+            let nre = Dd::from(a) + v * im;
+            im = -(v * re);
             re = nre;
         }
         let (r, i) = (re.to_f64(), im.to_f64());
