@@ -232,3 +232,15 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn very_high_multiplicities() {
+    // Scatter ~eps^(1/m) (0.16 for m = 20) exceeds the grouping distance; the derivative stage
+    // recovers the structure. (s+1)^20 and (s−2)^12 have exactly representable coefficients.
+    for (base, k, root) in [(poly(&[1.0, 1.0]), 20, -1.0), (poly(&[1.0, -2.0]), 12, 2.0)] {
+        let r = pow(&base, k).roots().unwrap();
+        assert_eq!(r.len(), 1, "{r:?}");
+        assert_eq!(r[0].multiplicity, k);
+        assert!((r[0].value.re - root).abs() <= 1e-12 * root.abs());
+    }
+}

@@ -1,16 +1,52 @@
 //! Gain and phase margins, bandwidth and resonance, found by root-finding on the analytic
-//! G(jω).
+//! G(jω) — never by interpolating a sampled grid.
 //!
-//! (Implementation in progress — the data types below are the interface.)
+//! # Method
+//! With N(jω) = e_N(u) + jω·o_N(u) and D(jω) likewise (u = ω², e and o the even and odd parts
+//! of the polynomial with alternating signs), every question becomes a real polynomial in u:
+//!
+//! | quantity | polynomial in u | kept roots |
+//! |---|---|---|
+//! | gain crossings |G| = 1 | e_N² + u·o_N² − (e_D² + u·o_D²) | u > 0 |
+//! | phase crossings φ ≡ −180° | o_N·e_D − e_N·o_D (= Im(N·conj D)/ω) | u > 0 with Re G < 0 |
+//! | bandwidth |G| = c·|G(0)| | e_N² + u·o_N² − c²·(e_D² + u·o_D²) | the smallest u > 0 |
+//! | resonance d|G|²/du = 0 | A_N′·A_D − A_N·A_D′ (A = e² + u·o²) | local maxima |
+//!
+//! The frequency is scaled by a power of two near the geometric mean of the corner
+//! frequencies first (exact, and it balances the coefficients). The positive real roots of
+//! [`Poly::roots`] are then polished by Brent's method on the analytic function itself
+//! (ln|G|, the continuous phase, or d ln|G|/dω, evaluated in factored form), so the results
+//! are exact to rounding, not to the accuracy of the polynomial's roots.
+//!
+//! # Conventions (MATLAB `margin` / `bandwidth`)
+//! - Gain margin at a phase crossing ω_pc: 1/|G(jω_pc)| (and −20·log₁₀|G| dB). Phase margin at
+//!   a gain crossing ω_gc: 180° + φ(ω_gc), wrapped into (−180°, 180°].
+//! - Headline values (as MATLAB `margin`): among several crossings, the gain margin closest to
+//!   0 dB and the phase margin closest to 0°; `None` when there is no crossing (infinite
+//!   margin). Crossings at ω = 0 (the asymptote of a double integrator) are not reported;
+//!   neither are phase "crossings" at an imaginary-axis pole, where |G| = ∞ and the phase
+//!   jumps, nor the non-isolated ones of a G that is real on the whole axis.
+//! - Bandwidth: the first ω where |G| falls to exactly 10^(−3/20) of the dc gain; `None` for a
+//!   dc gain of 0 or ∞ or when |G| never falls that far.
+//! - Resonant peak: M_r = max|G(jω)|/|G(0)| over ω > 0 with ω_r where it is attained, when
+//!   the maximum is at a finite ω > 0 and exceeds both |G(0)| and the limit at ω → ∞;
+//!   `None` otherwise or for a dc gain of 0 or ∞. An undamped pole pair ±jβ gives M_r = +∞ at
+//!   ω_r = β (the lowest such β).
 
 use serde::Serialize;
+
+use super::freq::{BodeForm, mul_pow2};
+use crate::error::Result;
+use crate::lti::TransferFunction;
+use crate::numeric::scalar::{Bracket, all_crossings, brent};
+use crate::poly::{MAX_ORDER, Poly};
 
 /// A frequency where |G(jω)| = 1, with the phase margin there.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct GainCrossing {
     /// Gain-crossover frequency (rad/s).
     pub w: f64,
-    /// 180° + φ(ω), the phase margin at this crossing (degrees).
+    /// 180° + φ(ω) wrapped into (−180°, 180°], the phase margin at this crossing (degrees).
     pub phase_margin_deg: f64,
 }
 
@@ -29,13 +65,13 @@ pub struct PhaseCrossing {
 /// crossing) and "not defined" for bandwidth and resonance.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Margins {
-    /// Smallest gain margin over all phase crossings (ratio); `None` = infinite.
+    /// Gain margin closest to 0 dB over all phase crossings (ratio); `None` = infinite.
     pub gain_margin: Option<f64>,
     /// The same in dB.
     pub gain_margin_db: Option<f64>,
     /// Phase-crossover frequency of that gain margin (rad/s).
     pub phase_crossover: Option<f64>,
-    /// Smallest phase margin over all gain crossings (degrees); `None` = infinite.
+    /// Phase margin closest to 0° over all gain crossings (degrees); `None` = infinite.
     pub phase_margin_deg: Option<f64>,
     /// Gain-crossover frequency of that phase margin (rad/s).
     pub gain_crossover: Option<f64>,
@@ -50,4 +86,394 @@ pub struct Margins {
     pub resonant_peak: Option<f64>,
     /// Resonant frequency ω_r (rad/s).
     pub resonant_frequency: Option<f64>,
+}
+
+impl TransferFunction {
+    /// Gain and phase margins (every crossing and the MATLAB-style headline values),
+    /// bandwidth and resonant peak of the reduced G, by polynomial root-finding polished on
+    /// the analytic G(jω). See the [module docs](crate::analysis::margins) for definitions.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// // 2 / (s (s+1) (s+2)): GM = 3 at ω = √2, PM = 32.6131° at ω = 0.749368.
+    /// let g = TransferFunction::from_descending(&[2.0], &[1.0, 3.0, 2.0, 0.0]).unwrap();
+    /// let m = g.margins().unwrap();
+    /// assert!((m.gain_margin.unwrap() - 3.0).abs() < 1e-12);
+    /// assert!((m.phase_crossover.unwrap() - 2f64.sqrt()).abs() < 1e-12);
+    /// assert!((m.phase_margin_deg.unwrap() - 32.6131).abs() < 1e-4);
+    /// assert!(m.bandwidth.is_none()); // infinite dc gain
+    /// ```
+    pub fn margins(&self) -> Result<Margins> {
+        let pz = self.pole_zero()?;
+        let reduced = &pz.reduced;
+        let form = BodeForm::with_pole_zero(self, &pz);
+        let mut out = Margins {
+            gain_margin: None,
+            gain_margin_db: None,
+            phase_crossover: None,
+            phase_margin_deg: None,
+            gain_crossover: None,
+            gain_crossings: Vec::new(),
+            phase_crossings: Vec::new(),
+            bandwidth: None,
+            resonant_peak: None,
+            resonant_frequency: None,
+        };
+        if reduced.num().is_zero() {
+            return Ok(out);
+        }
+        let ax = AxisPolys::new(reduced, &form)?;
+        let singular: Vec<f64> = form
+            .axis_poles()
+            .iter()
+            .chain(form.axis_zeros())
+            .copied()
+            .collect();
+
+        // gain crossings
+        let g = &ax.mag2(&ax.n) - &ax.mag2(&ax.d);
+        for w in ax.positive_roots(&g)? {
+            if let Some(w) = polish(|x| form.eval(x).ln_mag(), w, &singular, 1e-10) {
+                out.gain_crossings.push(GainCrossing {
+                    w,
+                    phase_margin_deg: wrap_deg(180.0 + form.eval(w).phase_deg()),
+                });
+            }
+        }
+        dedup_by_w(&mut out.gain_crossings, |c| c.w);
+
+        // phase crossings
+        let h = &(&ax.n.odd * &ax.d.even) - &(&ax.n.even * &ax.d.odd);
+        for w in ax.positive_roots(&h)? {
+            if singular.iter().any(|&b| (w - b).abs() <= 1e-8 * b) {
+                continue;
+            }
+            let e = form.eval(w);
+            if !(e.mant > 0.0 && e.mant.is_finite()) {
+                continue;
+            }
+            let phi = e.phase_rad();
+            let target = std::f64::consts::PI
+                * (2.0 * ((phi - std::f64::consts::PI) / std::f64::consts::TAU).round() + 1.0);
+            if (phi - target).abs() >= std::f64::consts::FRAC_PI_2 {
+                continue; // G real positive here
+            }
+            if let Some(w) = polish(|x| form.eval(x).phase_rad() - target, w, &singular, 1e-10) {
+                let e = form.eval(w);
+                out.phase_crossings.push(PhaseCrossing {
+                    w,
+                    gain_margin: (-e.ln_mag()).exp(),
+                    gain_margin_db: -e.db(),
+                });
+            }
+        }
+        dedup_by_w(&mut out.phase_crossings, |c| c.w);
+
+        if let Some(c) = out.gain_crossings.iter().min_by(|a, b| {
+            a.phase_margin_deg
+                .abs()
+                .total_cmp(&b.phase_margin_deg.abs())
+        }) {
+            out.phase_margin_deg = Some(c.phase_margin_deg);
+            out.gain_crossover = Some(c.w);
+        }
+        if let Some(c) = out
+            .phase_crossings
+            .iter()
+            .min_by(|a, b| a.gain_margin_db.abs().total_cmp(&b.gain_margin_db.abs()))
+        {
+            out.gain_margin = Some(c.gain_margin);
+            out.gain_margin_db = Some(c.gain_margin_db);
+            out.phase_crossover = Some(c.w);
+        }
+
+        // |G(0)| = |K| from the lowest coefficients as given (0 or ∞ with a zero or pole at 0)
+        let dc = form.eval(0.0).magnitude();
+        if !(dc > 0.0 && dc.is_finite()) {
+            return Ok(out);
+        }
+
+        // bandwidth: |G| = 10^(−3/20)·|G(0)|
+        let c2 = dc * dc * 10f64.powf(-0.3);
+        let b = &ax.mag2(&ax.n) - &ax.mag2(&ax.d).scale(c2);
+        let level = dc.ln() - 0.15 * std::f64::consts::LN_10;
+        for w in ax.positive_roots(&b)? {
+            if let Some(w) = polish(|x| form.eval(x).ln_mag() - level, w, &singular, 1e-10) {
+                out.bandwidth = Some(w);
+                break;
+            }
+        }
+
+        // resonance
+        if let Some(beta) = form
+            .axis_poles()
+            .iter()
+            .copied()
+            .min_by(|a, b| a.total_cmp(b))
+        {
+            out.resonant_peak = Some(f64::INFINITY);
+            out.resonant_frequency = Some(beta);
+            return Ok(out);
+        }
+        let mut best: Option<(f64, f64)> = None;
+        for w in resonance_candidates(&ax, &form, &singular)? {
+            let lm = form.eval(w).ln_mag();
+            if best.is_none_or(|(_, l)| lm > l) {
+                best = Some((w, lm));
+            }
+        }
+        let ln_inf = match reduced.relative_degree() {
+            0 => reduced.gain().abs().ln(),
+            r if r > 0 => f64::NEG_INFINITY,
+            _ => f64::INFINITY,
+        };
+        if let Some((w, lm)) = best {
+            let floor = dc.ln().max(ln_inf);
+            if lm > floor + 1e-12 {
+                out.resonant_peak = Some((lm - dc.ln()).exp());
+                out.resonant_frequency = Some(w);
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Wraps an angle in degrees into (−180, 180].
+fn wrap_deg(x: f64) -> f64 {
+    let mut y = x - 360.0 * (x / 360.0).round();
+    if y <= -180.0 {
+        y += 360.0;
+    }
+    if y > 180.0 {
+        y -= 360.0;
+    }
+    y
+}
+
+/// Sorts by frequency and merges entries closer than 1e-10 relative.
+fn dedup_by_w<T>(v: &mut Vec<T>, w: impl Fn(&T) -> f64) {
+    v.sort_by(|a, b| w(a).total_cmp(&w(b)));
+    v.dedup_by(|b, a| (w(a) - w(b)).abs() <= 1e-10 * w(a).abs().max(w(b).abs()));
+}
+
+/// Even and odd parts of a polynomial on the imaginary axis, in u = (ω/ω₀)²:
+/// P(jω) = even(u) + j·(ω/ω₀)·odd(u).
+struct Parts {
+    even: Poly,
+    odd: Poly,
+}
+
+/// The numerator's and denominator's parts after the exact frequency scaling s = ω₀·s′ and a
+/// common power-of-two normalisation (which leaves G unchanged).
+struct AxisPolys {
+    /// ω₀ (a power of two).
+    w0: f64,
+    n: Parts,
+    d: Parts,
+}
+
+impl AxisPolys {
+    fn new(reduced: &TransferFunction, form: &BodeForm) -> Result<AxisPolys> {
+        let corners = form.corner_frequencies();
+        let w0 = match (
+            corners.iter().copied().reduce(f64::min),
+            corners.iter().copied().reduce(f64::max),
+        ) {
+            (Some(lo), Some(hi)) => (lo.sqrt() * hi.sqrt())
+                .log2()
+                .round()
+                .clamp(-1000.0, 1000.0),
+            _ => 0.0,
+        };
+        let e_w = w0 as i32;
+        // exponents of the scaled coefficients p_i·2^(i·e_w), to choose a common normalisation
+        let mut max_e = i32::MIN;
+        for p in [reduced.num(), reduced.den()] {
+            for (i, &c) in p.ascending().iter().enumerate() {
+                if c != 0.0 {
+                    let e = exponent_of(c).saturating_add((i as i32).saturating_mul(e_w));
+                    max_e = max_e.max(e);
+                }
+            }
+        }
+        let shift = -max_e;
+        let parts = |p: &Poly| -> Result<Parts> {
+            let a = p.ascending();
+            let scaled: Vec<f64> = a
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| mul_pow2(c, (i as i32).saturating_mul(e_w).saturating_add(shift)))
+                .collect();
+            let mut even = Vec::new();
+            let mut odd = Vec::new();
+            for (i, &c) in scaled.iter().enumerate() {
+                let sign = if (i / 2) % 2 == 0 { 1.0 } else { -1.0 };
+                if i % 2 == 0 {
+                    even.push(sign * c);
+                } else {
+                    odd.push(sign * c);
+                }
+            }
+            if odd.is_empty() {
+                odd.push(0.0);
+            }
+            Ok(Parts {
+                even: Poly::from_ascending(&even)?,
+                odd: Poly::from_ascending(&odd)?,
+            })
+        };
+        Ok(AxisPolys {
+            w0: mul_pow2(1.0, e_w),
+            n: parts(reduced.num())?,
+            d: parts(reduced.den())?,
+        })
+    }
+
+    /// |P(jω)|² = even² + u·odd².
+    fn mag2(&self, p: &Parts) -> Poly {
+        &(&p.even * &p.even) + &(&Poly::s() * &(&p.odd * &p.odd))
+    }
+
+    /// ω = ω₀·√u for the positive real roots u of `p` (roots with an imaginary part below
+    /// 1e-6 relative count as real: the polishing step decides), sorted.
+    fn positive_roots(&self, p: &Poly) -> Result<Vec<f64>> {
+        if p.is_zero() || p.degree() == 0 {
+            return Ok(Vec::new());
+        }
+        let mut out: Vec<f64> = p
+            .roots()?
+            .iter()
+            .filter(|r| r.value.re > 0.0 && r.value.im.abs() <= 1e-6 * r.value.re)
+            .filter(|r| r.value.im >= 0.0)
+            .map(|r| self.w0 * r.value.re.sqrt())
+            .filter(|w| w.is_finite() && *w > 0.0)
+            .collect();
+        out.sort_by(f64::total_cmp);
+        Ok(out)
+    }
+}
+
+/// Binary exponent of a finite non-zero number.
+fn exponent_of(x: f64) -> i32 {
+    if x == 0.0 || !x.is_finite() {
+        return 0;
+    }
+    x.abs().log2().floor() as i32
+}
+
+/// Polishes a candidate root `w` of the analytic function `f` by Brent's method on a sign
+/// change found in growing neighbourhoods (never across one of the `walls`, where f jumps).
+/// A candidate without a sign change nearby is kept only when |f(w)| ≤ `tangent_tol` (a
+/// tangency, e.g. a double root).
+fn polish(f: impl Fn(f64) -> f64, w: f64, walls: &[f64], tangent_tol: f64) -> Option<f64> {
+    let f0 = f(w);
+    if f0 == 0.0 {
+        return Some(w);
+    }
+    if !f0.is_finite() {
+        return None;
+    }
+    let lo_wall = walls.iter().copied().filter(|&b| b < w).fold(0.0, f64::max);
+    let hi_wall = walls
+        .iter()
+        .copied()
+        .filter(|&b| b > w)
+        .fold(f64::INFINITY, f64::min);
+    for rel in [1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-3, 1e-2] {
+        let a = w * (1.0 - rel);
+        let b = w * (1.0 + rel);
+        if a <= lo_wall || b >= hi_wall {
+            break;
+        }
+        let fa = f(a);
+        if fa.is_finite() && (fa == 0.0 || fa.signum() != f0.signum()) {
+            let br = Bracket {
+                a,
+                b: w,
+                fa,
+                fb: f0,
+            };
+            return brent(&f, br, 0.0).ok();
+        }
+        let fb = f(b);
+        if fb.is_finite() && (fb == 0.0 || fb.signum() != f0.signum()) {
+            let br = Bracket {
+                a: w,
+                b,
+                fa: f0,
+                fb,
+            };
+            return brent(&f, br, 0.0).ok();
+        }
+    }
+    (f0.abs() <= tangent_tol).then_some(w)
+}
+
+/// Every local maximum of |G(jω)| at ω > 0 (excluding imaginary-axis poles, where |G| = ∞),
+/// sorted. `reduced` is G in lowest terms and `form` its [`BodeForm`].
+pub(crate) fn local_maxima(reduced: &TransferFunction, form: &BodeForm) -> Result<Vec<f64>> {
+    if reduced.num().is_zero() {
+        return Ok(Vec::new());
+    }
+    let ax = AxisPolys::new(reduced, form)?;
+    let walls: Vec<f64> = form
+        .axis_poles()
+        .iter()
+        .chain(form.axis_zeros())
+        .copied()
+        .collect();
+    let mut out = resonance_candidates(&ax, form, &walls)?;
+    dedup_by_w(&mut out, |&w| w);
+    Ok(out)
+}
+
+/// Local maxima of |G(jω)| at ω > 0: roots of d|G|²/du, polished on d ln|G|/dω. When that
+/// polynomial's degree exceeds [`MAX_ORDER`], sign changes of d ln|G|/dω on a dense
+/// logarithmic grid (refined at lightly damped modes) are used instead.
+fn resonance_candidates(ax: &AxisPolys, form: &BodeForm, walls: &[f64]) -> Result<Vec<f64>> {
+    let an = ax.mag2(&ax.n);
+    let ad = ax.mag2(&ax.d);
+    let r = &(&an.derivative() * &ad) - &(&an * &ad.derivative());
+    let d = |x: f64| form.d_ln_mag(x);
+    let mut out = Vec::new();
+    if r.degree() <= MAX_ORDER {
+        for w in ax.positive_roots(&r)? {
+            if let Some(w) = polish(d, w, walls, 0.0) {
+                out.push(w);
+            }
+        }
+    } else {
+        let xs = form.sampling_grid(40);
+        let fs: Vec<f64> = xs.iter().map(|&x| d(x)).collect();
+        out = all_crossings(d, &xs, &fs, 0.0);
+    }
+    // keep maxima: d ln|G|/dω goes from + to −
+    out.retain(|&w| {
+        let h = 1e-7 * w;
+        d(w - h) > 0.0 && d(w + h) < 0.0
+    });
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_into_half_open_interval() {
+        assert!((wrap_deg(-90.0) + 90.0).abs() < 1e-12);
+        assert!((wrap_deg(180.0) - 180.0).abs() < 1e-12);
+        assert!((wrap_deg(-180.0) - 180.0).abs() < 1e-12);
+        assert!((wrap_deg(-270.0) - 90.0).abs() < 1e-12);
+        assert!((wrap_deg(400.0) - 40.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn polish_refuses_to_cross_a_wall() {
+        // f jumps across 1: no root may be reported there
+        let f = |x: f64| if x < 1.0 { 1.0 } else { -1.0 };
+        assert!(polish(f, 1.0 - 1e-9, &[1.0], 1e-10).is_none());
+        let g = |x: f64| x - 2.0;
+        assert!((polish(g, 2.0 + 1e-9, &[1.0], 1e-10).unwrap() - 2.0).abs() < 1e-15);
+    }
 }

@@ -16,6 +16,7 @@ pub mod summary;
 pub mod time;
 
 pub use freq::FrequencyResponse;
+pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
 pub use margins::{GainCrossing, Margins, PhaseCrossing};
 pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use pz::PoleZero;

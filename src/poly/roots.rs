@@ -183,7 +183,7 @@ fn quadratic(a: f64, b: f64, c: f64) -> Vec<Complex64> {
 fn resolve_multiplicities(q: &Poly, cand: &[Complex64]) -> Vec<Root> {
     let upper: Vec<Complex64> = cand.iter().copied().filter(|z| z.im >= 0.0).collect();
     let mut found = Vec::new();
-    for group in link_groups(&upper) {
+    for group in link_groups(&upper, GROUP_REL) {
         resolve_group(q, &group, &upper, &mut found);
     }
     let found = if found.iter().any(|f| f.multiplicity > 1) {
@@ -192,20 +192,19 @@ fn resolve_multiplicities(q: &Poly, cand: &[Complex64]) -> Vec<Root> {
         found
     };
     let roots = expand_conjugates(&found);
-    if reconstructs(q, &roots) && !any_more_multiple(q, &found) {
+    let hidden = hidden_multiple_root(q, &upper, &found);
+    if reconstructs(q, &roots) && !any_more_multiple(q, &found) && hidden.is_none() {
         return roots;
     }
-    // Clusters overlapped (high multiplicities close together scatter into each other):
-    // find the structure from the derivatives instead.
-    let max_weight = link_groups(&upper)
+    // Clusters overlapped (high multiplicities close together scatter into each other), or a
+    // very high multiplicity scattered beyond the grouping distance: find the structure from
+    // the derivatives instead.
+    let max_weight = link_groups(&upper, GROUP_REL)
         .iter()
-        .map(|g| {
-            g.iter()
-                .map(|z| if z.im == 0.0 { 1 } else { 2 })
-                .sum::<usize>()
-        })
+        .map(|g| group_weight(g))
         .max()
-        .unwrap_or(1);
+        .unwrap_or(1)
+        .max(hidden.unwrap_or(1));
     if let Some(found) = structure_from_derivatives(q, max_weight) {
         let found = refine_structured(q, &found).unwrap_or(found);
         let roots = expand_conjugates(&found);
@@ -517,8 +516,42 @@ fn structured_jacobian(found: &[Found], n: usize, w: &[f64]) -> nalgebra::DMatri
     jac
 }
 
-/// Connected components of the "closer than GROUP_REL relative" graph.
-fn link_groups(pts: &[Complex64]) -> Vec<Vec<Complex64>> {
+/// Full-plane root count a group of upper-half-plane candidates stands for.
+fn group_weight(g: &[Complex64]) -> usize {
+    g.iter().map(|z| if z.im == 0.0 { 1 } else { 2 }).sum()
+}
+
+/// Relative distance for the coarse groups examined by [`hidden_multiple_root`]: an m-fold
+/// root scatters by ~eps^(1/m), 0.16 for m = 20.
+const COARSE_GROUP_REL: f64 = 0.5;
+
+/// A multiplicity the first stage missed because the scatter of a very high multiplicity
+/// (m ≳ 20) exceeds the grouping distance: for each coarse group resolved into roots of lower
+/// multiplicity, test its (real) mean as a root of the group's total multiplicity W. Returns
+/// the largest such W.
+fn hidden_multiple_root(q: &Poly, upper: &[Complex64], found: &[Found]) -> Option<usize> {
+    let mut best = None;
+    for g in link_groups(upper, COARSE_GROUP_REL) {
+        let w = group_weight(&g);
+        if w < 3 || found.iter().any(|f| f.multiplicity >= w) {
+            continue;
+        }
+        let mean = g.iter().sum::<Complex64>() / g.len() as f64;
+        let reach = COARSE_GROUP_REL * mean.norm().max(f64::MIN_POSITIVE);
+        let real_mean = g
+            .iter()
+            .map(|z| if z.im == 0.0 { z.re } else { 2.0 * z.re })
+            .sum::<f64>()
+            / w as f64;
+        if confirm_real(q, real_mean, w, reach).is_some() {
+            best = best.max(Some(w));
+        }
+    }
+    best
+}
+
+/// Connected components of the "closer than `rel` relative" graph.
+fn link_groups(pts: &[Complex64], rel: f64) -> Vec<Vec<Complex64>> {
     let n = pts.len();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut i: usize) -> usize {
@@ -531,7 +564,7 @@ fn link_groups(pts: &[Complex64]) -> Vec<Vec<Complex64>> {
     for i in 0..n {
         for j in i + 1..n {
             let d = (pts[i] - pts[j]).norm();
-            if d <= GROUP_REL * pts[i].norm().max(pts[j].norm()) {
+            if d <= rel * pts[i].norm().max(pts[j].norm()) {
                 let (a, b) = (find(&mut parent, i), find(&mut parent, j));
                 parent[a] = b;
             }
