@@ -2,7 +2,9 @@
 //! that prints. Errors go to stderr as one line with exit code 1 (2 for usage errors).
 
 mod analyze;
+mod freq;
 mod linearize;
+mod margins;
 mod output;
 mod parse;
 mod plant;
@@ -42,6 +44,10 @@ enum Command {
     /// Poles and zeros with multiplicities, cancellations, dc gain, stability with the reason,
     /// modes (wn, zeta, time constant), second-order class and step metrics.
     Analyze(analyze::AnalyzeArgs),
+    /// Frequency response: M(w), dB and the continuous phase at --w or on a log grid.
+    Freq(freq::FreqArgs),
+    /// Gain and phase margins (all crossings), bandwidth, resonant peak.
+    Margins(margins::MarginsArgs),
     /// Equilibria of a nonlinear model, A, B, C, D at each (exact Jacobians), eigenvalues,
     /// local stability and the linearised input→output transfer function.
     Linearize(linearize::LinearizeArgs),
@@ -76,6 +82,8 @@ pub fn main() -> i32 {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Analyze(a) => analyze::run(&a),
+        Command::Freq(a) => freq::run(&a),
+        Command::Margins(a) => margins::run(&a),
         Command::Linearize(a) => linearize::run(&a),
         Command::Simulate(a) => simulate::run(&a),
     }
