@@ -536,6 +536,7 @@ fn signed_sum(pieces: Vec<(bool, String)>) -> String {
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // exact values are meant: 0 before t = 0, exact dc gains
 mod tests {
     use super::*;
     use crate::analysis::pfe::PfTerm;

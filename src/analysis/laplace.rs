@@ -229,7 +229,13 @@ impl Decomposition {
                 add(&t, false);
             }
         }
-        groups.sort_by(|a, b| b.0.re.total_cmp(&a.0.re).then(b.0.im.total_cmp(&a.0.im)));
+        // Decreasing real part; at equal real part real poles first, then a pair as +, −.
+        groups.sort_by(|a, b| {
+            b.0.re
+                .total_cmp(&a.0.re)
+                .then(a.0.im.abs().total_cmp(&b.0.im.abs()))
+                .then(b.0.im.total_cmp(&a.0.im))
+        });
         let terms = groups
             .into_iter()
             .flat_map(|(pole, res)| {
