@@ -5,8 +5,9 @@
 //! - the direct polynomial Σ cₖ sᵏ gives cₖ·δ^(k)(t);
 //! - a real pole p of multiplicity m gives (c₀ + c₁t + … + c_{m−1}t^(m−1))·e^(pt);
 //! - a conjugate pair σ ± jω gives e^(σt)·Σₖ Aₖ tᵏ cos(ωt + φₖ) (seed eq. 3.33), with
-//!   Aₖ = 2|r_{k+1}|/k! and φₖ = arg r_{k+1}, normalised to φₖ ∈ (−π/2, π/2] by moving the sign
-//!   into Aₖ, so a step response reads `1 - 1.1547 e^(-0.5 t) cos(0.866025 t - 0.523599)`.
+//!   Aₖ = 2|r_{k+1}|/k! and φₖ = arg r_{k+1}, normalised to φₖ ∈ [−π/2, π/2] by moving the sign
+//!   into Aₖ (at ±π/2 the amplitude stays positive), so a step response reads
+//!   `1 - 1.1547 e^(-0.5 t) cos(0.866025 t - 0.523599)` and sin t reads `cos(t - 1.5708)`.
 //!
 //! [`ClosedForm::eval`] is the smooth part for t ≥ 0 (δ terms excluded; 0 for t < 0: every
 //! term carries 1(t)).
@@ -46,7 +47,7 @@ pub enum ClosedFormTerm {
         omega: f64,
         /// A₀, A₁, … (signed; ascending powers of t).
         amplitudes: Vec<f64>,
-        /// φ₀, φ₁, … in (−π/2, π/2] (rad).
+        /// φ₀, φ₁, … in [−π/2, π/2] (rad).
         phases: Vec<f64>,
     },
 }
@@ -335,6 +336,10 @@ impl fmt::Display for ClosedForm {
     }
 }
 
+/// Phases within this of ±π/2 keep a positive amplitude: sin(ωt) prints as
+/// `cos(ω t - 1.5708)`, not `-cos(ω t + 1.5708)`, whichever side of −π/2 rounding put arg r.
+const PHASE_SLACK: f64 = 1e-12;
+
 /// The real-form group of pole p (upper member or real) with residues r₁ … r_m.
 fn group_term(p: Complex64, res: &[Complex64]) -> ClosedFormTerm {
     let mut fact = 1.0;
@@ -362,10 +367,10 @@ fn group_term(p: Complex64, res: &[Complex64]) -> ClosedFormTerm {
         }
         let mut a = 2.0 * r.norm() / fact;
         let mut ph = if a == 0.0 { 0.0 } else { r.arg() };
-        if ph > FRAC_PI_2 {
+        if ph > FRAC_PI_2 + PHASE_SLACK {
             ph -= PI;
             a = -a;
-        } else if ph <= -FRAC_PI_2 {
+        } else if ph < -FRAC_PI_2 - PHASE_SLACK {
             ph += PI;
             a = -a;
         }
@@ -489,7 +494,8 @@ fn term_pieces(t: &ClosedFormTerm, noise: f64) -> Vec<(bool, String)> {
                 .map(|(k, (a, p))| (k, *a, *p))
                 .collect();
             let e = exp_factor(*sigma);
-            if nz.len() <= 1 {
+            if e.is_empty() || nz.len() <= 1 {
+                // Undamped (σ = 0) or a single power: flat pieces.
                 return nz
                     .iter()
                     .map(|&(k, a, p)| {
@@ -512,12 +518,7 @@ fn term_pieces(t: &ClosedFormTerm, noise: f64) -> Vec<(bool, String)> {
                     })
                     .collect(),
             );
-            let body = if e.is_empty() {
-                format!("({inner})")
-            } else {
-                format!("{e} ({inner})")
-            };
-            vec![(neg, body)]
+            vec![(neg, format!("{e} ({inner})"))]
         }
     }
 }
@@ -589,7 +590,7 @@ mod tests {
         let y = ClosedForm::from_partial_fractions(&p);
         assert_eq!(
             y.expression(),
-            "2 δ(t) + δ'(t) - 0.5 e^(-t) cos(2 t + 1.5708)"
+            "2 δ(t) + δ'(t) + 0.5 e^(-t) cos(2 t - 1.5708)"
         );
         let t: f64 = 1.3;
         let want = 0.5 * (-t).exp() * (2.0 * t).sin();

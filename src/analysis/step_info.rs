@@ -104,7 +104,21 @@ impl TransferFunction {
 }
 
 /// Step metrics of a closed-form step response `y` with final value `y_inf` ≠ 0, whose terms
-/// other than the constant all decay (Re p < 0).
+/// other than the constant all decay (Re p < 0) — e.g. a step response with initial
+/// conditions, which [`TransferFunction::step_info`] does not cover.
+///
+/// Errors: `y_inf` zero or not finite, a term that does not decay.
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// use ltikit::analysis::{Input, step_info::step_info_of};
+/// // Tank 1/(2s + 0.5) filled by a unit step from h(0) = 1: h = 2 − e^(−t/4).
+/// let g = TransferFunction::from_descending(&[1.0], &[2.0, 0.5]).unwrap();
+/// let h = g.inverse_laplace(&Input::Step, &[1.0]).unwrap().closed_form;
+/// let s = step_info_of(&h, 2.0).unwrap();
+/// assert_eq!(s.rise_start, 0.0); // already at 50 %
+/// assert!((s.settling_time - 4.0 * 25f64.ln()).abs() < 1e-12); // e^(−t/4) = 0.04
+/// ```
 pub fn step_info_of(y: &ClosedForm, y_inf: f64) -> Result<StepInfo> {
     if y_inf == 0.0 || !y_inf.is_finite() {
         return Err(LtiError::Undefined {
