@@ -234,3 +234,41 @@ fn monotone_peak_time_serialises_as_null() {
     assert!(v["peak_time"].is_null());
     assert_eq!(v["peak"], 0.5);
 }
+
+#[test]
+fn near_coincident_poles_stay_within_1e9() {
+    // ζ = 1 ± 1e-9 and ± 1e-13: the closed form's residues (up to ~1e6) cancel, which limits
+    // its values to ~1e-10; the metrics still match the well-conditioned analytic form
+    // 1 − e^(−ζt)(cosh βt + ζ sinh(βt)/β), β² = (ζ − 1)(ζ + 1), solved by bisection.
+    for dz in [1e-9, -1e-9, 1e-13, -1e-13] {
+        let z: f64 = 1.0 + dz;
+        let s = tf(&[1.0], &[1.0, 2.0 * z, 1.0])
+            .step_info()
+            .unwrap()
+            .unwrap();
+        let q = (z - 1.0) * (z + 1.0);
+        let y = |x: f64| {
+            let (c, so) = if q > 0.0 {
+                let b = q.sqrt();
+                ((b * x).cosh(), (b * x).sinh() / b)
+            } else {
+                let w = (-q).sqrt();
+                ((w * x).cos(), (w * x).sin() / w)
+            };
+            1.0 - (-z * x).exp() * (c + z * so)
+        };
+        let start = bisect(|x| y(x) - 0.1, 0.0, 50.0);
+        let end = bisect(|x| y(x) - 0.9, 0.0, 50.0);
+        let settle = bisect(|x| y(x) - 0.98, 0.0, 50.0);
+        let errs = [
+            s.rise_start - start,
+            s.rise_end - end,
+            s.settling_time - settle,
+        ];
+        println!(
+            "ζ − 1 = {dz:e}: metric errors {:.1e} {:.1e} {:.1e}",
+            errs[0], errs[1], errs[2]
+        );
+        assert!(errs.iter().all(|e| e.abs() < 1e-9), "{errs:?}");
+    }
+}
