@@ -140,20 +140,22 @@ pub(crate) fn decompose(g: &TransferFunction, input: &Input, ics: &[f64]) -> Res
     }
 
     // The zero of cos:W at s = 0 against an integrator of G.
+    // Polynomials: zero roots made exact (the reduced form comes from a division).
     let mut sys = pz.reduced_poles.clone();
+    let mut den_r = exact_zero_roots(pz.reduced.den(), zero_multiplicity(&sys));
     let (mut num_u, _) = input.laplace();
     if matches!(input, Input::Cos(_))
         && let Some(p) = sys
             .iter_mut()
             .find(|p| p.value.re == 0.0 && p.value.im == 0.0 && p.multiplicity > 0)
     {
+        // D_r = s·D₁ exactly: drop the factor s against the zero of U(s) = s/(s² + ω²).
         p.multiplicity -= 1;
         num_u = Poly::constant(1.0);
+        let c = den_r.coeffs();
+        den_r = Poly::trimmed(c[..c.len() - 1].to_vec());
     }
     sys.retain(|p| p.multiplicity > 0);
-
-    // Polynomials: zero roots made exact (the reduced form comes from a division).
-    let den_r = exact_zero_roots(pz.reduced.den(), zero_multiplicity(&sys));
     let num_r = exact_zero_roots(pz.reduced.num(), zero_multiplicity(&pz.reduced_zeros));
     let mut num_f = &num_r * &num_u;
     if !cancelled_zeros.is_empty() {
@@ -402,12 +404,21 @@ mod tests {
 
     #[test]
     fn cos_into_integrator() {
-        // cos t into 1/s: y = sin t, no constant term.
-        let r = tf(&[1.0], &[1.0, 0.0])
-            .inverse_laplace(&Input::Cos(1.0), &[])
-            .unwrap();
+        // cos t into 1/s: y = sin t, no constant term; the same for the exact values.
+        let g = tf(&[1.0], &[1.0, 0.0]);
+        let r = g.inverse_laplace(&Input::Cos(1.0), &[]).unwrap();
         assert_eq!(r.closed_form.terms().len(), 1);
         assert!((r.closed_form.eval(1.0) - 1f64.sin()).abs() < 1e-15);
+        let dec = decompose(&g, &Input::Cos(1.0), &[]).unwrap();
+        assert_eq!(dec.forced.den.coeffs(), &[1.0, 0.0, 1.0]);
+        // 1/(s²(s + 2)) with cos 3t: one integrator left.
+        let g = tf(&[1.0], &[1.0, 2.0, 0.0, 0.0]);
+        let s = g
+            .response_samples(&Input::Cos(3.0), &[], &[0.5, 2.0, 7.0])
+            .unwrap();
+        assert!(s.closed_form_error < 1e-14, "{}", s.closed_form_error);
+        let dec = decompose(&g, &Input::Cos(3.0), &[]).unwrap();
+        assert_eq!(dec.forced.den.degree(), 4);
     }
 
     #[test]
@@ -449,6 +460,45 @@ mod tests {
             decompose(&g, &Input::Step, &[]).unwrap().final_value(),
             Some(0.5)
         );
+    }
+
+    #[test]
+    fn closed_form_and_exact_values_agree_for_every_input() {
+        // Plants with integrators, zeros on input poles, resonances, hidden modes, feedthrough.
+        let plants = [
+            tf(&[1.0], &[1.0, 0.0]),
+            tf(&[1.0], &[1.0, 2.0, 0.0, 0.0]),
+            tf(&[1.0, 0.0], &[1.0, 3.0, 2.0]),
+            tf(&[1.0, 0.0, 4.0], &[1.0, 1.0, 4.0, 2.0]),
+            tf(&[2.0, 1.0], &[1.0, 0.5]),
+            tf(&[1.0, 0.5], &[1.0, 0.5, 4.0, 0.0]),
+            tf(&[1.0, 1.0], &[1.0, 2.0, 1.0]),
+            tf(&[3.0], &[1.0]),
+        ];
+        let inputs = [
+            Input::Impulse,
+            Input::Step,
+            Input::Ramp,
+            Input::Exp(-1.0),
+            Input::Exp(0.0),
+            Input::Sin(2.0),
+            Input::Cos(2.0),
+            Input::Cos(1.0),
+            Input::None,
+        ];
+        let t: Vec<f64> = (0..=60).map(|k| k as f64 * 0.1).collect();
+        for g in &plants {
+            for input in &inputs {
+                for ics in [vec![], vec![0.5, -1.0][..g.order().min(2)].to_vec()] {
+                    let s = g.response_samples(input, &ics, &t).unwrap();
+                    assert!(
+                        s.closed_form_error <= 1e-12 * s.max_abs_y.max(1.0),
+                        "{g} {input} {ics:?}: {:e}",
+                        s.closed_form_error
+                    );
+                }
+            }
+        }
     }
 
     #[test]
