@@ -15,10 +15,14 @@ pub mod step_info;
 pub mod summary;
 pub mod time;
 
+pub use closed_form::{ClosedForm, ClosedFormTerm};
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
+pub use input::Input;
+pub use laplace::{Response, ResponseSamples};
 pub use margins::{GainCrossing, Margins, PhaseCrossing};
 pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
+pub use pfe::{PartialFractions, PfTerm, partial_fractions};
 pub use pz::PoleZero;
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
 pub use step_info::StepInfo;

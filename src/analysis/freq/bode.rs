@@ -579,11 +579,10 @@ mod tests {
         }
     }
 
-    #[test]
-    fn ill_conditioned_roots_fall_back_to_horner() {
-        // (s + 1)^20 expanded: the companion eigenvalues scatter the 20-fold root by ~0.3
+    /// Expanded (s + 1)^k: binomial coefficients, exact for k ≤ 20.
+    fn binomial_den(k: usize) -> Vec<f64> {
         let mut den = vec![1.0];
-        for _ in 0..20 {
+        for _ in 0..k {
             let mut next = vec![0.0; den.len() + 1];
             for (i, &c) in den.iter().enumerate() {
                 next[i] += c;
@@ -591,12 +590,17 @@ mod tests {
             }
             den = next;
         }
-        let g = tf(&[1.0], &den);
+        den
+    }
+
+    #[test]
+    fn twenty_fold_pole_is_accurate() {
+        // (s + 1)^20 expanded: the roots come back as one exact 20-fold pole, so the factored
+        // form is used; |G| = (1 + ω²)^−10, φ = −20·atan ω.
+        let g = tf(&[1.0], &binomial_den(20));
         let f = BodeForm::new(&g).unwrap();
-        assert!(f.uses_horner());
         for &w in &[0.01, 0.5, 1.0, 2.0, 100.0] {
             let e = f.eval(w);
-            // |G| = (1 + ω²)^−10, φ = −20·atan ω (binomial coefficients ≤ 184756 are exact)
             let m = (1.0 + w * w).powi(-10);
             assert!(
                 (e.magnitude() - m).abs() < 1e-12 * m,
@@ -604,6 +608,37 @@ mod tests {
                 e.magnitude()
             );
             assert!((e.phase_rad() + 20.0 * w.atan()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn ill_conditioned_roots_fall_back_to_horner() {
+        // Wilkinson's polynomial Π(s + k), k = 1..20: the coefficients are not representable,
+        // the roots are violently ill conditioned and do not reproduce the coefficients, so
+        // magnitude and phase come from double-double Horner. Reference: f64 Horner on the same
+        // coefficients, accurate here because on the imaginary axis |D(jω)| is within a factor
+        // √2^20 of Σ|aᵢ|ωⁱ (every root is on the negative real axis).
+        let mut den = vec![1.0];
+        for k in 1..=20 {
+            let mut next = vec![0.0; den.len() + 1];
+            for (i, &c) in den.iter().enumerate() {
+                next[i] += c;
+                next[i + 1] += c * k as f64;
+            }
+            den = next;
+        }
+        let g = tf(&[1.0], &den);
+        let f = BodeForm::new(&g).unwrap();
+        assert!(f.uses_horner());
+        for &w in &[0.01, 1.0, 10.0, 100.0] {
+            let e = f.eval(w);
+            let d = g.den().eval_complex(num_complex::Complex64::new(0.0, w));
+            let m = 1.0 / d.norm();
+            assert!(
+                (e.magnitude() - m).abs() < 1e-9 * m,
+                "{w}: {} vs {m}",
+                e.magnitude()
+            );
         }
         // a healthy plant does not
         let g = tf(&[1.0, 2.0], &[1.0, 3.0, 7.0, 9.0, 4.0, 0.5]);

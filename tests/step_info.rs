@@ -1,0 +1,274 @@
+//! Step metrics against exact references and independent analytic solutions.
+//!
+//! Run with `--nocapture` to see the measured errors.
+
+use std::f64::consts::PI;
+
+use ltikit::TransferFunction;
+use ltikit::analysis::StepInfo;
+
+fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
+    TransferFunction::from_descending(n, d).unwrap()
+}
+
+/// Plain bisection for f(x) = 0 on [a, b] with f(a)·f(b) ≤ 0 (independent of the library).
+fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let fa = f(a);
+    assert!(fa * f(b) <= 0.0, "no sign change on [{a}, {b}]");
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if (f(m) > 0.0) == (fa > 0.0) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+#[test]
+fn matlab_stepinfo_example_exact_values() {
+    // python-control's MATLAB example; exact values from the closed form in 60-digit
+    // arithmetic (DESIGN §7): rise 3.843417, settling 27.980086, overshoot 7.512989 %,
+    // peak 2.687825 at 8.083924. MATLAB documents 3.8456/27.9762, python-control 0.10 gives
+    // 3.8725/28.075 (both grid-quantised).
+    let g = tf(&[1.0, 5.0, 5.0], &[1.0, 1.65, 5.0, 6.5, 2.0]);
+    let s = g.step_info().unwrap().unwrap();
+    let refs = [
+        ("rise", s.rise_time, 3.843417),
+        ("settling", s.settling_time, 27.980086),
+        ("overshoot", s.overshoot_percent, 7.512989),
+        ("peak", s.peak, 2.687825),
+        ("peak time", s.peak_time, 8.083924),
+    ];
+    for (what, got, want) in refs {
+        println!(
+            "MATLAB example {what}: {got:.9} (reference {want}, diff {:.1e})",
+            got - want
+        );
+        assert!((got - want).abs() < 6e-7, "{what}: {got} vs {want}");
+    }
+    assert_eq!(s.steady_state, 2.5);
+    // Self-consistency against the exact (matrix-exponential) simulation, which shares no code
+    // with the closed form: the levels are hit at the reported instants.
+    let t = [s.rise_start, s.rise_end, s.settling_time, s.peak_time];
+    let y = g.step_response(&t).unwrap().y;
+    assert!((y[0] - 0.25).abs() < 1e-12, "{}", y[0] - 0.25);
+    assert!((y[1] - 2.25).abs() < 1e-12, "{}", y[1] - 2.25);
+    assert!(((y[2] - 2.5).abs() - 0.05).abs() < 1e-12);
+    assert!((y[3] - s.peak).abs() < 1e-12);
+    // And nothing on a fine grid exceeds the peak or leaves the band after settling.
+    let grid: Vec<f64> = (0..=60_000).map(|k| k as f64 * 1e-3).collect();
+    let y = g.step_response(&grid).unwrap().y;
+    for (t, y) in grid.iter().zip(&y) {
+        assert!(y.abs() <= s.peak + 1e-12, "t = {t}");
+        if *t > s.settling_time + 1e-9 {
+            assert!((y - 2.5).abs() < 0.05, "t = {t}");
+        }
+    }
+}
+
+/// Unit step of ωₙ²/(s² + 2ζωₙs + ωₙ²) with ωₙ = 1.
+fn second_order_step(zeta: f64, t: f64) -> f64 {
+    if zeta < 1.0 {
+        let wd = (1.0 - zeta * zeta).sqrt();
+        1.0 - (-zeta * t).exp() / wd * (wd * t + zeta.acos()).sin()
+    } else if zeta == 1.0 {
+        1.0 - (1.0 + t) * (-t).exp()
+    } else {
+        let b = (zeta * zeta - 1.0).sqrt();
+        let (l1, l2) = (-zeta + b, -zeta - b);
+        1.0 + (l2 * (l1 * t).exp() - l1 * (l2 * t).exp()) / (l1 - l2)
+    }
+}
+
+/// The metrics from the analytic step response by bisection only.
+fn analytic_step_info(zeta: f64) -> StepInfo {
+    let y = |t: f64| second_order_step(zeta, t);
+    if zeta < 1.0 {
+        let wd = (1.0 - zeta * zeta).sqrt();
+        let tp = PI / wd;
+        let rise_start = bisect(|t| y(t) - 0.1, 0.0, tp);
+        let rise_end = bisect(|t| y(t) - 0.9, 0.0, tp);
+        // Extrema at kπ/ω_d with |y − 1| = e^(−ζkπ/ω_d): the last one at or above 2 % is
+        // followed by the settling crossing before the next zero of y − 1.
+        let mut k = 0.0;
+        while (-zeta * (k + 1.0) * tp).exp() >= 0.02 {
+            k += 1.0;
+        }
+        let (a, b) = (k * tp, (k + 1.0) * tp);
+        let zero = bisect(|t| y(t) - 1.0, a, b);
+        let settling = bisect(|t| (y(t) - 1.0).abs() - 0.02, a, zero);
+        let os = (-zeta * PI / wd).exp();
+        StepInfo {
+            rise_time: rise_end - rise_start,
+            settling_time: settling,
+            overshoot_percent: 100.0 * os,
+            peak: 1.0 + os,
+            peak_time: tp,
+            steady_state: 1.0,
+            rise_start,
+            rise_end,
+        }
+    } else {
+        let rise_start = bisect(|t| y(t) - 0.1, 0.0, 100.0);
+        let rise_end = bisect(|t| y(t) - 0.9, 0.0, 100.0);
+        StepInfo {
+            rise_time: rise_end - rise_start,
+            settling_time: bisect(|t| y(t) - 0.98, 0.0, 100.0),
+            overshoot_percent: 0.0,
+            peak: 1.0,
+            peak_time: f64::INFINITY,
+            steady_state: 1.0,
+            rise_start,
+            rise_end,
+        }
+    }
+}
+
+#[test]
+fn second_order_against_analytic() {
+    for zeta in [0.05, 0.1, 0.5, 0.7, 0.95, 1.0, 1.5, 2.0] {
+        let got = tf(&[1.0], &[1.0, 2.0 * zeta, 1.0])
+            .step_info()
+            .unwrap()
+            .unwrap();
+        let want = analytic_step_info(zeta);
+        let pairs = [
+            ("rise", got.rise_time, want.rise_time),
+            ("settling", got.settling_time, want.settling_time),
+            ("overshoot", got.overshoot_percent, want.overshoot_percent),
+            ("peak", got.peak, want.peak),
+            ("rise start", got.rise_start, want.rise_start),
+        ];
+        let mut worst: f64 = 0.0;
+        for (what, g, w) in pairs {
+            let rel = (g - w).abs() / w.abs().max(1.0);
+            worst = worst.max(rel);
+            assert!(rel < 1e-12, "ζ = {zeta} {what}: {g} vs {w}");
+        }
+        if want.peak_time.is_finite() {
+            let rel = (got.peak_time - want.peak_time).abs() / want.peak_time;
+            worst = worst.max(rel);
+            assert!(rel < 1e-12, "ζ = {zeta} peak time");
+        } else {
+            assert!(got.peak_time.is_infinite(), "ζ = {zeta}: {got:?}");
+        }
+        println!("ζ = {zeta}: worst relative difference to the analytic metrics {worst:.1e}");
+        if zeta == 0.5 {
+            println!("ζ = 0.5: {got:?}");
+        }
+    }
+}
+
+#[test]
+fn gain_sign_and_scale() {
+    // −3/(s² + s + 1): same times as ζ = 0.5, y∞ = −3, overshoot in the direction of y∞.
+    let s = tf(&[-3.0], &[1.0, 1.0, 1.0]).step_info().unwrap().unwrap();
+    let w = analytic_step_info(0.5);
+    assert_eq!(s.steady_state, -3.0);
+    assert!((s.rise_time - w.rise_time).abs() < 1e-12);
+    assert!((s.overshoot_percent - w.overshoot_percent).abs() < 1e-10);
+    assert!((s.peak - 3.0 * w.peak).abs() < 1e-12);
+    // Time scaling: ωₙ = 10 divides every time by 10.
+    let s = tf(&[100.0], &[1.0, 10.0, 100.0])
+        .step_info()
+        .unwrap()
+        .unwrap();
+    assert!((s.settling_time - w.settling_time / 10.0).abs() < 1e-13);
+    assert!((s.peak_time - w.peak_time / 10.0).abs() < 1e-13);
+}
+
+#[test]
+fn non_minimum_phase_undershoot() {
+    // (1 − 5s)/(s + 1)²: y = 1 − (1 + 6t) e^(−t) dips to 1 − 6e^(−5/6) at t = 5/6, below −1:
+    // the peak of |y| is the undershoot, the overshoot is 0.
+    let s = tf(&[-5.0, 1.0], &[1.0, 2.0, 1.0])
+        .step_info()
+        .unwrap()
+        .unwrap();
+    let dip: f64 = 1.0 - 6.0 * (-5.0f64 / 6.0).exp();
+    assert!((s.peak - dip.abs()).abs() < 1e-14);
+    assert!((s.peak_time - 5.0 / 6.0).abs() < 1e-12);
+    assert_eq!(s.overshoot_percent, 0.0);
+    let y = |t: f64| 1.0 - (1.0 + 6.0 * t) * (-t).exp();
+    let start = bisect(|t| y(t) - 0.1, 5.0 / 6.0, 50.0);
+    assert!((s.rise_start - start).abs() < 1e-12);
+    assert!((s.settling_time - bisect(|t| y(t) - 0.98, 5.0 / 6.0, 50.0)).abs() < 1e-12);
+}
+
+#[test]
+fn stiff_and_lightly_damped_plants() {
+    // Poles −1000 and −0.5 ± 0.5j·… : the grid adapts, the answer matches the slow pair.
+    let g = &tf(&[1000.0], &[1.0, 1000.0]) * &tf(&[1.0], &[1.0, 1.0, 1.0]);
+    let s = g.step_info().unwrap().unwrap();
+    let w = analytic_step_info(0.5);
+    assert!((s.settling_time - w.settling_time).abs() < 2e-3);
+    // ζ = 0.01: 80 % overshoot, settling ≈ ln(50)/0.01.
+    let s = tf(&[1.0], &[1.0, 0.02, 1.0]).step_info().unwrap().unwrap();
+    let w = analytic_step_info(0.01);
+    assert!((s.settling_time - w.settling_time).abs() < 1e-9 * w.settling_time);
+    assert!((s.overshoot_percent - w.overshoot_percent).abs() < 1e-10);
+}
+
+#[test]
+fn no_metrics_when_the_step_response_does_not_settle() {
+    for (n, d) in [
+        (vec![1.0], vec![1.0, 0.0, 1.0]),           // undamped
+        (vec![1.0], vec![1.0, -0.1, 1.0]),          // unstable
+        (vec![1.0], vec![1.0, 1.0, 0.0]),           // integrator
+        (vec![1.0, 0.0], vec![1.0, 2.0, 1.0]),      // zero dc gain
+        (vec![1.0], vec![1.0, 0.0, 2.0, 0.0, 1.0]), // repeated ±j
+    ] {
+        assert!(tf(&n, &d).step_info().unwrap().is_none(), "{n:?}/{d:?}");
+    }
+}
+
+#[test]
+fn monotone_peak_time_serialises_as_null() {
+    let s = tf(&[1.0], &[1.0, 3.0, 2.0]).step_info().unwrap().unwrap();
+    let v = serde_json::to_value(s).unwrap();
+    assert!(v["peak_time"].is_null());
+    assert_eq!(v["peak"], 0.5);
+}
+
+#[test]
+fn near_coincident_poles_stay_within_1e9() {
+    // ζ = 1 ± 1e-9 and ± 1e-13: the closed form's residues (up to ~1e6) cancel, which limits
+    // its values to ~1e-10; the metrics still match the well-conditioned analytic form
+    // 1 − e^(−ζt)(cosh βt + ζ sinh(βt)/β), β² = (ζ − 1)(ζ + 1), solved by bisection.
+    for dz in [1e-9, -1e-9, 1e-13, -1e-13] {
+        let z: f64 = 1.0 + dz;
+        let s = tf(&[1.0], &[1.0, 2.0 * z, 1.0])
+            .step_info()
+            .unwrap()
+            .unwrap();
+        let q = (z - 1.0) * (z + 1.0);
+        let y = |x: f64| {
+            let (c, so) = if q > 0.0 {
+                let b = q.sqrt();
+                ((b * x).cosh(), (b * x).sinh() / b)
+            } else {
+                let w = (-q).sqrt();
+                ((w * x).cos(), (w * x).sin() / w)
+            };
+            1.0 - (-z * x).exp() * (c + z * so)
+        };
+        let start = bisect(|x| y(x) - 0.1, 0.0, 50.0);
+        let end = bisect(|x| y(x) - 0.9, 0.0, 50.0);
+        let settle = bisect(|x| y(x) - 0.98, 0.0, 50.0);
+        let errs = [
+            s.rise_start - start,
+            s.rise_end - end,
+            s.settling_time - settle,
+        ];
+        println!(
+            "ζ − 1 = {dz:e}: metric errors {:.1e} {:.1e} {:.1e}",
+            errs[0], errs[1], errs[2]
+        );
+        assert!(errs.iter().all(|e| e.abs() < 1e-9), "{errs:?}");
+    }
+}
