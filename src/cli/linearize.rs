@@ -34,7 +34,10 @@ pub fn run(a: &LinearizeArgs) -> Result<()> {
         .map(|p| parse::param(p))
         .collect::<Result<_>>()?;
     let sys = build_model(&a.model, &params)?;
-    let u = a.u.as_deref().map(|s| parse::numbers(s, "--u")).transpose()?;
+    let u =
+        a.u.as_deref()
+            .map(|s| parse::numbers(s, "--u"))
+            .transpose()?;
     let lin = linearize(sys.as_ref(), u.as_deref(), &EquilibriumSearch::default())?;
     if a.json {
         print_json(&LinearizeJson::from(&lin))
@@ -121,7 +124,10 @@ impl From<&Linearization> for LinearizeJson {
 fn vector(v: &[f64]) -> String {
     format!(
         "[{}]",
-        v.iter().map(|x| fmt_sig(*x, 6)).collect::<Vec<_>>().join(", ")
+        v.iter()
+            .map(|x| fmt_sig(*x, 6))
+            .collect::<Vec<_>>()
+            .join(", ")
     )
 }
 
@@ -163,7 +169,11 @@ pub fn report(title: &str, l: &Linearization) -> String {
                 .join(", ")
         ));
     }
-    s.push_str(&format!("  {} equilibri{}\n", l.equilibria.len(), if l.equilibria.len() == 1 { "um" } else { "a" }));
+    s.push_str(&format!(
+        "  {} equilibri{}\n",
+        l.equilibria.len(),
+        if l.equilibria.len() == 1 { "um" } else { "a" }
+    ));
     for (i, e) in l.equilibria.iter().enumerate() {
         s.push_str(&format!(
             "\nEquilibrium {}: x = {}{}{}\n",

@@ -8,6 +8,8 @@ mod margins;
 mod output;
 mod parse;
 mod plant;
+mod residue;
+mod response;
 mod simulate;
 
 use anyhow::Result;
@@ -44,6 +46,11 @@ enum Command {
     /// Poles and zeros with multiplicities, cancellations, dc gain, stability with the reason,
     /// modes (wn, zeta, time constant), second-order class and step metrics.
     Analyze(analyze::AnalyzeArgs),
+    /// Partial fractions r/(s − p)^k (repeated and complex poles) and the direct polynomial.
+    Residue(residue::ResidueArgs),
+    /// Closed-form y(t) for a standard input and ODE initial conditions; transient and
+    /// steady-state parts; exact values at --t.
+    Response(response::ResponseArgs),
     /// Frequency response: M(w), dB and the continuous phase at --w or on a log grid.
     Freq(freq::FreqArgs),
     /// Gain and phase margins (all crossings), bandwidth, resonant peak.
@@ -82,6 +89,8 @@ pub fn main() -> i32 {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Analyze(a) => analyze::run(&a),
+        Command::Residue(a) => residue::run(&a),
+        Command::Response(a) => response::run(&a),
         Command::Freq(a) => freq::run(&a),
         Command::Margins(a) => margins::run(&a),
         Command::Linearize(a) => linearize::run(&a),

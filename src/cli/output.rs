@@ -15,12 +15,77 @@ pub fn print(text: &str) -> Result<()> {
     }
 }
 
-/// Serialises `value` as pretty JSON (serde_json writes non-finite floats as `null`) and prints
-/// it with a trailing newline.
+/// Serialises `value` as JSON (serde_json writes non-finite floats as `null`) and prints it
+/// with a trailing newline: objects indented, arrays of numbers on one line (`[re, im]`
+/// pairs, matrix rows, sample vectors).
 pub fn print_json<T: Serialize>(value: &T) -> Result<()> {
-    let mut s = serde_json::to_string_pretty(value)?;
+    let v = serde_json::to_value(value)?;
+    let mut s = String::new();
+    pretty(&v, 0, &mut s);
     s.push('\n');
     print(&s)
+}
+
+/// JSON text of `value`, formatted as [`print_json`] prints it.
+pub fn json_string<T: Serialize>(value: &T) -> Result<String> {
+    let v = serde_json::to_value(value)?;
+    let mut s = String::new();
+    pretty(&v, 0, &mut s);
+    Ok(s)
+}
+
+fn is_scalar(v: &serde_json::Value) -> bool {
+    !matches!(
+        v,
+        serde_json::Value::Array(_) | serde_json::Value::Object(_)
+    )
+}
+
+fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
+    use serde_json::Value;
+    let pad = |n: usize| "  ".repeat(n);
+    match v {
+        Value::Array(items) if items.iter().all(is_scalar) => {
+            out.push('[');
+            for (i, x) in items.iter().enumerate() {
+                if i > 0 {
+                    out.push_str(", ");
+                }
+                out.push_str(&x.to_string());
+            }
+            out.push(']');
+        }
+        Value::Array(items) => {
+            out.push_str("[\n");
+            for (i, x) in items.iter().enumerate() {
+                out.push_str(&pad(indent + 1));
+                pretty(x, indent + 1, out);
+                if i + 1 < items.len() {
+                    out.push(',');
+                }
+                out.push('\n');
+            }
+            out.push_str(&pad(indent));
+            out.push(']');
+        }
+        Value::Object(map) if map.is_empty() => out.push_str("{}"),
+        Value::Object(map) => {
+            out.push_str("{\n");
+            for (i, (k, x)) in map.iter().enumerate() {
+                out.push_str(&pad(indent + 1));
+                out.push_str(&Value::String(k.clone()).to_string());
+                out.push_str(": ");
+                pretty(x, indent + 1, out);
+                if i + 1 < map.len() {
+                    out.push(',');
+                }
+                out.push('\n');
+            }
+            out.push_str(&pad(indent));
+            out.push('}');
+        }
+        scalar => out.push_str(&scalar.to_string()),
+    }
 }
 
 /// A finite number or `None` (JSON null).

@@ -73,7 +73,12 @@ mod tests {
         assert_eq!(numbers("1 0.8 4", "--den").unwrap(), vec![1.0, 0.8, 4.0]);
         assert_eq!(numbers("-3,-12", "--num").unwrap(), vec![-3.0, -12.0]);
         assert_eq!(numbers(" 1, 2 ;3 ", "--num").unwrap(), vec![1.0, 2.0, 3.0]);
-        assert!(numbers("1 x", "--num").unwrap_err().to_string().contains("'x'"));
+        assert!(
+            numbers("1 x", "--num")
+                .unwrap_err()
+                .to_string()
+                .contains("'x'")
+        );
         assert!(numbers("  ", "--num").is_err());
         assert!(numbers("nan", "--num").unwrap()[0].is_nan());
     }
