@@ -26,14 +26,6 @@ pub fn print_json<T: Serialize>(value: &T) -> Result<()> {
     print(&s)
 }
 
-/// JSON text of `value`, formatted as [`print_json`] prints it.
-pub fn json_string<T: Serialize>(value: &T) -> Result<String> {
-    let v = serde_json::to_value(value)?;
-    let mut s = String::new();
-    pretty(&v, 0, &mut s);
-    Ok(s)
-}
-
 fn is_scalar(v: &serde_json::Value) -> bool {
     !matches!(
         v,

@@ -42,28 +42,6 @@ pub fn param(text: &str) -> Result<(String, f64)> {
     Ok((k.to_string(), value))
 }
 
-/// Parses `WxH` (e.g. 1000x700) into a non-zero image size.
-pub fn size(text: &str) -> Result<(u32, u32)> {
-    let Some((w, h)) = text.split_once(['x', 'X']) else {
-        bail!("--size '{text}': expected WIDTHxHEIGHT, e.g. 1000x700");
-    };
-    let w: u32 = w
-        .trim()
-        .parse()
-        .map_err(|_| anyhow::anyhow!("--size '{text}': width is not a whole number"))?;
-    let h: u32 = h
-        .trim()
-        .parse()
-        .map_err(|_| anyhow::anyhow!("--size '{text}': height is not a whole number"))?;
-    if w == 0 || h == 0 {
-        bail!("--size '{text}': the image must not be empty");
-    }
-    if w > 20_000 || h > 20_000 {
-        bail!("--size '{text}': at most 20000 pixels per side");
-    }
-    Ok((w, h))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,14 +62,11 @@ mod tests {
     }
 
     #[test]
-    fn params_and_sizes() {
+    fn params() {
         assert_eq!(param("K=4").unwrap(), ("K".into(), 4.0));
         assert!(param("K").is_err());
         assert!(param("K=").is_err());
         assert!(param("=3").is_err());
         assert!(param("K=abc").is_err());
-        assert_eq!(size("800x600").unwrap(), (800, 600));
-        assert!(size("0x600").is_err());
-        assert!(size("800").is_err());
     }
 }
