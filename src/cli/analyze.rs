@@ -16,9 +16,17 @@ pub struct AnalyzeArgs {
     /// Print one JSON document (the stable contract) instead of the report.
     #[arg(long)]
     pub json: bool,
+    /// Analyse many plants: a JSONL file (one {"num": [...], "den": [...], "name": "..."} per
+    /// line, or - for stdin); prints one JSON line per plant (the analyze contract plus
+    /// "margins"), in input order, using all cores.
+    #[arg(long, value_name = "FILE.jsonl")]
+    pub batch: Option<String>,
 }
 
 pub fn run(a: &AnalyzeArgs) -> Result<()> {
+    if let Some(src) = &a.batch {
+        return super::batch::run(src);
+    }
     let plant = a.plant.single()?;
     let analysis = plant.tf.analyze()?;
     if a.json {

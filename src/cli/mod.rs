@@ -2,6 +2,8 @@
 //! that prints. Errors go to stderr as one line with exit code 1 (2 for usage errors).
 
 mod analyze;
+mod batch;
+mod demo;
 mod freq;
 mod linearize;
 mod margins;
@@ -55,6 +57,9 @@ enum Command {
     Freq(freq::FreqArgs),
     /// Gain and phase margins (all crossings), bandwidth, resonant peak.
     Margins(margins::MarginsArgs),
+    /// The main job: the textbook tour — analyses every textbook plant and the seed's
+    /// nonlinear models, checks the results, writes out/report.md with its PNGs.
+    Demo(demo::DemoArgs),
     /// Equilibria of a nonlinear model, A, B, C, D at each (exact Jacobians), eigenvalues,
     /// local stability and the linearised input→output transfer function.
     Linearize(linearize::LinearizeArgs),
@@ -93,6 +98,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Response(a) => response::run(&a),
         Command::Freq(a) => freq::run(&a),
         Command::Margins(a) => margins::run(&a),
+        Command::Demo(a) => demo::run(&a),
         Command::Linearize(a) => linearize::run(&a),
         Command::Simulate(a) => simulate::run(&a),
     }

@@ -1,0 +1,287 @@
+//! The nonlinear section: pendulum, MEMS mirror, Lorenz, van der Pol.
+
+use anyhow::Result;
+
+use super::Ctx;
+use super::md::Md;
+use crate::nonlinear::models::{Lorenz, Mems, Pendulum, VanDerPol};
+use crate::nonlinear::{
+    DynSystem, EquilibriumSearch, Linearization, LocalStability, linearize, pendulum_periods,
+};
+use crate::numeric::rk45::Rk45Options;
+use crate::poly::{fmt_root, fmt_sig};
+
+fn vec_text(v: &[f64]) -> String {
+    format!(
+        "[{}]",
+        v.iter()
+            .map(|x| fmt_sig(*x, 6))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
+fn stability_text(s: LocalStability) -> &'static str {
+    match s {
+        LocalStability::AsymptoticallyStable => "asymptotically stable",
+        LocalStability::Unstable => "unstable",
+        LocalStability::Undetermined => "undetermined (not hyperbolic)",
+    }
+}
+
+/// The equilibria table of a linearisation.
+pub fn equilibria_table(md: &mut Md, lin: &Linearization, show_physical: bool) {
+    let mut header = vec!["x̄", "eigenvalues of A", "local stability"];
+    if show_physical {
+        header.push("physical");
+    }
+    header.push("linearised G(s)");
+    let rows: Vec<Vec<String>> = lin
+        .equilibria
+        .iter()
+        .map(|e| {
+            let ev = e
+                .eigenvalues
+                .iter()
+                .filter(|z| z.im >= 0.0)
+                .map(|z| fmt_root(*z, 5))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let mut r = vec![vec_text(&e.x), ev, stability_text(e.stability).to_string()];
+            if show_physical {
+                r.push(if e.physical { "yes" } else { "no" }.into());
+            }
+            r.push(
+                e.tf.as_ref()
+                    .map(|t| t.g.to_string())
+                    .unwrap_or_else(|| "– (no input)".into()),
+            );
+            r
+        })
+        .collect();
+    md.table(&header, &rows);
+}
+
+/// Checks every equilibrium's exact (AD) Jacobian against central differences.
+pub fn check_jacobians(ctx: &mut Ctx, name: &str, sys: &dyn DynSystem, lin: &Linearization) {
+    for (k, e) in lin.equilibria.iter().enumerate() {
+        let (a, b) = sys.jacobian_f(&e.x, &e.u);
+        let n = e.x.len();
+        let mut worst: f64 = 0.0;
+        let mut scale: f64 = 0.0;
+        for j in 0..n + e.u.len() {
+            let h = 1e-6
+                * (1.0
+                    + if j < n {
+                        e.x[j].abs()
+                    } else {
+                        e.u[j - n].abs()
+                    });
+            let (mut xp, mut xm, mut up, mut um) =
+                (e.x.clone(), e.x.clone(), e.u.clone(), e.u.clone());
+            if j < n {
+                xp[j] += h;
+                xm[j] -= h;
+            } else {
+                up[j - n] += h;
+                um[j - n] -= h;
+            }
+            let mut fp = vec![0.0; n];
+            let mut fm = vec![0.0; n];
+            sys.eval_f(&xp, &up, &mut fp);
+            sys.eval_f(&xm, &um, &mut fm);
+            for i in 0..n {
+                let fd = (fp[i] - fm[i]) / (2.0 * h);
+                let exact = if j < n { a[(i, j)] } else { b[(i, j - n)] };
+                worst = worst.max((fd - exact).abs());
+                scale = scale.max(exact.abs());
+            }
+        }
+        ctx.checks.add(
+            "exact Jacobian vs central differences (relative)",
+            format!("{name}, equilibrium {}", k + 1),
+            worst / scale.max(1.0),
+            1e-6,
+        );
+    }
+}
+
+/// Pendulum: equilibria, linearisation, periods. Returns the linearisation.
+pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
+    let p = Pendulum::default();
+    md.h3("Pendulum (seed eq. 2.15)");
+    md.p(&format!(
+        "θ̈ = −(3C/(ML²)) θ̇ − (3g/(2L)) sin θ + 3τ/(ML²), x = [θ, θ̇], u = τ, y = θ; \
+         M = {} kg, L = {} m, C = {} N·m·s, g = {} m/s².",
+        fmt_sig(p.m, 4),
+        fmt_sig(p.l, 4),
+        fmt_sig(p.c, 4),
+        fmt_sig(p.g, 4)
+    ));
+    let lin = linearize(&p, None, &EquilibriumSearch::default())?;
+    equilibria_table(md, &lin, false);
+    md.p(
+        "The hanging equilibrium θ = 0 is a stable focus; the upright θ = π is a saddle \
+          (seed §2.3.1): its linearisation has one eigenvalue in each half plane.",
+    );
+    check_jacobians(ctx, "pendulum", &p, &lin);
+    // Seed eq. 2.18 in closed form.
+    let w2 = 3.0 * p.g / (2.0 * p.l);
+    let d = 3.0 * p.c / (p.m * p.l * p.l);
+    for (k, sign) in [(0usize, -1.0), (1, 1.0)] {
+        let a = &lin.equilibria[k].a;
+        let err = (a[1][0] - sign * w2)
+            .abs()
+            .max((a[1][1] + d).abs())
+            .max((a[0][1] - 1.0).abs());
+        ctx.checks.add(
+            "Jacobian vs seed eq. 2.18 (absolute)",
+            format!("pendulum at θ = {}", if k == 0 { "0" } else { "π" }),
+            err,
+            1e-14,
+        );
+    }
+    md.p(
+        "**Period against amplitude** (undamped, C = 0): the exact T = 4K(k)/ω with \
+          k = sin(θ₀/2), ω² = 3g/(2L) (seed §2.3.1.1), the period measured on the simulated \
+          pendulum, and the small-angle 2π/ω.",
+    );
+    let amps = [0.1, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.1];
+    let opts = Rk45Options {
+        rtol: 1e-12,
+        atol: 1e-14,
+        ..Default::default()
+    };
+    let rows = pendulum_periods(&p, &amps, &opts)?;
+    let table: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                format!(
+                    "{} rad ({}°)",
+                    fmt_sig(r.amplitude, 3),
+                    fmt_sig(r.amplitude.to_degrees(), 4)
+                ),
+                fmt_sig(r.exact, 10),
+                fmt_sig(r.simulated, 10),
+                fmt_sig(r.small_angle, 6),
+                fmt_sig(r.exact / r.small_angle, 6),
+            ]
+        })
+        .collect();
+    md.table(
+        &[
+            "amplitude θ₀",
+            "exact 4K(k)/ω [s]",
+            "simulated [s]",
+            "2π/ω [s]",
+            "T / (2π/ω)",
+        ],
+        &table,
+    );
+    for r in &rows {
+        ctx.checks.add(
+            "pendulum period: simulation vs 4K(k)/ω (relative)",
+            format!("θ₀ = {}", fmt_sig(r.amplitude, 3)),
+            r.relative_error,
+            1e-8,
+        );
+    }
+    Ok(lin)
+}
+
+/// MEMS mirror: equilibria below pull-in, the pull-in voltage.
+pub fn mems(ctx: &mut Ctx, md: &mut Md) -> Result<(Mems, Linearization)> {
+    let m = Mems::default();
+    md.h3("Electrostatic MEMS mirror (exercises 1.4, 2.11)");
+    md.p(&format!(
+        "m l̈ = −k (l − l0) − b l̇ − q²/(2εA), R q̇ = v − q l/(εA); x = [l, l̇, q], u = v, y = l. \
+         Exercise 2.11's values ε = A = m = k = 1, l0 = 3, b = 0.02, with R = {} and the \
+         operating voltage v = {}.",
+        fmt_sig(m.r, 4),
+        fmt_sig(m.v, 4)
+    ));
+    let lin = linearize(&m, None, &EquilibriumSearch::default())?;
+    equilibria_table(md, &lin, true);
+    check_jacobians(ctx, "MEMS", &m, &lin);
+    let v_pi = m.pull_in_voltage();
+    let (v_found, l_found) = crate::nonlinear::find_pull_in(&m)?;
+    md.p(&format!(
+        "Equilibria satisfy l²(l0 − l) = εA v²/(2k), q = εA v/l: three real ones below the \
+         pull-in voltage √(8 k l0³/(27 εA)) = {} V, one above. Of the three, only the largest \
+         gap is stable; the middle one is the saddle that merges with it at pull-in \
+         (l = 2 l0/3 = {}). Found numerically (where the stable branch disappears): v = {} V, \
+         l = {}.",
+        fmt_sig(v_pi, 10),
+        fmt_sig(2.0 * m.l0 / 3.0, 6),
+        fmt_sig(v_found, 10),
+        fmt_sig(l_found, 6)
+    ));
+    ctx.checks.add(
+        "MEMS pull-in voltage found vs √(8kl0³/(27εA)) (relative)",
+        "exercise 2.11 parameters",
+        (v_found - v_pi).abs() / v_pi,
+        1e-9,
+    );
+    Ok((m, lin))
+}
+
+/// Lorenz: equilibria and the eigenvalues at the origin against the closed form.
+pub fn lorenz(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
+    let l = Lorenz::default();
+    md.h3("Lorenz weather model (seed eqs. 2.38–2.40)");
+    md.p(&format!(
+        "ẋ₁ = σ(x₂ − x₁), ẋ₂ = r x₁ − x₂ − x₁x₃, ẋ₃ = x₁x₂ − b x₃ with σ = {}, r = {}, b = {}. \
+         Equilibria: the origin and C± = (±√(b(r−1)), ±√(b(r−1)), r − 1).",
+        fmt_sig(l.sigma, 4),
+        fmt_sig(l.r, 4),
+        fmt_sig(l.b, 6)
+    ));
+    let lin = linearize(&l, None, &EquilibriumSearch::default())?;
+    equilibria_table(md, &lin, false);
+    check_jacobians(ctx, "Lorenz", &l, &lin);
+    // The origin's eigenvalues: −b and (−(σ+1) ± √((σ+1)² + 4σ(r−1)))/2.
+    if let Some(origin) = lin
+        .equilibria
+        .iter()
+        .find(|e| e.x.iter().all(|v| v.abs() < 1e-12))
+    {
+        let s = l.sigma;
+        let disc = ((s + 1.0).powi(2) + 4.0 * s * (l.r - 1.0)).sqrt();
+        let want = [-l.b, (-(s + 1.0) + disc) / 2.0, (-(s + 1.0) - disc) / 2.0];
+        let mut worst: f64 = 0.0;
+        for w in want {
+            let best = origin
+                .eigenvalues
+                .iter()
+                .map(|z| (z.re - w).abs() + z.im.abs())
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(best / w.abs());
+        }
+        ctx.checks.add(
+            "Lorenz eigenvalues at the origin vs closed form (relative)",
+            "σ = 10, r = 28, b = 8/3",
+            worst,
+            1e-13,
+        );
+    }
+    md.p(
+        "All three equilibria are unstable for r = 28: the origin is a saddle with one \
+          positive eigenvalue, C± are saddle-foci with a complex pair in the right half plane — \
+          trajectories wander between them forever (the attractor below).",
+    );
+    Ok(lin)
+}
+
+/// van der Pol: the unstable origin and the unit-circle limit cycle.
+pub fn vanderpol(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
+    md.h3("van der Pol oscillator (seed eqs. 2.36–2.37)");
+    md.p(
+        "ẋ₁ = −x₂ − x₁(x₁² + x₂² − 1), ẋ₂ = x₁ − x₂(x₁² + x₂² − 1): in polar form ṙ = r(1 − r²), \
+          θ̇ = 1, so the unit circle is a periodic orbit that attracts every other trajectory.",
+    );
+    let lin = linearize(&VanDerPol, None, &EquilibriumSearch::default())?;
+    equilibria_table(md, &lin, false);
+    check_jacobians(ctx, "van der Pol", &VanDerPol, &lin);
+    Ok(lin)
+}
