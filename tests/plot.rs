@@ -511,3 +511,387 @@ fn nyquist_with_imaginary_axis_poles() {
     .unwrap();
     check_png(&path, (1000, 700));
 }
+
+// ---------------------------------------------------------------------------------------
+// Generic x–y plots: MEMS pull-in diagram, pendulum period against amplitude, Lorenz
+// projection, time plots.
+
+#[test]
+fn pullin_style_diagram_with_branches_and_marked_point() {
+    // Equilibria of l²(l0 − l) = c v² (l0 = 1, c = 1): v(l) = l √(1 − l); stable for l > 2/3.
+    let v = |l: f64| l * (1.0 - l).sqrt();
+    let stable: Vec<(f64, f64)> = (0..=100)
+        .map(|k| {
+            let l = 1.0 - k as f64 / 300.0;
+            (v(l), l)
+        })
+        .collect();
+    let unstable: Vec<(f64, f64)> = (0..=100)
+        .map(|k| {
+            let l = 2.0 / 3.0 - k as f64 * (2.0 / 3.0) / 100.0;
+            (v(l), l)
+        })
+        .collect();
+    let vp = v(2.0 / 3.0); // pull-in voltage √(4/27)
+    let plot = XyPlot {
+        curves: vec![
+            Curve::new(stable)
+                .label("stable equilibria")
+                .color(PALETTE[0]),
+            Curve::new(unstable)
+                .label("unstable equilibria")
+                .style(LineStyle::Dashed)
+                .color(PALETTE[0]),
+        ],
+        markers: vec![
+            Marker::new((vp, 2.0 / 3.0), MarkerShape::Disc)
+                .color(PALETTE[1])
+                .label(format!("pull-in: v = {:.4} V", vp)),
+        ],
+        x_label: "voltage v (V)".into(),
+        y_label: "gap l (m)".into(),
+        title: "MEMS pull-in diagram".into(),
+        ..Default::default()
+    };
+    let path = out("xy_pullin.png");
+    xy_png(&path, &plot, &PlotOptions::default()).unwrap();
+    let px = check_png(&path, (1000, 700));
+    assert!(count_color(&px, PALETTE[1]) > 30, "marked point");
+}
+
+#[test]
+fn pendulum_period_against_amplitude_with_tiny_axis_values() {
+    // T(θ0) = 4K(sin(θ0/2))/ω via the arithmetic-geometric mean: T = 2π/(ω·AGM(1, cos(θ0/2))).
+    let agm = |mut a: f64, mut b: f64| {
+        for _ in 0..30 {
+            let (x, y) = ((a + b) / 2.0, (a * b).sqrt());
+            a = x;
+            b = y;
+        }
+        a
+    };
+    let w0 = 2.0;
+    let exact: Vec<(f64, f64)> = (1..=170)
+        .map(|k| {
+            let th = k as f64 * std::f64::consts::PI / 180.0;
+            (
+                th.to_degrees(),
+                2.0 * std::f64::consts::PI / (w0 * agm(1.0, (th / 2.0).cos())),
+            )
+        })
+        .collect();
+    let small = vec![(0.0, std::f64::consts::PI), (170.0, std::f64::consts::PI)];
+    let plot = XyPlot {
+        curves: vec![
+            Curve::new(exact).label("exact 4K(k)/ω"),
+            Curve::new(small)
+                .label("small-angle 2π/ω")
+                .style(LineStyle::Dashed),
+        ],
+        x_label: "amplitude θ_{0} (deg)".into(),
+        y_label: "period T (s)".into(),
+        title: "Pendulum period against amplitude".into(),
+        ..Default::default()
+    };
+    let path = out("xy_pendulum_period.png");
+    xy_png(&path, &plot, &PlotOptions::default()).unwrap();
+    check_png(&path, (1000, 700));
+    // Micrometre-scale values get a ×10⁻⁶ factor on the axis instead of long labels.
+    let t: Vec<f64> = (0..=200).map(|k| k as f64 * 1e-5).collect();
+    let l: Vec<f64> = t
+        .iter()
+        .map(|t| 2e-6 * (1.0 - 0.3 * (-t / 4e-4).exp()))
+        .collect();
+    let c = Curve::from_xy(&t, &l).unwrap().label("gap l(t)");
+    let path = out("time_plot_micro.png");
+    time_plot_png(&path, &[c], "gap l (m)", &PlotOptions::default()).unwrap();
+    check_png(&path, (1000, 700));
+}
+
+#[test]
+fn lorenz_like_projection_and_two_trajectories() {
+    // Euler steps of the Lorenz system (a picture, not the simulator under test).
+    let run = |x0: [f64; 3]| {
+        let (s, r, b) = (10.0, 28.0, 8.0 / 3.0);
+        let mut x = x0;
+        let mut out = Vec::new();
+        let dt = 0.002;
+        for k in 0..15000 {
+            let d = [
+                s * (x[1] - x[0]),
+                r * x[0] - x[1] - x[0] * x[2],
+                x[0] * x[1] - b * x[2],
+            ];
+            for i in 0..3 {
+                x[i] += dt * d[i];
+            }
+            if k % 2 == 0 {
+                out.push((k as f64 * dt, x));
+            }
+        }
+        out
+    };
+    let a = run([1.0, 0.0, 0.0]);
+    let proj = Curve::new(a.iter().map(|(_, x)| (x[0], x[2]))).width(0.5);
+    let plot = XyPlot {
+        curves: vec![proj],
+        x_label: "x_{1}".into(),
+        y_label: "x_{3}".into(),
+        title: "Lorenz attractor, x_{1}–x_{3} projection".into(),
+        ..Default::default()
+    };
+    let path = out("xy_lorenz.png");
+    xy_png(&path, &plot, &PlotOptions::default()).unwrap();
+    check_png(&path, (1000, 700));
+    let b = run([1.001, 0.0, 0.0]);
+    let c1 = Curve::new(a.iter().map(|(t, x)| (*t, x[0]))).label("x_{1}(0) = 1");
+    let c2 = Curve::new(b.iter().map(|(t, x)| (*t, x[0]))).label("x_{1}(0) = 1.001");
+    let path = out("time_plot_lorenz.png");
+    time_plot_png(&path, &[c1, c2], "x_{1}", &PlotOptions::default()).unwrap();
+    check_png(&path, (1000, 700));
+}
+
+// ---------------------------------------------------------------------------------------
+// Errors: clear messages, nothing left behind.
+
+fn leftovers(dir: &std::path::Path, stem: &str) -> usize {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .contains(stem)
+        })
+        .count()
+}
+
+#[test]
+fn bad_options_and_empty_data_are_errors_without_files() {
+    let dir = PathBuf::from("/tmp/ltikit-plots/errors");
+    std::fs::create_dir_all(&dir).unwrap();
+    let fr = response(
+        logspace(0.1, 10.0, 50),
+        |w| 1.0 / (1.0 + w * w).sqrt(),
+        |w| -w.atan().to_degrees(),
+    );
+    let s = [BodeSeries::new(&fr)];
+    let cases: Vec<(&str, PlotOptions)> = vec![
+        (
+            "zero",
+            PlotOptions {
+                size: (0, 700),
+                ..Default::default()
+            },
+        ),
+        (
+            "small",
+            PlotOptions {
+                size: (50, 700),
+                ..Default::default()
+            },
+        ),
+        (
+            "huge",
+            PlotOptions {
+                size: (20_000, 20_000),
+                ..Default::default()
+            },
+        ),
+        (
+            "nanscale",
+            PlotOptions {
+                font_scale: f64::NAN,
+                ..Default::default()
+            },
+        ),
+    ];
+    for (name, o) in cases {
+        let path = dir.join(format!("opt_{name}.png"));
+        let e = bode_png(&path, &s, &o).unwrap_err();
+        assert!(matches!(e, ltikit::LtiError::Plot(_)), "{name}: {e}");
+        assert!(!path.exists());
+    }
+    let path = dir.join("empty.png");
+    assert!(matches!(
+        bode_png(&path, &[], &PlotOptions::default()),
+        Err(ltikit::LtiError::Plot(_))
+    ));
+    let empty = FrequencyResponse {
+        w: vec![],
+        magnitude: vec![],
+        magnitude_db: vec![],
+        phase_deg: vec![],
+    };
+    assert!(bode_png(&path, &[BodeSeries::new(&empty)], &PlotOptions::default()).is_err());
+    let bad = FrequencyResponse {
+        w: vec![1.0, 2.0],
+        magnitude: vec![1.0, 1.0],
+        magnitude_db: vec![0.0],
+        phase_deg: vec![0.0, 0.0],
+    };
+    let e = bode_png(&path, &[BodeSeries::new(&bad)], &PlotOptions::default()).unwrap_err();
+    assert!(
+        e.to_string().contains("2 frequencies but 1 magnitudes"),
+        "{e}"
+    );
+    let nan = TimeResponse {
+        t: vec![0.0, 1.0],
+        y: vec![f64::NAN, f64::NAN],
+        final_value: None,
+    };
+    assert!(step_png(&path, &[StepSeries::new(&nan)], &PlotOptions::default()).is_err());
+    assert!(step_png(&path, &[], &PlotOptions::default()).is_err());
+    assert!(xy_png(&path, &XyPlot::default(), &PlotOptions::default()).is_err());
+    assert!(phase_portrait_png(&path, &PhasePortrait::default(), &PlotOptions::default()).is_err());
+    assert!(nyquist_png(&path, &[], &PlotOptions::default()).is_err());
+    let fixed = XyPlot {
+        curves: vec![Curve::new([(0.0, 0.0), (1.0, 1.0)])],
+        x_range: Some((1.0, 0.0)),
+        ..Default::default()
+    };
+    assert!(xy_png(&path, &fixed, &PlotOptions::default()).is_err());
+    assert!(!path.exists());
+    assert!(Curve::from_xy(&[0.0, 1.0], &[0.0]).is_err());
+    assert!(parse_size("0x10").is_err() && parse_size("axb").is_err());
+}
+
+#[test]
+fn unwritable_paths_are_io_errors_and_leave_nothing() {
+    let dir = PathBuf::from("/tmp/ltikit-plots/errors");
+    std::fs::create_dir_all(&dir).unwrap();
+    let fr = response(
+        logspace(0.1, 10.0, 50),
+        |w| 1.0 / (1.0 + w * w).sqrt(),
+        |w| -w.atan().to_degrees(),
+    );
+    let s = [BodeSeries::new(&fr)];
+    // Missing directory.
+    let e = bode_png(
+        "/tmp/ltikit-plots/no/such/dir/b.png",
+        &s,
+        &PlotOptions::default(),
+    )
+    .unwrap_err();
+    assert!(matches!(e, ltikit::LtiError::Io { .. }), "{e}");
+    // A parent that is a file.
+    let file = dir.join("a_file.txt");
+    std::fs::write(&file, "x").unwrap();
+    let e = bode_png(file.join("b.png"), &s, &PlotOptions::default()).unwrap_err();
+    assert!(matches!(e, ltikit::LtiError::Io { .. }), "{e}");
+    // The target is a directory: the temporary file is written, the rename fails, and the
+    // temporary file is removed.
+    let target = dir.join("a_dir.png");
+    std::fs::create_dir_all(target.join("inside")).unwrap();
+    let e = bode_png(&target, &s, &PlotOptions::default()).unwrap_err();
+    assert!(matches!(e, ltikit::LtiError::Io { .. }), "{e}");
+    assert_eq!(leftovers(&dir, "a_dir.png.tmp"), 0);
+    // An existing file survives a failed plot untouched.
+    let keep = dir.join("keep.png");
+    std::fs::write(&keep, b"old").unwrap();
+    assert!(
+        bode_png(
+            &keep,
+            &s,
+            &PlotOptions {
+                size: (0, 0),
+                ..Default::default()
+            }
+        )
+        .is_err()
+    );
+    assert_eq!(std::fs::read(&keep).unwrap(), b"old");
+    // And a successful plot replaces it.
+    bode_png(&keep, &s, &PlotOptions::default()).unwrap();
+    check_png(&keep, (1000, 700));
+    assert_eq!(leftovers(&dir, "keep.png.tmp"), 0);
+}
+
+#[test]
+fn small_and_large_images_and_long_titles() {
+    let fr = response(
+        logspace(0.1, 10.0, 50),
+        |w| 1.0 / (1.0 + w * w).sqrt(),
+        |w| -w.atan().to_degrees(),
+    );
+    let long = "a very long title ".repeat(20);
+    for (size, scale) in [
+        ((100, 100), 1.0),
+        ((320, 200), 3.0),
+        ((2400, 1600), 1.0),
+        ((1000, 700), 0.25),
+    ] {
+        let path = out(&format!("bode_{}x{}.png", size.0, size.1));
+        let o = PlotOptions {
+            size,
+            font_scale: scale,
+            title: Some(long.clone()),
+            ..Default::default()
+        };
+        bode_png(&path, &[BodeSeries::new(&fr)], &o).unwrap();
+        let (w, h, _) = decode(&path);
+        assert_eq!((w, h), size);
+    }
+}
+
+mod never_panics {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn value() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            8 => -10.0f64..10.0,
+            1 => Just(f64::NAN),
+            1 => Just(f64::INFINITY),
+            1 => prop::num::f64::NORMAL,
+            1 => Just(0.0),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+        #[test]
+        fn xy_plots_of_arbitrary_data(pts in prop::collection::vec((value(), value()), 0..40), equal in any::<bool>()) {
+            let plot = XyPlot { curves: vec![Curve::new(pts.clone()).arrows(2)], markers: pts.iter().take(3).map(|p| Marker::new(*p, MarkerShape::Circle).label("m")).collect(), equal_aspect: equal, ..Default::default() };
+            let path = out("proptest_xy.png");
+            let o = PlotOptions { size: (240, 160), ..Default::default() };
+            if xy_png(&path, &plot, &o).is_ok() {
+                decode(&path);
+            }
+        }
+
+        #[test]
+        fn bode_of_arbitrary_data(mags in prop::collection::vec(value(), 2..30), w0 in -20.0f64..20.0) {
+            let n = mags.len();
+            let w: Vec<f64> = (0..n).map(|k| 10f64.powf(w0 + k as f64 * 0.1)).collect();
+            let fr = FrequencyResponse { magnitude: mags.clone(), magnitude_db: mags.clone(), phase_deg: mags.iter().map(|m| m * 100.0).collect(), w };
+            let path = out("proptest_bode.png");
+            let o = PlotOptions { size: (240, 160), ..Default::default() };
+            let _ = bode_png(&path, &[BodeSeries::new(&fr)], &o);
+        }
+    }
+}
+
+#[test]
+fn bode_notch_wide_range_and_undamped_asymptote() {
+    // (s² + 1)/(s + 1)²: a zero pair on the axis at ω = 1 (−∞ dB there; the phase jumps +180°).
+    let w = logspace(1e-5, 1e5, 801); // includes ω = 1 exactly
+    let fr = response(
+        w,
+        |w| (1.0 - w * w).abs() / (1.0 + w * w),
+        |w| (if w >= 1.0 { 180.0 } else { 0.0 }) - 2.0 * w.atan().to_degrees(),
+    );
+    assert!(fr.magnitude_db.iter().any(|m| m.is_infinite()));
+    let g = TransferFunction::from_descending(&[1.0, 0.0, 1.0], &[1.0, 2.0, 1.0]).unwrap();
+    let a = g.bode_asymptotes(1e-5, 1e5).unwrap();
+    let path = out("bode_notch_wide.png");
+    let label = g.to_string();
+    bode_png(
+        &path,
+        &[BodeSeries::new(&fr).label(&label).asymptotes(&a)],
+        &PlotOptions::default(),
+    )
+    .unwrap();
+    check_png(&path, (1000, 700));
+}

@@ -211,9 +211,13 @@ fn draw(
             phases.extend(a.phase_deg.iter().filter(|p| in_range(p.0)).map(|p| p.1));
         }
     }
-    let (mut mlo, mhi) = bounds(mags.iter().copied()).unwrap_or((-1.0, 1.0));
+    let (mut mlo, mut mhi) = bounds(mags.iter().copied()).unwrap_or((-1.0, 1.0));
     // A notch at a zero on the axis would squash everything else: show at most 300 dB.
     mlo = mlo.max(mhi - 300.0);
+    // A little room so that the curve does not run along the frame.
+    let pad = 0.04 * (mhi - mlo).max(1.0);
+    mlo -= pad;
+    mhi += pad;
     let (plo, phi) = bounds(phases.iter().copied()).unwrap_or((-1.0, 1.0));
 
     // Layout: title, magnitude panel, small gap, phase panel, x labels.
@@ -362,9 +366,9 @@ fn draw(
                     }
                     let p = mag.px((wpc, -gm / 2.0));
                     if mag.contains((wpc, -gm / 2.0)) {
-                        c.text(
+                        c.text_on_box(
                             &format!("GM {} dB", fmt_sig(gm, 3)),
-                            (p.0 + 6.0 * th.s, p.1),
+                            (p.0 + 8.0 * th.s, p.1),
                             th.note,
                             col,
                             (HAlign::Left, VAlign::Middle),
@@ -401,9 +405,9 @@ fn draw(
                         let mid = (wgc, reference + pm / 2.0);
                         if ph.contains(mid) {
                             let q = ph.px(mid);
-                            c.text(
+                            c.text_on_box(
                                 &format!("PM {}°", fmt_sig(pm, 3)),
-                                (q.0 + 6.0 * th.s, q.1),
+                                (q.0 + 8.0 * th.s, q.1),
                                 th.note,
                                 col,
                                 (HAlign::Left, VAlign::Middle),

@@ -51,9 +51,6 @@ fn temp_path(path: &Path) -> Result<PathBuf> {
 
 /// Writes the canvas to `path` as PNG atomically.
 pub(crate) fn write_png(canvas: &Canvas, path: &Path) -> Result<()> {
-    if path.is_dir() {
-        return Err(io_err(path, "is a directory"));
-    }
     let tmp = temp_path(path)?;
     let result = (|| -> Result<()> {
         let file = fs::File::create(&tmp).map_err(|e| io_err(path, e))?;

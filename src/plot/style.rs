@@ -95,7 +95,9 @@ impl Theme {
     pub fn new(opts: &PlotOptions) -> Theme {
         let (w, h) = (f64::from(opts.size.0), f64::from(opts.size.1));
         let auto = (w / 1000.0).min(h / 700.0).clamp(0.7, 4.0);
-        let s = opts.font_scale * auto;
+        // Text may not eat the plot: beyond this the margins would swallow the frames.
+        let room = (w / 450.0).min(h / 320.0).max(0.45);
+        let s = (opts.font_scale * auto).min(room);
         let ls = auto * opts.line_scale;
         Theme {
             s,
@@ -104,7 +106,7 @@ impl Theme {
             title: 23.0 * s,
             note: 17.0 * s,
             line: 2.0 * ls,
-            pad: 10.0 * auto,
+            pad: 10.0 * auto.min(room),
         }
     }
 

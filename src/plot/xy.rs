@@ -192,6 +192,16 @@ fn check_range(r: Option<(f64, f64)>, what: &str) -> Result<()> {
 /// Errors: no curve or marker with a finite point, a bad fixed range, bad options, an
 /// unwritable path.
 pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Result<()> {
+    xy_png_with(path.as_ref(), plot, &[], opts)
+}
+
+/// [`xy_png`] with extra legend rows (marker swatches) after the curves.
+fn xy_png_with(
+    path: &Path,
+    plot: &XyPlot,
+    extra: &[LegendEntry],
+    opts: &PlotOptions,
+) -> Result<()> {
     check_range(plot.x_range, "x")?;
     check_range(plot.y_range, "y")?;
     let all = || {
@@ -207,7 +217,7 @@ pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Resu
         return Err(LtiError::Plot("no finite data points to plot".into()));
     };
     let title = opts.title_or(|| plot.title.clone());
-    render(path.as_ref(), opts, |c, th| {
+    render(path, opts, |c, th| {
         let pad = |r: (f64, f64), fixed: bool| {
             if fixed {
                 r
@@ -283,7 +293,7 @@ pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Resu
                 } else {
                     (p.0 - 9.0 * th.s, HAlign::Right)
                 };
-                c.text(
+                c.text_on_box(
                     l,
                     (x, p.1 - 7.0 * th.s),
                     th.note,
@@ -292,6 +302,7 @@ pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Resu
                 )?;
             }
         }
+        legend.extend(extra.iter().cloned());
         for n in &plot.notes {
             legend.push(LegendEntry {
                 swatch: Swatch::None,
@@ -347,8 +358,17 @@ pub fn time_plot_png(
     y_label: &str,
     opts: &PlotOptions,
 ) -> Result<()> {
+    // Time runs exactly over the data: no padding before t0 or after the end.
+    let x_range = bounds(series.iter().flat_map(|c| {
+        c.points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|p| p.0)
+    }))
+    .filter(|r| r.1 > r.0);
     let plot = XyPlot {
         curves: series.to_vec(),
+        x_range,
         x_label: "Time t (s)".into(),
         y_label: y_label.into(),
         title: "Time response".into(),
@@ -443,12 +463,20 @@ pub fn phase_portrait_png(
             label: e.label.clone(),
         });
     }
-    let mut notes = Vec::new();
+    let mut extra = Vec::new();
     if p.equilibria.iter().any(|e| e.stable) {
-        notes.push("● stable equilibrium".to_string());
+        extra.push(LegendEntry::marker(
+            "stable equilibrium",
+            MarkerShape::Disc,
+            Color::BLACK,
+        ));
     }
     if p.equilibria.iter().any(|e| !e.stable) {
-        notes.push("○ unstable equilibrium".to_string());
+        extra.push(LegendEntry::marker(
+            "unstable equilibrium",
+            MarkerShape::Circle,
+            Color::BLACK,
+        ));
     }
     let plot = XyPlot {
         curves,
@@ -458,8 +486,8 @@ pub fn phase_portrait_png(
         equal_aspect: p.equal_aspect,
         x_range: p.x_range,
         y_range: p.y_range,
-        notes,
+        notes: Vec::new(),
         title: "Phase portrait".into(),
     };
-    xy_png(path, &plot, opts)
+    xy_png_with(path.as_ref(), &plot, &extra, opts)
 }
