@@ -895,3 +895,26 @@ fn bode_notch_wide_range_and_undamped_asymptote() {
     .unwrap();
     check_png(&path, (1000, 700));
 }
+
+#[test]
+fn nyquist_edge_plants() {
+    let cases: [(&str, &[f64], &[f64]); 4] = [
+        ("double_integrator", &[1.0, 1.0], &[1.0, 0.0, 0.0]),
+        ("rhp_pole", &[2.0], &[1.0, -1.0]),
+        ("constant", &[3.0], &[1.0]),
+        ("biproper", &[-1.0, 1.0], &[1.0, 1.0]),
+    ];
+    for (name, num, den) in cases {
+        let g = TransferFunction::from_descending(num, den).unwrap();
+        let n = g.nyquist().unwrap();
+        let label = g.to_string();
+        let path = out(&format!("nyquist_{name}.png"));
+        nyquist_png(
+            &path,
+            &[NyquistSeries::new(&n).label(&label)],
+            &PlotOptions::default(),
+        )
+        .unwrap();
+        decode(&path);
+    }
+}

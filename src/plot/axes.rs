@@ -774,6 +774,34 @@ pub(crate) fn draw_legend(
             best = b;
         }
     }
+    if best_score > 0 {
+        // Every preferred corner hides something: try the middles of the edges as well.
+        let cx = (frame.x0 + frame.x1 - bw) / 2.0;
+        let cy = (frame.y0 + frame.y1 - bh) / 2.0;
+        for (x, y) in [
+            (cx, frame.y0 + m),
+            (cx, frame.y1 - m - bh),
+            (frame.x0 + m, cy),
+            (frame.x1 - m - bw, cy),
+        ] {
+            let b = (x, y, x + bw, y + bh);
+            let score = avoid
+                .iter()
+                .filter(|p| {
+                    p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
+                })
+                .count()
+                + if taken.iter().any(|t| overlaps(b, t)) {
+                    1_000_000
+                } else {
+                    0
+                };
+            if score < best_score {
+                best_score = score;
+                best = b;
+            }
+        }
+    }
     let (x0, y0, x1, y1) = best;
     c.fill_rect(x0, y0, x1, y1, Color::WHITE, 0.9);
     c.stroke(
@@ -898,6 +926,22 @@ pub(crate) fn bounds(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)
         }
     }
     (lo <= hi).then_some((lo, hi))
+}
+
+/// Points every `step` px along a pixel polyline (for keeping legends off the curves).
+pub(crate) fn sample_run(run: &[(f64, f64)], step: f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for w in run.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+        let n = ((len / step).ceil() as usize).clamp(1, 10_000);
+        for k in 0..n {
+            let t = k as f64 / n as f64;
+            out.push((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t));
+        }
+    }
+    out.extend(run.last().copied());
+    out
 }
 
 /// Draws `n` arrow heads along pixel runs at arc-length fractions (k + ½)/n, pointing forward.

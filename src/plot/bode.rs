@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::axes::{
     Axis, Corner, Frame, LegendEntry, bottom_margin, bounds, draw_legend, draw_title, left_margin,
-    right_margin, tick_targets, top_margin,
+    right_margin, sample_run, tick_targets, top_margin,
 };
 use super::raster::{Canvas, HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
@@ -321,11 +321,11 @@ fn draw(
         });
         for run in mag.clip_polyline(mp) {
             c.stroke(&run, th.line, color_of(k), &[]);
-            avoid_mag.extend(run.iter().step_by(3).copied());
+            avoid_mag.extend(sample_run(&run, 6.0));
         }
         for run in ph.clip_polyline(pp) {
             c.stroke(&run, th.line, color_of(k), &[]);
-            avoid_ph.extend(run.iter().step_by(3).copied());
+            avoid_ph.extend(sample_run(&run, 6.0));
         }
     }
 

@@ -53,7 +53,7 @@ pub const MIN_SIDE: u32 = 100;
 /// Largest accepted image side (px).
 pub const MAX_SIDE: u32 = 16_384;
 /// Largest accepted image area (px²).
-pub const MAX_PIXELS: u64 = 64_000_000;
+pub const MAX_PIXELS: u64 = 36_000_000;
 
 /// Options common to every plot.
 ///

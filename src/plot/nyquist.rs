@@ -5,6 +5,7 @@ use std::path::Path;
 
 use super::axes::{
     Corner, LegendEntry, arrows_along, bounds, draw_legend, draw_title, equal_axes, layout_single,
+    sample_run,
 };
 use super::raster::{Canvas, HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
@@ -209,7 +210,7 @@ fn draw(
             let px = frame.clip_polyline(run.iter().copied());
             for r in &px {
                 c.stroke(r, th.line, col, &line.pattern(th.line));
-                avoid.extend(r.iter().step_by(3).copied());
+                avoid.extend(sample_run(r, 6.0));
             }
             match (style.scaled, style.positive) {
                 (true, _) => far.push(px),

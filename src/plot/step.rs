@@ -3,7 +3,8 @@
 use std::path::Path;
 
 use super::axes::{
-    Axis, Corner, Frame, LegendEntry, bounds, draw_legend, draw_title, layout_single, tick_targets,
+    Axis, Corner, Frame, LegendEntry, bounds, draw_legend, draw_title, layout_single, sample_run,
+    tick_targets,
 };
 use super::raster::{Canvas, HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
@@ -280,7 +281,7 @@ fn draw(
         let runs = frame.clip_polyline(r.t.iter().copied().zip(r.y.iter().copied()));
         for run in &runs {
             c.stroke(run, th.line, col, &[]);
-            avoid.extend(run.iter().step_by(3).copied());
+            avoid.extend(sample_run(run, 6.0));
         }
         let prefix = if several {
             format!(

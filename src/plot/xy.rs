@@ -6,7 +6,7 @@ use std::path::Path;
 
 use super::axes::{
     Axis, Corner, LegendEntry, Swatch, arrows_along, bounds, draw_legend, draw_title, equal_axes,
-    layout_single, tick_targets,
+    layout_single, sample_run, tick_targets,
 };
 use super::raster::{HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
@@ -267,7 +267,7 @@ fn xy_png_with(
             let pattern = curve.style.pattern(w);
             for run in &runs {
                 c.stroke(run, w, color, &pattern);
-                avoid.extend(run.iter().step_by(2).copied());
+                avoid.extend(sample_run(run, 6.0));
             }
             arrows_along(
                 c,
