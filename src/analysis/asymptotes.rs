@@ -346,4 +346,59 @@ mod tests {
         assert!(g.bode_asymptotes(f64::NAN, 1.0).is_err());
         assert!(tf(&[0.0], &[1.0, 1.0]).bode_asymptotes(0.1, 1.0).is_err());
     }
+
+    mod property {
+        use super::*;
+        use num_complex::Complex64;
+        use proptest::prelude::*;
+
+        /// Exact magnitude (dB) and phase (DESIGN §1.3 branch) of k·Π(s − z)/Π(s − p) at jω,
+        /// all roots non-zero: φ = φ₀ + Σ arg(1 − jω/z) − Σ arg(1 − jω/p).
+        fn exact(k: f64, zeros: &[f64], poles: &[f64], w: f64) -> (f64, f64) {
+            let s = Complex64::new(0.0, w);
+            let mut g = Complex64::new(k, 0.0);
+            let mut k0 = k;
+            let mut ph = 0.0;
+            for &z in zeros {
+                g *= s - z;
+                k0 *= -z;
+                ph += (Complex64::new(1.0, 0.0) - s / z).arg().to_degrees();
+            }
+            for &p in poles {
+                g /= s - p;
+                k0 /= -p;
+                ph -= (Complex64::new(1.0, 0.0) - s / p).arg().to_degrees();
+            }
+            let ph0 = if k0 < 0.0 { -180.0 } else { 0.0 };
+            (20.0 * g.norm().log10(), ph0 + ph)
+        }
+
+        fn root() -> impl Strategy<Value = f64> {
+            (0.01f64..100.0, any::<bool>(), 0.0f64..1.0)
+                .prop_map(|(m, rhp, _)| if rhp { m } else { -m })
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+            #[test]
+            fn asymptotes_are_exact_far_from_the_corners(
+                zeros in prop::collection::vec(root(), 0..4),
+                poles in prop::collection::vec(root(), 1..6),
+                k in prop_oneof![0.01f64..100.0, -100.0f64..-0.01],
+            ) {
+                let as_roots = |v: &[f64]| v.iter().map(|&r| Root { value: Complex64::new(r, 0.0), multiplicity: 1 }).collect::<Vec<_>>();
+                let lo = zeros.iter().chain(&poles).map(|r| r.abs()).fold(f64::INFINITY, f64::min) * 1e-4;
+                let hi = zeros.iter().chain(&poles).map(|r| r.abs()).fold(0.0, f64::max) * 1e4;
+                let a = bode_asymptotes(&as_roots(&zeros), &as_roots(&poles), k, lo, hi).unwrap();
+                for (w, m_asym, p_asym) in [
+                    (lo, a.magnitude_db[0].1, a.phase_deg[0].1),
+                    (hi, a.magnitude_db.last().unwrap().1, a.phase_deg.last().unwrap().1),
+                ] {
+                    let (m, p) = exact(k, &zeros, &poles, w);
+                    prop_assert!((m - m_asym).abs() < 0.01, "ω = {}: {} vs {} dB", w, m, m_asym);
+                    prop_assert!((p - p_asym).abs() < 0.5, "ω = {}: {} vs {} deg", w, p, p_asym);
+                }
+            }
+        }
+    }
 }

@@ -483,4 +483,31 @@ mod tests {
         let n = nyquist_contour(&tf(&[-1.0], &[1.0])).unwrap();
         assert_eq!(n.encirclements, None);
     }
+
+    #[test]
+    fn origin_indentation_maps_to_the_textbook_arc() {
+        // 1/(s(s + 1)): near s = 0, G ≈ 1/s = (1/ε) e^{−jθ}: radius 1/ε, sweeping from +90° to
+        // −90° (clockwise) as θ goes from −90° to +90°.
+        let n = nyquist_contour(&tf(&[1.0], &[1.0, 1.0, 0.0])).unwrap();
+        let eps = n.indent_radius[0];
+        let arc: Vec<_> = n
+            .points
+            .iter()
+            .filter(|p| p.part == ContourPart::Indentation)
+            .collect();
+        assert!(arc.len() >= 16);
+        for p in &arc {
+            assert!((p.s.norm() - eps).abs() < 1e-12 * eps.max(1e-300) + 1e-18);
+            assert!(
+                (p.g.norm() * eps - 1.0).abs() < 2e-3,
+                "|G|ε = {}",
+                p.g.norm() * eps
+            );
+        }
+        let first = arc.first().unwrap().g.arg().to_degrees();
+        let last = arc.last().unwrap().g.arg().to_degrees();
+        assert!(first > 80.0 && last < -80.0, "arc from {first}° to {last}°");
+        // Clockwise: the angle decreases along the arc.
+        assert!(arc.windows(2).all(|w| (w[1].g / w[0].g).arg() <= 1e-12));
+    }
 }
