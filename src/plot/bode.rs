@@ -3,10 +3,12 @@
 
 use std::path::Path;
 
-use super::axes::{
-    Axis, Corner, Frame, LegendEntry, bottom_margin, bounds, draw_legend, draw_title, left_margin,
-    right_margin, sample_run, tick_targets, top_margin,
+use super::axes::Axis;
+use super::frame::Frame;
+use super::layout::{
+    bottom_margin, bounds, draw_title, left_margin, right_margin, tick_targets, top_margin,
 };
+use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
 use super::raster::{Canvas, HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
 use super::{Color, PlotOptions, render};

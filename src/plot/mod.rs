@@ -27,6 +27,9 @@
 
 mod axes;
 mod bode;
+mod frame;
+mod layout;
+mod legend;
 mod nyquist;
 mod output;
 mod pzmap;

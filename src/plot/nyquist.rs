@@ -3,12 +3,10 @@
 
 use std::path::Path;
 
-use super::axes::{
-    Corner, LegendEntry, arrows_along, bounds, draw_legend, draw_title, equal_axes, layout_single,
-    sample_run,
-};
+use super::layout::{bounds, draw_title, equal_axes, layout_single};
+use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
 use super::raster::{Canvas, HAlign, VAlign};
-use super::style::{LineStyle, MarkerShape, Theme, series_color};
+use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
 use super::{Color, PlotOptions, render};
 use crate::analysis::NyquistContour;
 use crate::error::{LtiError, Result};

@@ -4,9 +4,8 @@ use std::path::Path;
 
 use num_complex::Complex64;
 
-use super::axes::{
-    Corner, LegendEntry, Swatch, bounds, draw_legend, draw_title, equal_axes, layout_single,
-};
+use super::layout::{bounds, draw_title, equal_axes, layout_single};
+use super::legend::{Corner, LegendEntry, Swatch, draw_legend};
 use super::raster::{Canvas, HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme};
 use super::{Color, PlotOptions, render};

@@ -2,10 +2,10 @@
 
 use std::path::Path;
 
-use super::axes::{
-    Axis, Corner, Frame, LegendEntry, bounds, draw_legend, draw_title, layout_single, sample_run,
-    tick_targets,
-};
+use super::axes::Axis;
+use super::frame::Frame;
+use super::layout::{bounds, draw_title, layout_single, tick_targets};
+use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
 use super::raster::{Canvas, HAlign, VAlign};
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
 use super::{Color, PlotOptions, render};

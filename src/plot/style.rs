@@ -217,3 +217,86 @@ pub(crate) fn draw_arrow_head(
         1.0,
     );
 }
+
+/// Draws `n` arrow heads along pixel runs at arc-length fractions (k + ½)/n, pointing forward.
+pub(crate) fn arrows_along(
+    c: &mut Canvas,
+    runs: &[Vec<(f64, f64)>],
+    n: usize,
+    len: f64,
+    color: Color,
+) {
+    if n == 0 {
+        return;
+    }
+    let seg_len = |a: (f64, f64), b: (f64, f64)| ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+    let total: f64 = runs
+        .iter()
+        .flat_map(|r| r.windows(2))
+        .map(|w| seg_len(w[0], w[1]))
+        .sum();
+    if total < 3.0 * len {
+        return;
+    }
+    let mut targets: Vec<f64> = (0..n)
+        .map(|k| total * (k as f64 + 0.5) / n as f64)
+        .collect();
+    targets.reverse();
+    let mut acc = 0.0;
+    for run in runs {
+        for w in run.windows(2) {
+            let l = seg_len(w[0], w[1]);
+            while let Some(&t) = targets.last() {
+                if t > acc + l || l <= 0.0 {
+                    break;
+                }
+                targets.pop();
+                let f = (t - acc) / l;
+                let tip = (
+                    w[0].0 + (w[1].0 - w[0].0) * f,
+                    w[0].1 + (w[1].1 - w[0].1) * f,
+                );
+                // Direction from a point a little behind, for a smooth heading on dense curves.
+                let back = point_behind(run, w, f, len);
+                let dir = (tip.0 - back.0, tip.1 - back.1);
+                let n = (dir.0 * dir.0 + dir.1 * dir.1).sqrt();
+                if n.is_nan() || n <= 0.0 {
+                    continue;
+                }
+                // Centre the head on the curve position.
+                let tip = (tip.0 + dir.0 / n * len / 2.0, tip.1 + dir.1 / n * len / 2.0);
+                draw_arrow_head(c, tip, dir, len, color);
+            }
+            acc += l;
+        }
+    }
+}
+
+/// The point about `dist` px before the position `f` along segment `w` of `run` (or the run's
+/// start).
+fn point_behind(run: &[(f64, f64)], w: &[(f64, f64)], f: f64, dist: f64) -> (f64, f64) {
+    let here = (
+        w[0].0 + (w[1].0 - w[0].0) * f,
+        w[0].1 + (w[1].1 - w[0].1) * f,
+    );
+    // Index of w[0] in run.
+    let idx = run
+        .windows(2)
+        .position(|x| std::ptr::eq(x.as_ptr(), w.as_ptr()))
+        .unwrap_or(0);
+    let mut need = dist * 0.5;
+    let mut cur = here;
+    let mut k = idx as isize;
+    while k >= 0 {
+        let p = run[k as usize];
+        let l = ((cur.0 - p.0).powi(2) + (cur.1 - p.1).powi(2)).sqrt();
+        if l >= need {
+            let g = need / l;
+            return (cur.0 + (p.0 - cur.0) * g, cur.1 + (p.1 - cur.1) * g);
+        }
+        need -= l;
+        cur = p;
+        k -= 1;
+    }
+    cur
+}

@@ -4,12 +4,11 @@
 
 use std::path::Path;
 
-use super::axes::{
-    Axis, Corner, LegendEntry, Swatch, arrows_along, bounds, draw_legend, draw_title, equal_axes,
-    layout_single, sample_run, tick_targets,
-};
+use super::axes::Axis;
+use super::layout::{bounds, draw_title, equal_axes, layout_single, tick_targets};
+use super::legend::{Corner, LegendEntry, Swatch, draw_legend, sample_run};
 use super::raster::{HAlign, VAlign};
-use super::style::{LineStyle, MarkerShape, Theme, series_color};
+use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
 use super::{Color, PlotOptions, render};
 use crate::error::{LtiError, Result};
 
