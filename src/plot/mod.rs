@@ -1,1 +1,171 @@
-//! Headless PNG plots (in progress).
+//! Headless PNG plots: Bode, step (and impulse/ramp) responses, pole-zero map, Nyquist, and
+//! generic x–y plots (time plots, phase portraits, bifurcation-style diagrams).
+//!
+//! Every function here only **reads** data computed elsewhere ([`FrequencyResponse`],
+//! [`Margins`], [`TimeResponse`], [`StepInfo`], [`PoleZero`], [`NyquistContour`],
+//! [`BodeAsymptotes`], plain point lists) and writes one PNG:
+//!
+//! - no display, no fontconfig, no system package: the font (Noto Sans) is compiled in and
+//!   rasterised with `ab_glyph`; lines, markers and fills are drawn with anti-aliasing into an
+//!   RGB buffer and clipped to the plot frame;
+//! - the file is written atomically (a temporary file in the same directory, then a rename),
+//!   so an error never leaves a partial file behind;
+//! - errors are [`LtiError::Plot`] (bad options, no data) or [`LtiError::Io`] (unwritable
+//!   path).
+//!
+//! Conventions: frequencies in rad/s on a log axis labelled in decades, magnitudes in dB,
+//! phases in degrees with ticks at multiples of 45° or 90°, times in seconds. Text accepts a
+//! small markup: `^{…}` superscript, `_{…}` subscript, and `^` followed by a number (`s^2`).
+//!
+//! [`FrequencyResponse`]: crate::analysis::FrequencyResponse
+//! [`Margins`]: crate::analysis::Margins
+//! [`TimeResponse`]: crate::analysis::TimeResponse
+//! [`StepInfo`]: crate::analysis::StepInfo
+//! [`PoleZero`]: crate::analysis::PoleZero
+//! [`NyquistContour`]: crate::analysis::NyquistContour
+//! [`BodeAsymptotes`]: crate::analysis::BodeAsymptotes
+
+mod axes;
+mod bode;
+mod frame;
+mod layout;
+mod legend;
+mod nyquist;
+mod output;
+mod pzmap;
+mod raster;
+mod step;
+mod style;
+mod xy;
+
+use std::path::Path;
+
+pub use bode::{BodeSeries, bode_png};
+pub use nyquist::{NyquistSeries, nyquist_png};
+pub use pzmap::{PzMap, pzmap_png};
+pub use step::{InputKind, StepSeries, step_png};
+pub use style::{Color, LineStyle, MarkerShape, PALETTE, series_color};
+pub use xy::{
+    Curve, Equilibrium, Marker, PhasePortrait, XyPlot, phase_portrait_png, time_plot_png, xy_png,
+};
+
+use crate::error::{LtiError, Result};
+
+/// Smallest accepted image side (px).
+pub const MIN_SIDE: u32 = 100;
+/// Largest accepted image side (px).
+pub const MAX_SIDE: u32 = 16_384;
+/// Largest accepted image area (px²).
+pub const MAX_PIXELS: u64 = 36_000_000;
+
+/// Options common to every plot.
+///
+/// ```
+/// use ltikit::plot::PlotOptions;
+/// let o = PlotOptions { size: (800, 600), title: Some("Plant".into()), ..Default::default() };
+/// assert_eq!(o.font_scale, 1.0);
+/// assert!(o.validate().is_ok());
+/// assert!(PlotOptions { size: (0, 600), ..Default::default() }.validate().is_err());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlotOptions {
+    /// Image size in pixels (width, height); default 1000 × 700.
+    pub size: (u32, u32),
+    /// Title; `None` gives each plot's default title (naming the plant), `Some("")` none.
+    pub title: Option<String>,
+    /// Font scale, like a dpi setting (1 = default). Fonts and line widths also grow with the
+    /// image size beyond 1000 × 700.
+    pub font_scale: f64,
+    /// Line-width scale (1 = default).
+    pub line_scale: f64,
+    /// Draw grid lines.
+    pub grid: bool,
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        PlotOptions {
+            size: (1000, 700),
+            title: None,
+            font_scale: 1.0,
+            line_scale: 1.0,
+            grid: true,
+        }
+    }
+}
+
+impl PlotOptions {
+    /// Checks the size (each side in [`MIN_SIDE`]…[`MAX_SIDE`], at most [`MAX_PIXELS`]) and the
+    /// scales (finite, 0.25…8).
+    pub fn validate(&self) -> Result<()> {
+        let (w, h) = self.size;
+        if w == 0 || h == 0 {
+            return Err(LtiError::Plot(format!("image size {w}x{h} is empty")));
+        }
+        if w < MIN_SIDE || h < MIN_SIDE {
+            return Err(LtiError::Plot(format!(
+                "image size {w}x{h} is too small (each side at least {MIN_SIDE} px)"
+            )));
+        }
+        if w > MAX_SIDE || h > MAX_SIDE || u64::from(w) * u64::from(h) > MAX_PIXELS {
+            return Err(LtiError::Plot(format!(
+                "image size {w}x{h} is too large (at most {MAX_SIDE} px a side and {MAX_PIXELS} pixels)"
+            )));
+        }
+        for (name, v) in [
+            ("font scale", self.font_scale),
+            ("line scale", self.line_scale),
+        ] {
+            if !v.is_finite() || !(0.25..=8.0).contains(&v) {
+                return Err(LtiError::Plot(format!("{name} {v} is outside 0.25…8")));
+            }
+        }
+        Ok(())
+    }
+
+    /// The title to draw: the explicit one (none if empty) or `default`.
+    pub(crate) fn title_or(&self, default: impl FnOnce() -> String) -> Option<String> {
+        match &self.title {
+            Some(t) if t.is_empty() => None,
+            Some(t) => Some(t.clone()),
+            None => Some(default()).filter(|t| !t.is_empty()),
+        }
+    }
+}
+
+/// Parses an image size written `WxH` (also `W×H` or `W,H`), e.g. for a `--size` option.
+///
+/// ```
+/// assert_eq!(ltikit::plot::parse_size("1200x800").unwrap(), (1200, 800));
+/// assert!(ltikit::plot::parse_size("1200").is_err());
+/// ```
+pub fn parse_size(s: &str) -> Result<(u32, u32)> {
+    let bad = || {
+        LtiError::Plot(format!(
+            "image size '{s}' is not WIDTHxHEIGHT (e.g. 1000x700)"
+        ))
+    };
+    let t = s.trim().to_ascii_lowercase().replace(['×', ','], "x");
+    let (a, b) = t.split_once('x').ok_or_else(bad)?;
+    let w: u32 = a.trim().parse().map_err(|_| bad())?;
+    let h: u32 = b.trim().parse().map_err(|_| bad())?;
+    let o = PlotOptions {
+        size: (w, h),
+        ..Default::default()
+    };
+    o.validate()?;
+    Ok((w, h))
+}
+
+/// Renders with `draw` and writes the PNG atomically.
+pub(crate) fn render(
+    path: &Path,
+    opts: &PlotOptions,
+    draw: impl FnOnce(&mut raster::Canvas, &style::Theme) -> Result<()>,
+) -> Result<()> {
+    opts.validate()?;
+    let mut canvas = raster::Canvas::new(opts.size.0, opts.size.1)?;
+    let theme = style::Theme::new(opts);
+    draw(&mut canvas, &theme)?;
+    output::write_png(&canvas, path)
+}

@@ -1,0 +1,513 @@
+//! The Nyquist contour: G(s) along the D contour, with indentations around imaginary-axis
+//! poles, and the encirclement count of −1.
+//!
+//! The D contour runs up the imaginary axis from s = −j∞ to +j∞ and closes through the right
+//! half plane at infinity (clockwise). Poles of G on the imaginary axis are passed on small
+//! semicircles s = jω_p + ε e^{jθ}, θ from −90° to +90°, i.e. to their **right**, so they count
+//! as outside the contour: P is the number of poles with Re p > 0 strictly, and Nyquist's
+//! criterion reads Z = N + P, with N the clockwise encirclements of −1 by G and Z the
+//! closed-loop poles (of G/(1 + G)) in the right half plane.
+//!
+//! G is used **in lowest terms** (common pole-zero factors cancelled, as the input-output map
+//! it is). ε is 10⁻³ of the distance from the pole to its nearest other root (of the scale of
+//! the lowest corner frequency for a pole at s = 0), so the semicircle's image is the
+//! textbook arc of radius ~|residue|/ε^m sweeping m·180° clockwise for an m-fold pole.
+//!
+//! The samples are adaptive: between neighbours the angle of G and of 1 + G may turn by at
+//! most 8° (and |G| change by at most 30 %), so a resonance or a pass near −1 is resolved
+//! and the winding number is exact.
+
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::analysis::stability::{HalfPlane, half_plane};
+use crate::error::Result;
+use crate::lti::TransferFunction;
+
+/// Which part of the D contour a point lies on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContourPart {
+    /// s = jω on the imaginary axis.
+    Axis,
+    /// On a small semicircle around an imaginary-axis pole.
+    Indentation,
+}
+
+/// One sample of the contour.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NyquistPoint {
+    /// The point s of the D contour (Im s < 0 on the mirror half, ω < 0).
+    pub s: Complex64,
+    /// G(s).
+    pub g: Complex64,
+    /// Axis or indentation.
+    pub part: ContourPart,
+}
+
+/// G along the Nyquist D contour, in contour order (ω from −∞ to +∞).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NyquistContour {
+    /// The samples, ω from −∞ to +∞ (the ω < 0 half is the mirror image of the ω > 0 half).
+    pub points: Vec<NyquistPoint>,
+    /// lim G(jω) for ω → ±∞ (the whole infinite semicircle maps to this real number: the
+    /// direct feedthrough, 0 for a strictly proper G).
+    pub g_at_infinity: f64,
+    /// Frequencies ω ≥ 0 of the imaginary-axis poles of G (0 for poles at the origin), each
+    /// passed on a semicircle of radius `indent_radius[k]`.
+    pub axis_poles: Vec<f64>,
+    /// Indentation radii, one per entry of `axis_poles`.
+    pub indent_radius: Vec<f64>,
+    /// With imaginary-axis poles, a radius that contains the finite part of the curve (1.5 ×
+    /// the largest of 1, |G(∞)| and |G(jω)| for ω farther than half the pole's neighbourhood
+    /// scale from every imaginary-axis pole); beyond it the curve only heads off to infinity.
+    /// `None` when the curve is bounded.
+    pub display_radius: Option<f64>,
+    /// P: poles of G (lowest terms) with Re p > 0, with multiplicity.
+    pub open_loop_rhp_poles: usize,
+    /// N: clockwise encirclements of −1 by G; `None` when the curve passes through −1.
+    pub encirclements: Option<i64>,
+    /// Z = N + P: closed-loop right-half-plane poles of G/(1 + G); `None` with N.
+    pub closed_loop_rhp_poles: Option<i64>,
+}
+
+/// Maximum turn of the angle of G or 1 + G between neighbouring samples.
+const MAX_TURN: f64 = 8.0 * std::f64::consts::PI / 180.0;
+/// Maximum relative change of |G| between neighbouring samples.
+const MAX_REL: f64 = 0.3;
+/// Bisection depth limit per initial interval.
+const MAX_DEPTH: u32 = 12;
+/// Cap on the number of samples of one half of the contour.
+const MAX_POINTS: usize = 40_000;
+/// Indentation radius relative to the pole's neighbourhood.
+const INDENT_REL: f64 = 1e-3;
+
+/// A parametrised piece of the positive-frequency half of the contour.
+#[derive(Debug, Clone, Copy)]
+enum Piece {
+    /// s = j·10^u for u in [a, b].
+    Axis { a: f64, b: f64 },
+    /// s = jω + ε e^{jθ} for θ in [−π/2, π/2].
+    Arc { w: f64, eps: f64, m: usize },
+}
+
+impl Piece {
+    fn s(&self, t: f64) -> Complex64 {
+        match *self {
+            Piece::Axis { a, b } => Complex64::new(0.0, 10f64.powf(a + (b - a) * t)),
+            Piece::Arc { w, eps, .. } => {
+                let th = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * t;
+                Complex64::new(eps * th.cos(), w + eps * th.sin())
+            }
+        }
+    }
+
+    fn initial(&self) -> usize {
+        match *self {
+            Piece::Axis { a, b } => (((b - a) * 60.0).ceil() as usize).max(8),
+            Piece::Arc { m, .. } => 16 * m.max(1),
+        }
+    }
+
+    fn part(&self) -> ContourPart {
+        match self {
+            Piece::Axis { .. } => ContourPart::Axis,
+            Piece::Arc { .. } => ContourPart::Indentation,
+        }
+    }
+}
+
+/// True when the step from `a` to `b` is too coarse.
+fn too_coarse(a: Complex64, b: Complex64) -> bool {
+    let one = Complex64::new(1.0, 0.0);
+    let turn = |x: Complex64, y: Complex64| {
+        if x.norm() == 0.0 || y.norm() == 0.0 {
+            0.0
+        } else {
+            (y / x).arg().abs()
+        }
+    };
+    let (na, nb) = (a.norm(), b.norm());
+    let rel = (na - nb).abs() / na.max(nb).max(1e-300);
+    turn(a, b) > MAX_TURN
+        || turn(a + one, b + one) > MAX_TURN
+        || (rel > MAX_REL && na.max(nb) > 1e-6)
+}
+
+/// Samples one piece adaptively, appending to `out` (without duplicating a shared endpoint).
+fn sample_piece(g: &TransferFunction, piece: Piece, out: &mut Vec<NyquistPoint>) {
+    let n = piece.initial();
+    let eval = |t: f64| {
+        let s = piece.s(t);
+        (t, s, g.eval(s))
+    };
+    let mut prev = eval(0.0);
+    out.push(NyquistPoint {
+        s: prev.1,
+        g: prev.2,
+        part: piece.part(),
+    });
+    for k in 1..=n {
+        let next = eval(k as f64 / n as f64);
+        // Depth-first bisection of [prev, next].
+        let mut stack = vec![(next, 0u32)];
+        let mut left = prev;
+        while let Some((right, depth)) = stack.pop() {
+            if depth < MAX_DEPTH && out.len() < MAX_POINTS && too_coarse(left.2, right.2) {
+                let mid = eval(0.5 * (left.0 + right.0));
+                stack.push((right, depth + 1));
+                stack.push((mid, depth + 1));
+                continue;
+            }
+            out.push(NyquistPoint {
+                s: right.1,
+                g: right.2,
+                part: piece.part(),
+            });
+            left = right;
+        }
+        prev = next;
+    }
+}
+
+/// The Nyquist contour of `g` (see the module documentation).
+///
+/// Errors: an improper G (G(jω) → ∞ as ω → ∞), or a failure of the root finder.
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// use ltikit::analysis::nyquist_contour;
+/// // K/(s + 1)³ with K = 10 is unstable in unity feedback (K > 8): two closed-loop RHP poles.
+/// let g = TransferFunction::from_descending(&[10.0], &[1.0, 3.0, 3.0, 1.0]).unwrap();
+/// let n = nyquist_contour(&g).unwrap();
+/// assert_eq!(n.open_loop_rhp_poles, 0);
+/// assert_eq!(n.encirclements, Some(2));
+/// assert_eq!(n.closed_loop_rhp_poles, Some(2));
+/// ```
+pub fn nyquist_contour(g: &TransferFunction) -> Result<NyquistContour> {
+    g.require_proper("Nyquist plot", false)?;
+    let pz = g.pole_zero()?;
+    let red = &pz.reduced;
+    let g_inf = if red.num().degree() == red.den().degree() {
+        red.num().leading() / red.den().leading()
+    } else {
+        0.0
+    };
+
+    // Imaginary-axis poles (ω ≥ 0) and the other roots.
+    let mut axis: Vec<(f64, usize)> = Vec::new();
+    let mut rhp = 0usize;
+    for p in &pz.reduced_poles {
+        match half_plane(p.value) {
+            HalfPlane::Axis if p.value.im >= 0.0 => axis.push((p.value.im, p.multiplicity)),
+            HalfPlane::Right => rhp += p.multiplicity,
+            _ => {}
+        }
+    }
+    axis.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let roots: Vec<Complex64> = pz
+        .reduced_poles
+        .iter()
+        .chain(pz.reduced_zeros.iter())
+        .map(|r| r.value)
+        .collect();
+    let corners: Vec<f64> = roots
+        .iter()
+        .map(|r| r.norm())
+        .filter(|&w| w > 0.0)
+        .collect();
+    let w_lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
+    let w_hi = corners.iter().copied().fold(0.0, f64::max);
+    let (w_lo, w_hi) = if corners.is_empty() {
+        (1.0, 1.0)
+    } else {
+        (w_lo, w_hi)
+    };
+
+    // Neighbourhood scale and indentation radius of each axis pole.
+    let scale_of = |w: f64| {
+        if w == 0.0 {
+            return w_lo;
+        }
+        let here = Complex64::new(0.0, w);
+        roots
+            .iter()
+            .map(|r| (r - here).norm())
+            .filter(|&d| d > 1e-12 * w)
+            .fold(w, f64::min)
+    };
+    let scales: Vec<f64> = axis.iter().map(|&(w, _)| scale_of(w)).collect();
+    let eps: Vec<f64> = scales.iter().map(|s| INDENT_REL * s).collect();
+
+    // Pieces of the ω > 0 half (after the origin).
+    let origin_pole = axis.first().filter(|a| a.0 == 0.0).map(|a| a.1);
+    let mut pieces = Vec::new();
+    let mut start = if origin_pole.is_some() {
+        eps[0]
+    } else {
+        1e-3 * w_lo
+    };
+    let end = 1e3 * w_hi;
+    for (k, &(w, m)) in axis.iter().enumerate() {
+        if w == 0.0 {
+            continue;
+        }
+        pieces.push(Piece::Axis {
+            a: start.log10(),
+            b: (w - eps[k]).log10(),
+        });
+        pieces.push(Piece::Arc { w, eps: eps[k], m });
+        start = w + eps[k];
+    }
+    pieces.push(Piece::Axis {
+        a: start.log10(),
+        b: end.log10(),
+    });
+
+    let mut positive = Vec::new();
+    for piece in pieces {
+        let before = positive.len();
+        sample_piece(red, piece, &mut positive);
+        // Pieces share endpoints only when adjacent pieces meet exactly; they do here
+        // (ω_p ± ε on both), so drop the duplicate.
+        if before > 0 && positive.len() > before {
+            let (a, b) = (positive[before - 1].s, positive[before].s);
+            if (a - b).norm() <= 1e-12 * a.norm().max(1.0) {
+                positive.remove(before);
+            }
+        }
+    }
+
+    // The middle: the origin semicircle, or the point ω = 0.
+    let mut middle = Vec::new();
+    if let Some(m) = origin_pole {
+        sample_piece(
+            red,
+            Piece::Arc {
+                w: 0.0,
+                eps: eps[0],
+                m,
+            },
+            &mut middle,
+        );
+        // The arc's ends are ∓jε: the mirror and the positive half start there.
+        middle.remove(0);
+        middle.pop();
+    } else {
+        let s = Complex64::new(0.0, 0.0);
+        middle.push(NyquistPoint {
+            s,
+            g: red.eval(s),
+            part: ContourPart::Axis,
+        });
+    }
+
+    let mut points: Vec<NyquistPoint> = positive
+        .iter()
+        .rev()
+        .map(|p| NyquistPoint {
+            s: p.s.conj(),
+            g: p.g.conj(),
+            part: p.part,
+        })
+        .collect();
+    points.extend(middle);
+    points.extend(positive.iter().copied());
+
+    // Display radius: |G| on the axis away from the imaginary-axis poles.
+    let display_radius = if axis.is_empty() {
+        None
+    } else {
+        let near = |w: f64| {
+            axis.iter()
+                .zip(&scales)
+                .any(|(&(wp, _), &sc)| (w - wp).abs() < 0.5 * sc)
+        };
+        let finite = points
+            .iter()
+            .filter(|p| p.part == ContourPart::Axis && p.s.im >= 0.0 && !near(p.s.im))
+            .map(|p| p.g.norm())
+            .filter(|v| v.is_finite())
+            .fold(1.0f64.max(g_inf.abs()), f64::max);
+        Some(1.5 * finite)
+    };
+
+    let encirclements = winding_about_minus_one(&points, g_inf);
+    let closed = encirclements.map(|n| n + rhp as i64);
+    Ok(NyquistContour {
+        points,
+        g_at_infinity: g_inf,
+        axis_poles: axis.iter().map(|a| a.0).collect(),
+        indent_radius: eps,
+        display_radius,
+        open_loop_rhp_poles: rhp,
+        encirclements,
+        closed_loop_rhp_poles: closed,
+    })
+}
+
+/// Clockwise encirclements of −1 by the closed curve (the points, closed through G(∞)).
+fn winding_about_minus_one(points: &[NyquistPoint], g_inf: f64) -> Option<i64> {
+    let one = Complex64::new(1.0, 0.0);
+    let tiny = |z: Complex64, g: Complex64| z.norm() <= 1e-10 * g.norm().max(1.0);
+    let inf = Complex64::new(g_inf + 1.0, 0.0);
+    if tiny(inf, Complex64::new(g_inf, 0.0)) {
+        return None;
+    }
+    let mut total = 0.0;
+    let mut prev = inf;
+    for p in points.iter().map(|p| p.g + one).chain(std::iter::once(inf)) {
+        if !(p.re.is_finite() && p.im.is_finite()) || tiny(p, p - one) {
+            return None;
+        }
+        let turn = (p / prev).arg();
+        if turn.abs() > 0.9 * std::f64::consts::PI {
+            // Too coarse to tell which way round: the curve passes (almost) through −1.
+            return None;
+        }
+        total += turn;
+        prev = p;
+    }
+    let w = total / (2.0 * std::f64::consts::PI);
+    ((w - w.round()).abs() < 0.05).then(|| -(w.round() as i64))
+}
+
+impl TransferFunction {
+    /// The Nyquist contour (see [`nyquist_contour`]).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// // 1/(s(s + 1)): one pole at the origin, indented; stable in unity feedback.
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0, 0.0]).unwrap();
+    /// let n = g.nyquist().unwrap();
+    /// assert_eq!(n.axis_poles, vec![0.0]);
+    /// assert_eq!(n.closed_loop_rhp_poles, Some(0));
+    /// ```
+    pub fn nyquist(&self) -> Result<NyquistContour> {
+        nyquist_contour(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::stability::half_plane;
+
+    fn tf(num: &[f64], den: &[f64]) -> TransferFunction {
+        TransferFunction::from_descending(num, den).unwrap()
+    }
+
+    /// Closed-loop RHP poles counted directly from the roots of N + D.
+    fn closed_loop_rhp(g: &TransferFunction) -> i64 {
+        let cl = &(g.num() + g.den());
+        cl.roots()
+            .unwrap()
+            .iter()
+            .filter(|r| half_plane(r.value) == HalfPlane::Right)
+            .map(|r| r.multiplicity as i64)
+            .sum()
+    }
+
+    #[test]
+    fn nyquist_criterion_matches_closed_loop_roots() {
+        let cases: [(&[f64], &[f64]); 9] = [
+            (&[10.0], &[1.0, 3.0, 3.0, 1.0]), // K/(s+1)³, K = 10 > 8: unstable
+            (&[4.0], &[1.0, 3.0, 3.0, 1.0]),  // K = 4 < 8: stable
+            (&[2.0], &[1.0, 3.0, 2.0, 0.0]),  // 2/(s(s+1)(s+2)): GM = 3, stable
+            (&[10.0], &[1.0, 3.0, 2.0, 0.0]), // K = 10 > 6: unstable
+            (&[2.0], &[1.0, -1.0]),           // 2/(s−1): P = 1, N = −1, stable
+            (&[0.5], &[1.0, -1.0]),           // 0.5/(s−1): P = 1, unstable
+            (&[1.0, 1.0], &[1.0, 0.0, 0.0]),  // (s+1)/s²: two poles at the origin
+            (&[1.0], &[1.0, 0.2, 1.0, 0.0]),  // integrator with a resonance
+            (&[1.0, 0.5], &[1.0, 0.0, 4.0, 0.0]), // poles at 0 and ±2j
+        ];
+        for (num, den) in cases {
+            let g = tf(num, den);
+            let n = nyquist_contour(&g).unwrap();
+            assert_eq!(
+                n.closed_loop_rhp_poles,
+                Some(closed_loop_rhp(&g)),
+                "G = {g}: N = {:?}, P = {}",
+                n.encirclements,
+                n.open_loop_rhp_poles
+            );
+        }
+    }
+
+    #[test]
+    fn indentation_goes_round_the_poles_to_the_right() {
+        let g = tf(&[1.0, 0.5], &[1.0, 0.0, 4.0, 0.0]);
+        let n = nyquist_contour(&g).unwrap();
+        assert_eq!(n.axis_poles, vec![0.0, 2.0]);
+        let ind: Vec<_> = n
+            .points
+            .iter()
+            .filter(|p| p.part == ContourPart::Indentation)
+            .collect();
+        assert!(!ind.is_empty());
+        assert!(ind.iter().all(|p| p.s.re >= 0.0));
+        // The samples near a pole are on the circle of the indentation radius.
+        for p in ind.iter().filter(|p| (p.s.im - 2.0).abs() < 0.1) {
+            assert!(((p.s - Complex64::new(0.0, 2.0)).norm() - n.indent_radius[1]).abs() < 1e-12);
+        }
+        assert!(n.display_radius.is_some());
+        // Mirror symmetry: G(s̄) = conj G(s).
+        let k = n.points.len();
+        assert!(
+            (n.points[0].g - n.points[k - 1].g.conj()).norm()
+                < 1e-12 * n.points[0].g.norm().max(1.0)
+        );
+    }
+
+    #[test]
+    fn bounded_curve_has_no_display_radius_and_ends_at_g_infinity() {
+        let g = tf(&[2.0, 1.0], &[1.0, 1.0]); // (2s + 1)/(s + 1): G(0) = 1, G(∞) = 2
+        let n = nyquist_contour(&g).unwrap();
+        assert!(n.display_radius.is_none());
+        assert!((n.g_at_infinity - 2.0).abs() < 1e-15);
+        assert!((n.points.last().unwrap().g - Complex64::new(2.0, 0.0)).norm() < 1e-2);
+        assert_eq!(n.encirclements, Some(0));
+    }
+
+    #[test]
+    fn rejects_improper_and_handles_cancellation() {
+        assert!(nyquist_contour(&tf(&[1.0, 0.0, 0.0], &[1.0, 1.0])).is_err());
+        // s/(s(s+1)): the origin pole cancels, no indentation.
+        let n = nyquist_contour(&tf(&[1.0, 0.0], &[1.0, 1.0, 0.0])).unwrap();
+        assert!(n.axis_poles.is_empty());
+    }
+
+    #[test]
+    fn passing_through_minus_one_is_undetermined() {
+        // G = −1 constant: the whole curve is the point −1.
+        let n = nyquist_contour(&tf(&[-1.0], &[1.0])).unwrap();
+        assert_eq!(n.encirclements, None);
+    }
+
+    #[test]
+    fn origin_indentation_maps_to_the_textbook_arc() {
+        // 1/(s(s + 1)): near s = 0, G ≈ 1/s = (1/ε) e^{−jθ}: radius 1/ε, sweeping from +90° to
+        // −90° (clockwise) as θ goes from −90° to +90°.
+        let n = nyquist_contour(&tf(&[1.0], &[1.0, 1.0, 0.0])).unwrap();
+        let eps = n.indent_radius[0];
+        let arc: Vec<_> = n
+            .points
+            .iter()
+            .filter(|p| p.part == ContourPart::Indentation)
+            .collect();
+        assert!(arc.len() >= 16);
+        for p in &arc {
+            assert!((p.s.norm() - eps).abs() < 1e-12 * eps.max(1e-300) + 1e-18);
+            assert!(
+                (p.g.norm() * eps - 1.0).abs() < 2e-3,
+                "|G|ε = {}",
+                p.g.norm() * eps
+            );
+        }
+        let first = arc.first().unwrap().g.arg().to_degrees();
+        let last = arc.last().unwrap().g.arg().to_degrees();
+        assert!(first > 80.0 && last < -80.0, "arc from {first}° to {last}°");
+        // Clockwise: the angle decreases along the arc.
+        assert!(arc.windows(2).all(|w| (w[1].g / w[0].g).arg() <= 1e-12));
+    }
+}

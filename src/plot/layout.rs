@@ -1,0 +1,164 @@
+//! Page layout: margins from the tick labels and titles, single frames, equal-aspect axes,
+//! the title.
+
+use super::axes::{Axis, nice_step, widen};
+use super::frame::Frame;
+use super::raster::{Canvas, HAlign, VAlign, cap_height, descent};
+use super::style::Theme;
+use crate::error::Result;
+use crate::plot::Color;
+
+/// Height of a row of x tick labels (with room for superscripts).
+pub(crate) fn tick_label_height(a: &Axis, th: &Theme) -> f64 {
+    let base = cap_height(th.tick) + descent(th.tick);
+    if a.has_superscripts() {
+        base + 0.3 * th.tick
+    } else {
+        base
+    }
+}
+
+/// Space (px) to the left of a frame for the y tick labels and the rotated y title.
+pub(crate) fn left_margin(th: &Theme, y: &Axis, has_title: bool) -> f64 {
+    let labels = y.max_label_width(th.tick) + 5.0 * th.s;
+    let title = if has_title {
+        cap_height(th.label) + descent(th.label) + 0.4 * th.label
+    } else {
+        0.0
+    };
+    th.pad + title + labels + 4.0 * th.s
+}
+
+/// Space (px) below a frame for x tick labels and the x title.
+pub(crate) fn bottom_margin(th: &Theme, x: &Axis, has_title: bool) -> f64 {
+    let labels =
+        5.0 * th.s + tick_label_height(x, th) + if x.factor.is_some() { th.tick } else { 0.0 };
+    let title = if has_title {
+        8.0 * th.s + cap_height(th.label) + descent(th.label)
+    } else {
+        0.0
+    };
+    labels + title + th.pad
+}
+
+/// Space (px) above the top frame for the title.
+pub(crate) fn top_margin(th: &Theme, has_title: bool, y_factor: bool) -> f64 {
+    let t = if has_title {
+        cap_height(th.title) + descent(th.title) + 0.6 * th.title
+    } else {
+        0.0
+    };
+    let f = if y_factor { th.tick } else { 0.0 };
+    th.pad + t + f.max(if has_title { 0.0 } else { 6.0 * th.s })
+}
+
+/// Space (px) to the right of a frame: half of the last x tick label may stick out.
+pub(crate) fn right_margin(th: &Theme, x: &Axis) -> f64 {
+    let last = x
+        .ticks
+        .last()
+        .map(|t| Canvas::text_width(&t.label, th.tick) / 2.0)
+        .unwrap_or(0.0);
+    (last + 4.0 * th.s).max(th.pad * 2.0)
+}
+
+/// Draws the title centred at the top, shrinking it (down to 60 %) or cutting it to fit.
+pub(crate) fn draw_title(c: &mut Canvas, th: &Theme, title: &str) -> Result<()> {
+    let avail = f64::from(c.w) - 2.0 * th.pad;
+    let mut size = th.title;
+    let mut text = title.to_string();
+    let mut w = Canvas::text_width(&text, size);
+    if w > avail {
+        size = (th.title * avail / w).max(th.title * 0.6);
+        w = Canvas::text_width(&text, size);
+        while w > avail && text.chars().count() > 4 {
+            let n = text.chars().count();
+            text = text.chars().take(n - 2).collect::<String>() + "…";
+            w = Canvas::text_width(&text, size);
+        }
+    }
+    c.text(
+        &text,
+        (f64::from(c.w) / 2.0, th.pad + 0.2 * th.title),
+        size,
+        Color::BLACK,
+        (HAlign::Center, VAlign::Top),
+    )
+}
+
+/// Tick-count targets (x, y) for a plot area of w × h px.
+pub(crate) fn tick_targets(w: f64, h: f64, th: &Theme) -> (usize, usize) {
+    (
+        ((w / (95.0 * th.s)) as usize).clamp(2, 12),
+        ((h / (60.0 * th.s)) as usize).clamp(2, 10),
+    )
+}
+
+/// Lays out one frame filling the canvas below the title. `axes(w, h)` builds the axes for a
+/// plot area of w × h px (called a few times while the margins settle).
+pub(crate) fn layout_single(
+    c: &Canvas,
+    th: &Theme,
+    title: bool,
+    x_title: bool,
+    y_title: bool,
+    axes: impl Fn(f64, f64) -> (Axis, Axis),
+) -> Frame {
+    let (cw, ch) = (f64::from(c.w), f64::from(c.h));
+    let (mut l, mut r, mut t, mut b) = (
+        80.0 * th.s,
+        20.0 * th.s,
+        top_margin(th, title, false),
+        70.0 * th.s,
+    );
+    let mut ax = axes((cw - l - r).max(10.0), (ch - t - b).max(10.0));
+    for _ in 0..2 {
+        l = left_margin(th, &ax.1, y_title);
+        r = right_margin(th, &ax.0);
+        t = top_margin(th, title, ax.1.factor.is_some());
+        b = bottom_margin(th, &ax.0, x_title);
+        ax = axes((cw - l - r).max(10.0), (ch - t - b).max(10.0));
+    }
+    Frame {
+        x0: l,
+        y0: t,
+        x1: (cw - r).max(l + 10.0),
+        y1: (ch - b).max(t + 10.0),
+        x: ax.0,
+        y: ax.1,
+    }
+}
+
+/// Axes with equal data units per pixel on x and y (for the complex plane): the ranges are
+/// widened about their centres to fill a w × h area, and both axes share one tick step.
+pub(crate) fn equal_axes(
+    xr: (f64, f64),
+    yr: (f64, f64),
+    w: f64,
+    h: f64,
+    th: &Theme,
+) -> (Axis, Axis) {
+    let (xlo, xhi) = widen(xr.0, xr.1);
+    let (ylo, yhi) = widen(yr.0, yr.1);
+    let u = ((xhi - xlo) / w).max((yhi - ylo) / h);
+    let (cx, cy) = ((xlo + xhi) / 2.0, (ylo + yhi) / 2.0);
+    let (nx, ny) = tick_targets(w, h, th);
+    let step = nice_step(u * w, nx).max(nice_step(u * h, ny));
+    (
+        Axis::with_step(cx - u * w / 2.0, cx + u * w / 2.0, step),
+        Axis::with_step(cy - u * h / 2.0, cy + u * h / 2.0, step),
+    )
+}
+
+/// Bounds (lo, hi) of the finite values, or `None`.
+pub(crate) fn bounds(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for v in values {
+        if v.is_finite() {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
+}

@@ -1,0 +1,214 @@
+//! Legend and information boxes, placed in the frame corner that hides the least of the curves.
+
+use super::frame::Frame;
+use super::raster::{Canvas, HAlign, VAlign};
+use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
+use crate::error::Result;
+use crate::plot::Color;
+
+/// A legend or information row: optional swatch, then text.
+#[derive(Debug, Clone)]
+pub(crate) enum Swatch {
+    None,
+    Line { color: Color, style: LineStyle },
+    Marker { shape: MarkerShape, color: Color },
+    Patch { color: Color, alpha: f64 },
+}
+
+/// One row of a legend box.
+#[derive(Debug, Clone)]
+pub(crate) struct LegendEntry {
+    pub swatch: Swatch,
+    pub text: String,
+    pub color: Color,
+}
+
+impl LegendEntry {
+    pub fn line(text: impl Into<String>, color: Color, style: LineStyle) -> Self {
+        LegendEntry {
+            swatch: Swatch::Line { color, style },
+            text: text.into(),
+            color: Color::BLACK,
+        }
+    }
+    pub fn marker(text: impl Into<String>, shape: MarkerShape, color: Color) -> Self {
+        LegendEntry {
+            swatch: Swatch::Marker { shape, color },
+            text: text.into(),
+            color: Color::BLACK,
+        }
+    }
+    pub fn text(text: impl Into<String>, color: Color) -> Self {
+        LegendEntry {
+            swatch: Swatch::None,
+            text: text.into(),
+            color,
+        }
+    }
+}
+
+/// Where a box goes inside a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Corner {
+    TopRight,
+    TopLeft,
+    BottomRight,
+    BottomLeft,
+}
+
+/// Draws a legend box inside `frame` in the corner (from `prefer`) that hides the fewest of the
+/// pixel points `avoid`; returns the box drawn (x0, y0, x1, y1).
+pub(crate) fn draw_legend(
+    c: &mut Canvas,
+    frame: &Frame,
+    th: &Theme,
+    entries: &[LegendEntry],
+    avoid: &[(f64, f64)],
+    prefer: &[Corner],
+    taken: &[(f64, f64, f64, f64)],
+) -> Result<Option<(f64, f64, f64, f64)>> {
+    if entries.is_empty() {
+        return Ok(None);
+    }
+    let size = th.note;
+    let row = 1.45 * size;
+    let sw = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
+        34.0 * th.s
+    } else {
+        0.0
+    };
+    let text_w = entries
+        .iter()
+        .map(|e| Canvas::text_width(&e.text, size))
+        .fold(0.0, f64::max);
+    let padx = 8.0 * th.s;
+    let bw = padx + sw + if sw > 0.0 { 6.0 * th.s } else { 0.0 } + text_w + padx;
+    let bh = row * entries.len() as f64 + 0.5 * size;
+    let m = 8.0 * th.s;
+    let place = |corner: Corner| -> (f64, f64, f64, f64) {
+        let (x, y) = match corner {
+            Corner::TopRight => (frame.x1 - m - bw, frame.y0 + m),
+            Corner::TopLeft => (frame.x0 + m, frame.y0 + m),
+            Corner::BottomRight => (frame.x1 - m - bw, frame.y1 - m - bh),
+            Corner::BottomLeft => (frame.x0 + m, frame.y1 - m - bh),
+        };
+        (x, y, x + bw, y + bh)
+    };
+    let overlaps = |a: (f64, f64, f64, f64), b: &(f64, f64, f64, f64)| {
+        a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+    };
+    let prefer = if prefer.is_empty() {
+        &[Corner::TopRight][..]
+    } else {
+        prefer
+    };
+    let mut best = place(prefer[0]);
+    let mut best_score = usize::MAX;
+    for &corner in prefer {
+        let b = place(corner);
+        let mut score = avoid
+            .iter()
+            .filter(|p| {
+                p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
+            })
+            .count();
+        if taken.iter().any(|t| overlaps(b, t)) {
+            score += 1_000_000;
+        }
+        if score < best_score {
+            best_score = score;
+            best = b;
+        }
+    }
+    if best_score > 0 {
+        // Every preferred corner hides something: try the middles of the edges as well.
+        let cx = (frame.x0 + frame.x1 - bw) / 2.0;
+        let cy = (frame.y0 + frame.y1 - bh) / 2.0;
+        for (x, y) in [
+            (cx, frame.y0 + m),
+            (cx, frame.y1 - m - bh),
+            (frame.x0 + m, cy),
+            (frame.x1 - m - bw, cy),
+        ] {
+            let b = (x, y, x + bw, y + bh);
+            let score = avoid
+                .iter()
+                .filter(|p| {
+                    p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
+                })
+                .count()
+                + if taken.iter().any(|t| overlaps(b, t)) {
+                    1_000_000
+                } else {
+                    0
+                };
+            if score < best_score {
+                best_score = score;
+                best = b;
+            }
+        }
+    }
+    let (x0, y0, x1, y1) = best;
+    c.fill_rect(x0, y0, x1, y1, Color::WHITE, 0.9);
+    c.stroke(
+        &[(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)],
+        th.s.max(1.0),
+        Color(190, 190, 190),
+        &[],
+    );
+    for (k, e) in entries.iter().enumerate() {
+        let cy = y0 + 0.25 * size + row * (k as f64 + 0.5);
+        let mut tx = x0 + padx;
+        match e.swatch {
+            Swatch::None => {}
+            Swatch::Line { color, style } => {
+                c.stroke(
+                    &[(tx, cy), (tx + sw, cy)],
+                    th.line,
+                    color,
+                    &style.pattern(th.line),
+                );
+            }
+            Swatch::Marker { shape, color } => {
+                draw_marker(c, (tx + sw / 2.0, cy), shape, 5.5 * th.s, color, th.line);
+            }
+            Swatch::Patch { color, alpha } => {
+                c.fill_rect(
+                    tx,
+                    cy - 0.35 * size,
+                    tx + sw,
+                    cy + 0.35 * size,
+                    color,
+                    alpha,
+                );
+            }
+        }
+        if sw > 0.0 {
+            tx += sw + 6.0 * th.s;
+        }
+        c.text(
+            &e.text,
+            (tx, cy),
+            size,
+            e.color,
+            (HAlign::Left, VAlign::Middle),
+        )?;
+    }
+    Ok(Some(best))
+}
+
+/// Points every `step` px along a pixel polyline (for keeping legends off the curves).
+pub(crate) fn sample_run(run: &[(f64, f64)], step: f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for w in run.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+        let n = ((len / step).ceil() as usize).clamp(1, 10_000);
+        for k in 0..n {
+            let t = k as f64 / n as f64;
+            out.push((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t));
+        }
+    }
+    out.extend(run.last().copied());
+    out
+}

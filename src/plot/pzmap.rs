@@ -1,0 +1,299 @@
+//! Pole-zero map in the s-plane, with equal scales on both axes.
+
+use std::path::Path;
+
+use num_complex::Complex64;
+
+use super::layout::{bounds, draw_title, equal_axes, layout_single};
+use super::legend::{Corner, LegendEntry, Swatch, draw_legend};
+use super::raster::{Canvas, HAlign, VAlign};
+use super::style::{LineStyle, MarkerShape, Theme};
+use super::{Color, PlotOptions, render};
+use crate::analysis::PoleZero;
+use crate::error::Result;
+use crate::poly::{Root, fmt_sig};
+
+/// What to draw on a pole-zero map.
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// use ltikit::plot::PzMap;
+/// let g = TransferFunction::from_descending(&[1.0, 2.0], &[1.0, 2.0, 5.0]).unwrap();
+/// let pz = g.pole_zero().unwrap();
+/// let map = PzMap::new(&pz).label("(s + 2)/(s^2 + 2 s + 5)").damping_guides(true);
+/// assert!(map.damping_guides);
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct PzMap<'a> {
+    /// Poles, zeros and cancellations.
+    pub pz: &'a PoleZero,
+    /// The plant's name or transfer function, for the title.
+    pub label: Option<&'a str>,
+    /// Draw lines of constant damping ζ and circles of constant natural frequency ωₙ.
+    pub damping_guides: bool,
+}
+
+impl<'a> PzMap<'a> {
+    /// A map of `pz` without guides.
+    pub fn new(pz: &'a PoleZero) -> Self {
+        PzMap {
+            pz,
+            label: None,
+            damping_guides: false,
+        }
+    }
+
+    /// Sets the label.
+    pub fn label(mut self, label: &'a str) -> Self {
+        self.label = Some(label);
+        self
+    }
+
+    /// Turns the ζ/ωₙ guides on or off.
+    pub fn damping_guides(mut self, on: bool) -> Self {
+        self.damping_guides = on;
+        self
+    }
+}
+
+/// Colour of poles and zeros.
+const ROOT_COLOR: Color = Color(31, 119, 180);
+/// Colour of cancelled pole-zero pairs.
+const CANCEL_COLOR: Color = Color(230, 110, 0);
+/// Shading of the stable half plane.
+const STABLE_SHADE: Color = Color(44, 160, 44);
+
+/// Writes a pole-zero map: poles ×, zeros ○, cancelled pairs ⊗ (orange), multiplicities
+/// labelled "×m", the imaginary axis, the stable left half plane shaded, equal units per
+/// pixel on both axes, and optionally lines of constant ζ (0.1, 0.3, 0.5, 0.7, 0.9) and
+/// half-circles of constant ωₙ.
+///
+/// Errors: bad options or an unwritable path; no file is left behind. A map with no finite
+/// poles or zeros (a constant G) is drawn with a note.
+///
+/// ```no_run
+/// use ltikit::TransferFunction;
+/// use ltikit::plot::{pzmap_png, PlotOptions, PzMap};
+/// let g = TransferFunction::from_descending(&[1.0, 2.0], &[1.0, 4.0, 5.0, 2.0]).unwrap();
+/// let pz = g.pole_zero().unwrap();
+/// pzmap_png("/tmp/pz.png", &PzMap::new(&pz).damping_guides(true), &PlotOptions::default()).unwrap();
+/// ```
+pub fn pzmap_png(path: impl AsRef<Path>, map: &PzMap, opts: &PlotOptions) -> Result<()> {
+    let title = opts.title_or(|| match map.label {
+        Some(l) => format!("Pole-zero map of G(s) = {l}"),
+        None => "Pole-zero map".into(),
+    });
+    render(path.as_ref(), opts, |c, th| {
+        draw(c, th, map, opts, title.as_deref())
+    })
+}
+
+fn finite(r: &Root) -> bool {
+    r.value.re.is_finite() && r.value.im.is_finite()
+}
+
+fn draw(
+    c: &mut Canvas,
+    th: &Theme,
+    map: &PzMap,
+    opts: &PlotOptions,
+    title: Option<&str>,
+) -> Result<()> {
+    let pz = map.pz;
+    let all: Vec<Complex64> = pz
+        .reduced_poles
+        .iter()
+        .chain(&pz.reduced_zeros)
+        .chain(&pz.cancelled)
+        .filter(|r| finite(r))
+        .map(|r| r.value)
+        .collect();
+    let (xlo, xhi) = bounds(all.iter().map(|z| z.re).chain([0.0])).unwrap_or((0.0, 0.0));
+    let (ylo, yhi) = bounds(all.iter().map(|z| z.im).chain([0.0])).unwrap_or((0.0, 0.0));
+    let span = (xhi - xlo).max(yhi - ylo);
+    let span = if span > 0.0 { span } else { 2.0 };
+    let pad = 0.18 * span;
+    let xr = (xlo - pad, xhi + pad);
+    let yr = (ylo - pad, yhi + pad);
+    let frame = layout_single(c, th, title.is_some(), true, true, |w, h| {
+        equal_axes(xr, yr, w, h, th)
+    });
+    let (x0, x1, y0, y1) = (frame.x.lo, frame.x.hi, frame.y.lo, frame.y.hi);
+
+    // Stable half plane.
+    if x0 < 0.0 {
+        let p = frame.px((x0, y0));
+        let q = frame.px((0.0f64.min(x1), y1));
+        c.fill_rect(p.0, p.1, q.0, q.1, STABLE_SHADE, 0.08);
+    }
+    if opts.grid {
+        frame.draw_grid(c, th);
+    }
+    let thin = (th.line * 0.6).max(1.0);
+    let guide = Color(150, 150, 150);
+    if map.damping_guides {
+        let r_max = [x0, x1]
+            .iter()
+            .flat_map(|&x| [y0, y1].map(|y| (x * x + y * y).sqrt()))
+            .fold(0.0, f64::max);
+        for zeta in [0.1f64, 0.3, 0.5, 0.7, 0.9] {
+            let dir = Complex64::new(-zeta, (1.0 - zeta * zeta).sqrt());
+            for sign in [1.0, -1.0] {
+                let end = (dir.re * r_max, sign * dir.im * r_max);
+                frame.plot_line(c, [(0.0, 0.0), end], thin, guide, LineStyle::Dashed);
+            }
+            // Label where the upper ray leaves the frame.
+            let t_exit = [
+                if dir.re < 0.0 {
+                    x0 / dir.re
+                } else {
+                    f64::INFINITY
+                },
+                if dir.im > 0.0 {
+                    y1 / dir.im
+                } else {
+                    f64::INFINITY
+                },
+            ]
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+            if t_exit.is_finite() && t_exit > 0.0 {
+                let at = (dir.re * t_exit * 0.94, dir.im * t_exit * 0.94);
+                if frame.contains(at) {
+                    let p = frame.px(at);
+                    c.text_on_box(
+                        &format!("ζ = {zeta}"),
+                        p,
+                        th.note * 0.85,
+                        Color(110, 110, 110),
+                        (HAlign::Center, VAlign::Middle),
+                    )?;
+                }
+            }
+        }
+        // ωn half-circles at the tick spacing of the real axis.
+        let step = frame
+            .x
+            .ticks
+            .windows(2)
+            .map(|w| w[1].v - w[0].v)
+            .next()
+            .unwrap_or(1.0);
+        let mut k = 1;
+        while (k as f64) * step <= r_max && k < 50 {
+            let r = k as f64 * step;
+            let arc: Vec<(f64, f64)> = (0..=96)
+                .map(|i| {
+                    let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * i as f64 / 96.0;
+                    (r * a.cos(), r * a.sin())
+                })
+                .collect();
+            frame.plot_line(c, arc, thin, guide, LineStyle::Dotted);
+            if frame.contains((-r, 0.0)) && -r > x0 + 0.02 * (x1 - x0) {
+                let p = frame.px((-r, 0.0));
+                c.text_on_box(
+                    &format!("ω_{{n}} = {}", fmt_sig(r, 3)),
+                    (p.0 - 3.0 * th.s, p.1 + 5.0 * th.s),
+                    th.note * 0.8,
+                    Color(110, 110, 110),
+                    (HAlign::Right, VAlign::Top),
+                )?;
+            }
+            k += 1;
+        }
+    }
+    // Axes through the origin: the imaginary axis is the stability boundary.
+    frame.vline(c, 0.0, th.line * 0.75, Color(60, 60, 60), LineStyle::Solid);
+    frame.hline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
+
+    let r = 7.0 * th.s;
+    let lw = th.line * 1.1;
+    let mut avoid = Vec::new();
+    let mult = |c: &mut Canvas, root: &Root, color: Color| -> Result<()> {
+        let p = (root.value.re, root.value.im);
+        if root.multiplicity > 1 && frame.contains(p) {
+            let q = frame.px(p);
+            c.text(
+                &format!("×{}", root.multiplicity),
+                (q.0 + r + 2.0 * th.s, q.1 - r),
+                th.note,
+                color,
+                (HAlign::Left, VAlign::Bottom),
+            )?;
+        }
+        Ok(())
+    };
+    for z in pz.reduced_zeros.iter().filter(|r| finite(r)) {
+        let p = (z.value.re, z.value.im);
+        frame.plot_marker(c, p, MarkerShape::Circle, r, ROOT_COLOR, lw);
+        mult(c, z, ROOT_COLOR)?;
+        avoid.push(frame.px(p));
+    }
+    for p in pz.reduced_poles.iter().filter(|r| finite(r)) {
+        let q = (p.value.re, p.value.im);
+        frame.plot_marker(c, q, MarkerShape::Cross, r, ROOT_COLOR, lw);
+        mult(c, p, ROOT_COLOR)?;
+        avoid.push(frame.px(q));
+    }
+    for k in pz.cancelled.iter().filter(|r| finite(r)) {
+        let q = (k.value.re, k.value.im);
+        frame.plot_marker(c, q, MarkerShape::CircledCross, r * 1.25, CANCEL_COLOR, lw);
+        mult(c, k, CANCEL_COLOR)?;
+        avoid.push(frame.px(q));
+    }
+
+    frame.draw_axes(c, th, true, true)?;
+    frame.draw_axis_titles(
+        c,
+        th,
+        Some("Real axis σ (1/s)"),
+        Some("Imaginary axis ω (rad/s)"),
+        th.pad,
+    )?;
+    let mut legend = vec![LegendEntry::marker("pole", MarkerShape::Cross, ROOT_COLOR)];
+    if !pz.reduced_zeros.is_empty() {
+        legend.push(LegendEntry::marker("zero", MarkerShape::Circle, ROOT_COLOR));
+    }
+    if !pz.cancelled.is_empty() {
+        legend.push(LegendEntry::marker(
+            "cancelled pole-zero pair",
+            MarkerShape::CircledCross,
+            CANCEL_COLOR,
+        ));
+    }
+    if pz.zeros_at_infinity > 0 {
+        legend.push(LegendEntry::text(
+            format!("{} zero(s) at infinity", pz.zeros_at_infinity),
+            Theme::NOTE,
+        ));
+    }
+    if all.is_empty() {
+        legend.push(LegendEntry::text("no finite poles or zeros", Theme::NOTE));
+    }
+    legend.push(LegendEntry {
+        swatch: Swatch::Patch {
+            color: STABLE_SHADE,
+            alpha: 0.25,
+        },
+        text: "stable half plane".into(),
+        color: Color::BLACK,
+    });
+    draw_legend(
+        c,
+        &frame,
+        th,
+        &legend,
+        &avoid,
+        &[
+            Corner::TopRight,
+            Corner::TopLeft,
+            Corner::BottomRight,
+            Corner::BottomLeft,
+        ],
+        &[],
+    )?;
+    if let Some(t) = title {
+        draw_title(c, th, t)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,647 @@
+//! A small anti-aliased rasteriser over an RGB buffer, with text from the compiled-in font.
+//!
+//! Geometry (strokes with round joins, dashes, discs, rings, polygons, rectangles) is drawn
+//! with exact per-pixel coverage: every stroke accumulates its coverage in a mask (maximum
+//! over its pieces, so dense polylines do not darken their own edges) that is composited
+//! once. Text is rasterised with `ab_glyph` from Noto Sans compiled into the binary (the
+//! `ttf-noto-sans` crate), with kerning, side bearings and sub-pixel pen positions: no
+//! fontconfig, no system font, no display.
+//!
+//! Coordinates are pixels with (0, 0) the top-left corner of the image; a pixel (i, j) covers
+//! [i, i + 1) × [j, j + 1), so its centre is (i + 0.5, j + 0.5).
+
+use std::sync::OnceLock;
+
+use ab_glyph::{Font, FontRef, GlyphId, PxScale, ScaleFont, point};
+
+use crate::error::{LtiError, Result};
+
+/// The compiled-in font, parsed once per process (`None` if it were ever rejected).
+fn font() -> Option<&'static FontRef<'static>> {
+    static FONT: OnceLock<Option<FontRef<'static>>> = OnceLock::new();
+    FONT.get_or_init(|| FontRef::try_from_slice(ttf_noto_sans::REGULAR).ok())
+        .as_ref()
+}
+
+/// An sRGB colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Color(pub u8, pub u8, pub u8);
+
+impl Color {
+    /// Black.
+    pub const BLACK: Color = Color(0, 0, 0);
+    /// White.
+    pub const WHITE: Color = Color(255, 255, 255);
+
+    /// This colour mixed with white: `t = 0` is the colour, `t = 1` white.
+    pub fn lighten(self, t: f64) -> Color {
+        let m = |c: u8| (f64::from(c) + (255.0 - f64::from(c)) * t).round() as u8;
+        Color(m(self.0), m(self.1), m(self.2))
+    }
+}
+
+/// Horizontal text alignment relative to the anchor point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum HAlign {
+    Left,
+    Center,
+    Right,
+}
+
+/// Vertical text alignment relative to the anchor point (capital letters define top and
+/// middle; `Bottom` includes descenders).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum VAlign {
+    Top,
+    Middle,
+    Bottom,
+}
+
+/// Capital height of Noto Sans as a fraction of the font size (the size is the ascent −
+/// descent height, as in `ab_glyph::PxScale`: 1362 font units, caps 714).
+const CAP: f64 = 0.524;
+/// Descender depth as a fraction of the font size (293 / 1362).
+const DESC: f64 = 0.215;
+
+/// One run of rich text: normal, superscript or subscript.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Run {
+    pub text: String,
+    /// 0 normal, 1 superscript, −1 subscript.
+    pub level: i8,
+}
+
+/// Splits `s` into runs: `^{…}` and `_{…}` are super- and subscripts, and `^` followed by a
+/// number (`s^2`, `10^-3`) is a superscript too. Everything else is literal.
+pub(crate) fn rich_runs(s: &str) -> Vec<Run> {
+    let mut runs: Vec<Run> = Vec::new();
+    let mut cur = String::new();
+    let chars: Vec<char> = s.chars().collect();
+    let mut i = 0;
+    let push = |runs: &mut Vec<Run>, text: String, level: i8| {
+        if !text.is_empty() {
+            runs.push(Run { text, level });
+        }
+    };
+    while i < chars.len() {
+        let c = chars[i];
+        if (c == '^' || c == '_') && i + 1 < chars.len() {
+            let level = if c == '^' { 1 } else { -1 };
+            if chars[i + 1] == '{' {
+                if let Some(end) = chars[i + 2..].iter().position(|&d| d == '}') {
+                    push(&mut runs, std::mem::take(&mut cur), 0);
+                    let inner: String = chars[i + 2..i + 2 + end].iter().collect();
+                    push(&mut runs, inner.replace('-', "−"), level);
+                    i += end + 3;
+                    continue;
+                }
+            } else if c == '^' {
+                let mut j = i + 1;
+                if j < chars.len() && (chars[j] == '-' || chars[j] == '−') {
+                    j += 1;
+                }
+                let start_digits = j;
+                while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
+                    j += 1;
+                }
+                if j > start_digits {
+                    push(&mut runs, std::mem::take(&mut cur), 0);
+                    let inner: String = chars[i + 1..j].iter().collect();
+                    push(&mut runs, inner.replace('-', "−"), 1);
+                    i = j;
+                    continue;
+                }
+            }
+        }
+        cur.push(c);
+        i += 1;
+    }
+    push(&mut runs, cur, 0);
+    runs
+}
+
+/// Relative size of super- and subscripts.
+const SCRIPT: f64 = 0.72;
+/// How far a superscript's baseline is raised, as a fraction of the font size.
+const SUP_RAISE: f64 = 0.30;
+/// How far a subscript's baseline is lowered, as a fraction of the font size.
+const SUB_DROP: f64 = 0.12;
+
+/// An RGB image being drawn.
+pub(crate) struct Canvas {
+    pub w: u32,
+    pub h: u32,
+    buf: Vec<u8>,
+    /// Coverage of the stroke being built (max over its pieces), composited once.
+    mask: Vec<f32>,
+    /// Bounding box of non-zero mask entries: x0, y0, x1, y1 (inclusive-exclusive).
+    dirty: Option<(usize, usize, usize, usize)>,
+}
+
+impl Canvas {
+    /// A white canvas. The caller has validated the size.
+    pub fn new(w: u32, h: u32) -> Result<Canvas> {
+        if font().is_none() {
+            return Err(LtiError::Plot(
+                "the compiled-in font (Noto Sans) could not be loaded".into(),
+            ));
+        }
+        let n = w as usize * h as usize;
+        Ok(Canvas {
+            w,
+            h,
+            buf: vec![255; n * 3],
+            mask: vec![0.0; n],
+            dirty: None,
+        })
+    }
+
+    /// The RGB bytes, row by row.
+    pub fn pixels(&self) -> &[u8] {
+        &self.buf
+    }
+
+    #[inline]
+    fn blend(&mut self, x: usize, y: usize, c: Color, a: f64) {
+        if a <= 0.0 {
+            return;
+        }
+        let a = a.min(1.0);
+        let i = 3 * (y * self.w as usize + x);
+        let mix =
+            |bg: u8, fg: u8| (f64::from(bg) + (f64::from(fg) - f64::from(bg)) * a).round() as u8;
+        self.buf[i] = mix(self.buf[i], c.0);
+        self.buf[i + 1] = mix(self.buf[i + 1], c.1);
+        self.buf[i + 2] = mix(self.buf[i + 2], c.2);
+    }
+
+    /// Pixel index range [lo, hi) whose centres can lie within [a, b], clamped to the image.
+    fn span(a: f64, b: f64, n: u32) -> (usize, usize) {
+        let lo = (a - 0.5).floor().max(0.0);
+        let hi = (b + 0.5).ceil().min(f64::from(n));
+        if lo >= hi || lo.is_nan() || hi.is_nan() {
+            return (0, 0);
+        }
+        (lo as usize, hi as usize)
+    }
+
+    /// Fills the rectangle [x0, x1] × [y0, y1] with `c` at opacity `alpha`, anti-aliased at
+    /// fractional edges.
+    pub fn fill_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64, c: Color, alpha: f64) {
+        let (xa, xb) = (x0.min(x1), x0.max(x1));
+        let (ya, yb) = (y0.min(y1), y0.max(y1));
+        let (i0, i1) = Self::span(xa, xb, self.w);
+        let (j0, j1) = Self::span(ya, yb, self.h);
+        for j in j0..j1 {
+            let cy = ((yb.min(j as f64 + 1.0)) - ya.max(j as f64)).clamp(0.0, 1.0);
+            if cy <= 0.0 {
+                continue;
+            }
+            for i in i0..i1 {
+                let cx = ((xb.min(i as f64 + 1.0)) - xa.max(i as f64)).clamp(0.0, 1.0);
+                self.blend(i, j, c, alpha * cx * cy);
+            }
+        }
+    }
+
+    /// Adds the capsule of half-width `r` around segment a–b to the stroke mask.
+    fn mask_segment(&mut self, a: (f64, f64), b: (f64, f64), r: f64) {
+        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+        // Long segments are cut into short pieces so that each piece's bounding box is small.
+        let pieces = ((len / 12.0).ceil() as usize).clamp(1, 100_000);
+        for k in 0..pieces {
+            let t0 = k as f64 / pieces as f64;
+            let t1 = (k + 1) as f64 / pieces as f64;
+            let p = (a.0 + (b.0 - a.0) * t0, a.1 + (b.1 - a.1) * t0);
+            let q = (a.0 + (b.0 - a.0) * t1, a.1 + (b.1 - a.1) * t1);
+            self.mask_piece(p, q, r);
+        }
+    }
+
+    fn mask_piece(&mut self, a: (f64, f64), b: (f64, f64), r: f64) {
+        let pad = r + 1.0;
+        let (i0, i1) = Self::span(a.0.min(b.0) - pad, a.0.max(b.0) + pad, self.w);
+        let (j0, j1) = Self::span(a.1.min(b.1) - pad, a.1.max(b.1) + pad, self.h);
+        if i0 >= i1 || j0 >= j1 {
+            return;
+        }
+        let d = (b.0 - a.0, b.1 - a.1);
+        let dd = d.0 * d.0 + d.1 * d.1;
+        let w = self.w as usize;
+        for j in j0..j1 {
+            let py = j as f64 + 0.5;
+            for i in i0..i1 {
+                let px = i as f64 + 0.5;
+                let t = if dd > 0.0 {
+                    (((px - a.0) * d.0 + (py - a.1) * d.1) / dd).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let ex = px - (a.0 + t * d.0);
+                let ey = py - (a.1 + t * d.1);
+                let dist = (ex * ex + ey * ey).sqrt();
+                let cov = (r + 0.5 - dist).clamp(0.0, 1.0) as f32;
+                if cov > 0.0 {
+                    let m = &mut self.mask[j * w + i];
+                    if cov > *m {
+                        *m = cov;
+                    }
+                }
+            }
+        }
+        self.dirty = Some(match self.dirty {
+            None => (i0, j0, i1, j1),
+            Some((x0, y0, x1, y1)) => (x0.min(i0), y0.min(j0), x1.max(i1), y1.max(j1)),
+        });
+    }
+
+    /// Composites the stroke mask with colour `c` and clears it.
+    fn flush_mask(&mut self, c: Color, alpha: f64) {
+        if let Some((x0, y0, x1, y1)) = self.dirty.take() {
+            let w = self.w as usize;
+            for j in y0..y1 {
+                for i in x0..x1 {
+                    let m = self.mask[j * w + i];
+                    if m > 0.0 {
+                        self.mask[j * w + i] = 0.0;
+                        self.blend(i, j, c, alpha * f64::from(m));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Strokes a polyline of width `width` px with round joins. `dash` is an on/off pattern in
+    /// pixels (empty: solid). Non-finite points break the line.
+    pub fn stroke(&mut self, pts: &[(f64, f64)], width: f64, c: Color, dash: &[f64]) {
+        self.stroke_alpha(pts, width, c, dash, 1.0);
+    }
+
+    /// [`Canvas::stroke`] with an opacity.
+    pub fn stroke_alpha(
+        &mut self,
+        pts: &[(f64, f64)],
+        width: f64,
+        c: Color,
+        dash: &[f64],
+        alpha: f64,
+    ) {
+        let r = (width / 2.0).max(0.35);
+        let dash_total: f64 = dash.iter().sum();
+        let dashed = dash.len() >= 2 && dash_total > 0.0 && dash.iter().all(|d| *d >= 0.0);
+        let ok = |p: &(f64, f64)| {
+            p.0.is_finite() && p.1.is_finite() && p.0.abs() < 1e7 && p.1.abs() < 1e7
+        };
+        // Position in the dash pattern: element k with `left` pixels of it remaining.
+        let mut k = 0;
+        let mut left = dash.first().copied().unwrap_or(0.0);
+        for seg in pts.windows(2) {
+            let (a, b) = (seg[0], seg[1]);
+            if !ok(&a) || !ok(&b) {
+                continue;
+            }
+            if !dashed {
+                self.mask_segment(a, b, r);
+                continue;
+            }
+            let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+            let mut s = 0.0;
+            while len - s > 1e-9 {
+                let step = left.min(len - s);
+                if k % 2 == 0 && step > 0.0 {
+                    let (t0, t1) = (s / len, (s + step) / len);
+                    let p = (a.0 + (b.0 - a.0) * t0, a.1 + (b.1 - a.1) * t0);
+                    let q = (a.0 + (b.0 - a.0) * t1, a.1 + (b.1 - a.1) * t1);
+                    self.mask_segment(p, q, r);
+                }
+                s += step;
+                left -= step;
+                if left <= 1e-9 {
+                    k = (k + 1) % dash.len();
+                    left = dash[k];
+                }
+            }
+        }
+        if pts.len() == 1 && ok(&pts[0]) {
+            self.mask_segment(pts[0], pts[0], r);
+        }
+        self.flush_mask(c, alpha);
+    }
+
+    /// A filled disc.
+    pub fn fill_circle(&mut self, center: (f64, f64), radius: f64, c: Color) {
+        let (i0, i1) = Self::span(center.0 - radius - 1.0, center.0 + radius + 1.0, self.w);
+        let (j0, j1) = Self::span(center.1 - radius - 1.0, center.1 + radius + 1.0, self.h);
+        for j in j0..j1 {
+            for i in i0..i1 {
+                let d = ((i as f64 + 0.5 - center.0).powi(2) + (j as f64 + 0.5 - center.1).powi(2))
+                    .sqrt();
+                self.blend(i, j, c, (radius + 0.5 - d).clamp(0.0, 1.0));
+            }
+        }
+    }
+
+    /// A circle outline of line width `width`.
+    pub fn ring(&mut self, center: (f64, f64), radius: f64, width: f64, c: Color) {
+        let hw = width / 2.0;
+        let (i0, i1) = Self::span(
+            center.0 - radius - hw - 1.0,
+            center.0 + radius + hw + 1.0,
+            self.w,
+        );
+        let (j0, j1) = Self::span(
+            center.1 - radius - hw - 1.0,
+            center.1 + radius + hw + 1.0,
+            self.h,
+        );
+        for j in j0..j1 {
+            for i in i0..i1 {
+                let d = ((i as f64 + 0.5 - center.0).powi(2) + (j as f64 + 0.5 - center.1).powi(2))
+                    .sqrt();
+                self.blend(i, j, c, (hw + 0.5 - (d - radius).abs()).clamp(0.0, 1.0));
+            }
+        }
+    }
+
+    /// Fills a (small) polygon, even-odd rule, 4×4 supersampled.
+    pub fn fill_polygon(&mut self, pts: &[(f64, f64)], c: Color, alpha: f64) {
+        if pts.len() < 3 || pts.iter().any(|p| !p.0.is_finite() || !p.1.is_finite()) {
+            return;
+        }
+        let (mut xa, mut xb, mut ya, mut yb) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for p in pts {
+            xa = xa.min(p.0);
+            xb = xb.max(p.0);
+            ya = ya.min(p.1);
+            yb = yb.max(p.1);
+        }
+        let (i0, i1) = Self::span(xa, xb, self.w);
+        let (j0, j1) = Self::span(ya, yb, self.h);
+        let inside = |x: f64, y: f64| {
+            let mut c = false;
+            let n = pts.len();
+            let mut k = n - 1;
+            for m in 0..n {
+                let (pi, pk) = (pts[m], pts[k]);
+                if (pi.1 > y) != (pk.1 > y) && x < (pk.0 - pi.0) * (y - pi.1) / (pk.1 - pi.1) + pi.0
+                {
+                    c = !c;
+                }
+                k = m;
+            }
+            c
+        };
+        for j in j0..j1 {
+            for i in i0..i1 {
+                let mut hits = 0;
+                for sy in 0..4 {
+                    for sx in 0..4 {
+                        if inside(
+                            i as f64 + (sx as f64 + 0.5) / 4.0,
+                            j as f64 + (sy as f64 + 0.5) / 4.0,
+                        ) {
+                            hits += 1;
+                        }
+                    }
+                }
+                if hits > 0 {
+                    self.blend(i, j, c, alpha * f64::from(hits) / 16.0);
+                }
+            }
+        }
+    }
+
+    /// Width in pixels of plain text at font size `size` (advances and kerning).
+    pub fn plain_width(text: &str, size: f64) -> f64 {
+        let Some(f) = font() else { return 0.0 };
+        let sf = f.as_scaled(PxScale::from(size as f32));
+        let mut w = 0.0f32;
+        let mut prev: Option<GlyphId> = None;
+        for ch in text.chars() {
+            let id = sf.glyph_id(ch);
+            if let Some(p) = prev {
+                w += sf.kern(p, id);
+            }
+            w += sf.h_advance(id);
+            prev = Some(id);
+        }
+        f64::from(w)
+    }
+
+    /// Width of rich text (see [`rich_runs`]).
+    pub fn text_width(text: &str, size: f64) -> f64 {
+        rich_runs(text)
+            .iter()
+            .map(|r| Self::plain_width(&r.text, if r.level == 0 { size } else { size * SCRIPT }))
+            .sum()
+    }
+
+    /// Draws plain text with its baseline starting at (x, baseline). `rotate`: reading
+    /// upwards, the baseline being the column x and the text starting at row `baseline`.
+    fn draw_plain(
+        &mut self,
+        text: &str,
+        x: f64,
+        baseline: f64,
+        size: f64,
+        c: Color,
+        rotate: bool,
+    ) -> Result<()> {
+        let f =
+            font().ok_or_else(|| LtiError::Plot("the compiled-in font is unavailable".into()))?;
+        let scale = PxScale::from(size as f32);
+        let sf = f.as_scaled(scale);
+        // Horizontal text is laid out at its real sub-pixel position; rotated text at the
+        // origin and then turned by a quarter (integer pixel offsets map exactly).
+        let (ox, oy) = if rotate {
+            (0.0, 0.0)
+        } else {
+            (x as f32, baseline as f32)
+        };
+        let (rx, ry) = (x.round() as i64, baseline.round() as i64);
+        let mut pen = ox;
+        let mut prev: Option<GlyphId> = None;
+        let (w, h) = (i64::from(self.w), i64::from(self.h));
+        for ch in text.chars() {
+            let id = sf.glyph_id(ch);
+            if let Some(p) = prev {
+                pen += sf.kern(p, id);
+            }
+            let glyph = id.with_scale_and_position(scale, point(pen, oy));
+            pen += sf.h_advance(id);
+            prev = Some(id);
+            let Some(og) = f.outline_glyph(glyph) else {
+                continue;
+            };
+            let b = og.px_bounds();
+            let (bx, by) = (b.min.x as i64, b.min.y as i64);
+            og.draw(|gx, gy, cov| {
+                let (px, py) = if rotate {
+                    (rx + by + i64::from(gy), ry - bx - i64::from(gx))
+                } else {
+                    (bx + i64::from(gx), by + i64::from(gy))
+                };
+                if px >= 0 && py >= 0 && px < w && py < h {
+                    self.blend(px as usize, py as usize, c, f64::from(cov));
+                }
+            });
+        }
+        Ok(())
+    }
+
+    /// Start x and baseline y of text of `width` anchored at `at` with `align`.
+    fn anchor(at: (f64, f64), width: f64, size: f64, align: (HAlign, VAlign)) -> (f64, f64) {
+        let x0 = match align.0 {
+            HAlign::Left => at.0,
+            HAlign::Center => at.0 - width / 2.0,
+            HAlign::Right => at.0 - width,
+        };
+        let baseline = match align.1 {
+            VAlign::Top => at.1 + CAP * size,
+            VAlign::Middle => at.1 + CAP * size / 2.0,
+            VAlign::Bottom => at.1 - DESC * size,
+        };
+        (x0, baseline)
+    }
+
+    /// Draws rich text anchored at `at` with `align` (horizontal, vertical).
+    pub fn text(
+        &mut self,
+        text: &str,
+        at: (f64, f64),
+        size: f64,
+        c: Color,
+        align: (HAlign, VAlign),
+    ) -> Result<()> {
+        let (mut cx, baseline) = Self::anchor(at, Self::text_width(text, size), size, align);
+        for run in rich_runs(text) {
+            let (sz, dy) = match run.level {
+                0 => (size, 0.0),
+                1 => (size * SCRIPT, -SUP_RAISE * size),
+                _ => (size * SCRIPT, SUB_DROP * size),
+            };
+            self.draw_plain(&run.text, cx, baseline + dy, sz, c, false)?;
+            cx += Self::plain_width(&run.text, sz);
+        }
+        Ok(())
+    }
+
+    /// [`Canvas::text`] over a translucent white box, for annotations on top of curves.
+    pub fn text_on_box(
+        &mut self,
+        text: &str,
+        at: (f64, f64),
+        size: f64,
+        c: Color,
+        align: (HAlign, VAlign),
+    ) -> Result<()> {
+        let width = Self::text_width(text, size);
+        let (x0, baseline) = Self::anchor(at, width, size, align);
+        let m = 0.15 * size;
+        let raise = if text.contains('^') {
+            SUP_RAISE * size
+        } else {
+            0.0
+        };
+        self.fill_rect(
+            x0 - m,
+            baseline - CAP * size - raise - m,
+            x0 + width + m,
+            baseline + DESC * size + 0.5 * m,
+            Color::WHITE,
+            0.85,
+        );
+        self.text(text, at, size, c, align)
+    }
+
+    /// Draws plain text reading upwards, centred vertically at y, its caps centred on x.
+    pub fn text_up(&mut self, text: &str, x: f64, y: f64, size: f64, c: Color) -> Result<()> {
+        let width = Self::text_width(text, size);
+        // Rotated: the baseline is a column; caps extend to its left.
+        let baseline_x = x + CAP * size / 2.0;
+        // Rotated (reading upwards): caps extend to the left of the baseline column.
+        let mut cy = y + width / 2.0;
+        for run in rich_runs(text) {
+            let (sz, dx) = match run.level {
+                0 => (size, 0.0),
+                1 => (size * SCRIPT, -SUP_RAISE * size),
+                _ => (size * SCRIPT, SUB_DROP * size),
+            };
+            self.draw_plain(&run.text, baseline_x + dx, cy, sz, c, true)?;
+            cy -= Self::plain_width(&run.text, sz);
+        }
+        Ok(())
+    }
+}
+
+/// Font cap height for layout computations.
+pub(crate) fn cap_height(size: f64) -> f64 {
+    CAP * size
+}
+
+/// Descender depth for layout computations.
+pub(crate) fn descent(size: f64) -> f64 {
+    DESC * size
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rich_text_runs() {
+        let r = rich_runs("10^{-3} s^2 + x_{1}");
+        let texts: Vec<(&str, i8)> = r.iter().map(|r| (r.text.as_str(), r.level)).collect();
+        assert_eq!(
+            texts,
+            vec![
+                ("10", 0),
+                ("−3", 1),
+                (" s", 0),
+                ("2", 1),
+                (" + x", 0),
+                ("1", -1)
+            ]
+        );
+        // A lone caret or underscore stays literal.
+        let r = rich_runs("a_b ^ c");
+        assert_eq!(r.len(), 1);
+        assert_eq!(r[0].text, "a_b ^ c");
+    }
+
+    #[test]
+    fn stroke_covers_pixels_and_dashes_leave_gaps() {
+        let mut c = Canvas::new(60, 20).unwrap();
+        c.stroke(&[(5.0, 10.0), (55.0, 10.0)], 2.0, Color::BLACK, &[]);
+        let px = |c: &Canvas, x: usize, y: usize| c.pixels()[3 * (y * 60 + x)];
+        assert_eq!(px(&c, 30, 9), 0);
+        assert_eq!(px(&c, 30, 14), 255);
+        let mut d = Canvas::new(60, 20).unwrap();
+        d.stroke(&[(5.0, 10.0), (55.0, 10.0)], 2.0, Color::BLACK, &[6.0, 6.0]);
+        let dark: Vec<bool> = (0..60).map(|x| px(&d, x, 9) < 128).collect();
+        let n = dark.iter().filter(|&&b| b).count();
+        let gaps = dark.windows(2).filter(|w| w[0] && !w[1]).count();
+        assert!((20..42).contains(&n), "dark pixels {n}");
+        assert!(gaps >= 3, "gaps {gaps}");
+    }
+
+    #[test]
+    fn text_is_drawn() {
+        let mut c = Canvas::new(80, 30).unwrap();
+        c.text(
+            "Hg 10^{2}",
+            (2.0, 15.0),
+            20.0,
+            Color::BLACK,
+            (HAlign::Left, VAlign::Middle),
+        )
+        .unwrap();
+        assert!(c.pixels().iter().any(|&b| b < 100));
+        assert!(Canvas::text_width("10^{2}", 20.0) > Canvas::plain_width("10", 20.0));
+    }
+}
