@@ -78,3 +78,34 @@ fn tank_time_constant() {
     assert_eq!(p.len(), 1);
     assert!((p[0].value.re + 0.5).abs() < 1e-15);
 }
+
+#[test]
+fn two_dof_is_real_negative_at_the_first_mass_frequency() {
+    // At ω² = K1/M1 the first mass's spring force cancels its inertia and
+    // G(jω) = −M1/(K1·M2) exactly (from Δ(s) = (K2 + Cs)(−M2ω²) there): phase −180°.
+    let (m1, m2, k1, k2, c) = (1.5, 2.0, 3.0, 1.5, 0.3);
+    let (g, _) = build_plant(
+        "two-dof",
+        &[
+            ("M1".into(), m1),
+            ("M2".into(), m2),
+            ("K1".into(), k1),
+            ("K2".into(), k2),
+            ("C".into(), c),
+        ],
+    )
+    .unwrap();
+    let w = f64::sqrt(k1 / m1);
+    let v = g.eval(num_complex::Complex64::new(0.0, w));
+    assert!(
+        (v.re + m1 / (k1 * m2)).abs() < 1e-14 && v.im.abs() < 1e-14,
+        "{v}"
+    );
+    let m = g.margins().unwrap();
+    let gm = m
+        .phase_crossings
+        .iter()
+        .find(|pc| (pc.w - w).abs() < 1e-12)
+        .expect("a phase crossing at sqrt(K1/M1)");
+    assert!((gm.gain_margin - k1 * m2 / m1).abs() < 1e-12);
+}

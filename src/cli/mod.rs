@@ -10,6 +10,8 @@ mod margins;
 mod output;
 mod parse;
 mod plant;
+mod plots;
+mod pullin;
 mod residue;
 mod response;
 mod simulate;
@@ -57,14 +59,27 @@ enum Command {
     Freq(freq::FreqArgs),
     /// Gain and phase margins (all crossings), bandwidth, resonant peak.
     Margins(margins::MarginsArgs),
+    /// Bode diagram PNG (magnitude and continuous phase, margins marked); several plants with
+    /// repeated --num/--den or --plant.
+    Bode(plots::BodeArgs),
+    /// Step (or impulse, ramp) response PNG with rise time, settling band, peak and overshoot.
+    Step(plots::StepArgs),
+    /// Pole-zero map PNG (multiplicities, cancelled pairs, stable half plane).
+    Pzmap(plots::PzmapArgs),
+    /// Nyquist diagram PNG (−∞ < ω < ∞, indentations around imaginary-axis poles).
+    Nyquist(plots::NyquistArgs),
     /// The main job: the textbook tour — analyses every textbook plant and the seed's
     /// nonlinear models, checks the results, writes out/report.md with its PNGs.
     Demo(demo::DemoArgs),
     /// Equilibria of a nonlinear model, A, B, C, D at each (exact Jacobians), eigenvalues,
     /// local stability and the linearised input→output transfer function.
     Linearize(linearize::LinearizeArgs),
-    /// Simulate a nonlinear model (adaptive Dormand–Prince 5(4)); CSV or JSON.
+    /// Simulate a nonlinear model (adaptive Dormand–Prince 5(4)); CSV or JSON, and a time
+    /// plot or phase portrait with -o.
     Simulate(simulate::SimulateArgs),
+    /// The MEMS pull-in diagram PNG: equilibrium gap against voltage.
+    #[command(name = "mems-pullin")]
+    MemsPullin(pullin::PullinArgs),
 }
 
 /// Entry point of the binary: parses the arguments, runs the command, returns the exit code.
@@ -98,9 +113,14 @@ fn run(cli: Cli) -> Result<()> {
         Command::Response(a) => response::run(&a),
         Command::Freq(a) => freq::run(&a),
         Command::Margins(a) => margins::run(&a),
+        Command::Bode(a) => plots::bode(&a),
+        Command::Step(a) => plots::step(&a),
+        Command::Pzmap(a) => plots::pzmap(&a),
+        Command::Nyquist(a) => plots::nyquist(&a),
         Command::Demo(a) => demo::run(&a),
         Command::Linearize(a) => linearize::run(&a),
         Command::Simulate(a) => simulate::run(&a),
+        Command::MemsPullin(a) => pullin::run(&a),
     }
 }
 

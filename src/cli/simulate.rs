@@ -38,6 +38,97 @@ pub struct SimulateArgs {
     /// Print JSON instead of CSV.
     #[arg(long)]
     pub json: bool,
+    /// Also draw a PNG: the states against time, or with --phase a phase portrait.
+    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    pub output: Option<std::path::PathBuf>,
+    /// Phase portrait axes: two state numbers (1-based) or names, e.g. --phase 1,2.
+    #[arg(long, value_name = "X,Y", requires = "output")]
+    pub phase: Option<String>,
+    /// Image size for -o, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1000x700", value_name = "WxH")]
+    pub size: String,
+}
+
+/// Index of a state given by 1-based number or name.
+fn state_index(s: &str, names: &[String]) -> Result<usize> {
+    let s = s.trim();
+    if let Ok(k) = s.parse::<usize>() {
+        if k >= 1 && k <= names.len() {
+            return Ok(k - 1);
+        }
+        bail!(
+            "--phase: state {k} does not exist (the model has {} states)",
+            names.len()
+        );
+    }
+    names.iter().position(|n| n == s).ok_or_else(|| {
+        anyhow::anyhow!(
+            "--phase: no state called '{s}' (states: {})",
+            names.join(", ")
+        )
+    })
+}
+
+fn picture(
+    a: &SimulateArgs,
+    sys: &dyn crate::nonlinear::DynSystem,
+    sim: &Simulation,
+) -> Result<()> {
+    use crate::plot::{
+        Curve, Equilibrium, PhasePortrait, PlotOptions, phase_portrait_png, time_plot_png,
+    };
+    let Some(path) = &a.output else {
+        return Ok(());
+    };
+    let opts = PlotOptions {
+        size: crate::plot::parse_size(&a.size)?,
+        title: Some(format!("{} simulation", sim.model)),
+        ..Default::default()
+    };
+    match &a.phase {
+        None => {
+            let curves = (0..sim.state_names.len())
+                .map(|k| {
+                    let y: Vec<f64> = sim.states.iter().map(|x| x[k]).collect();
+                    Ok(Curve::from_xy(&sim.t, &y)?.label(sim.state_names[k].clone()))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            time_plot_png(path, &curves, "states", &opts)?;
+        }
+        Some(spec) => {
+            let Some((xs, ys)) = spec.split_once(',') else {
+                bail!("--phase '{spec}': expected two states, e.g. 1,2");
+            };
+            let (i, j) = (
+                state_index(xs, &sim.state_names)?,
+                state_index(ys, &sim.state_names)?,
+            );
+            let traj = Curve::new(sim.states.iter().map(|x| (x[i], x[j])));
+            let lin = crate::nonlinear::linearize(
+                sys,
+                Some(&sys.operating_input()),
+                &crate::nonlinear::EquilibriumSearch::default(),
+            )?;
+            let equilibria = lin
+                .equilibria
+                .iter()
+                .map(|e| Equilibrium {
+                    at: (e.x[i], e.x[j]),
+                    stable: e.stability == crate::nonlinear::LocalStability::AsymptoticallyStable,
+                    label: None,
+                })
+                .collect();
+            let p = PhasePortrait {
+                trajectories: vec![traj],
+                equilibria,
+                x_label: sim.state_names[i].clone(),
+                y_label: sim.state_names[j].clone(),
+                ..Default::default()
+            };
+            phase_portrait_png(path, &p, &opts)?;
+        }
+    }
+    Ok(())
 }
 
 /// Parses the `--input` value for a model with `nu` inputs.
@@ -89,6 +180,7 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
         ..Default::default()
     };
     let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
+    picture(a, sys.as_ref(), &sim)?;
     if a.json {
         print_json(&SimulationJson::from(&sim))
     } else {

@@ -187,10 +187,10 @@ static PLANTS: &[PlantSpec] = &[
         output: "position x2 [m]",
         params: &[
             p("M1", 1.0, "kg", "first mass", true),
-            p("M2", 1.0, "kg", "second mass", true),
+            p("M2", 2.0, "kg", "second mass", true),
             p("K1", 1.0, "N/m", "wall spring", true),
-            p("K2", 1.0, "N/m", "coupling spring", true),
-            p("C", 0.2, "N·s/m", "coupling damper", false),
+            p("K2", 1.5, "N/m", "coupling spring", true),
+            p("C", 0.3, "N·s/m", "coupling damper", false),
         ],
         build: |v| {
             let (m1, m2, k1, k2, c) = (v[0], v[1], v[2], v[3], v[4]);

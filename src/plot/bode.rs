@@ -369,7 +369,7 @@ fn draw(
                     let p = mag.px((wpc, -gm / 2.0));
                     if mag.contains((wpc, -gm / 2.0)) {
                         c.text_on_box(
-                            &format!("GM {} dB", fmt_sig(gm, 3)),
+                            &format!("GM {} dB", fmt_margin(gm, 3)),
                             (p.0 + 8.0 * th.s, p.1),
                             th.note,
                             col,
@@ -378,7 +378,7 @@ fn draw(
                     }
                 }
                 info.push(LegendEntry::text(
-                    format!("{prefix}GM = {} dB at {}", fmt_sig(gm, 4), fmt_w(wpc)),
+                    format!("{prefix}GM = {} dB at {}", fmt_margin(gm, 4), fmt_w(wpc)),
                     col,
                 ));
             }
@@ -408,7 +408,7 @@ fn draw(
                         if ph.contains(mid) {
                             let q = ph.px(mid);
                             c.text_on_box(
-                                &format!("PM {}°", fmt_sig(pm, 3)),
+                                &format!("PM {}°", fmt_margin(pm, 3)),
                                 (q.0 + 8.0 * th.s, q.1),
                                 th.note,
                                 col,
@@ -418,7 +418,7 @@ fn draw(
                     }
                 }
                 info.push(LegendEntry::text(
-                    format!("{prefix}PM = {}° at {}", fmt_sig(pm, 4), fmt_w(wgc)),
+                    format!("{prefix}PM = {}° at {}", fmt_margin(pm, 4), fmt_w(wgc)),
                     col,
                 ));
             }
@@ -483,4 +483,9 @@ fn draw(
         draw_title(c, th, t)?;
     }
     Ok(())
+}
+
+/// A margin in dB or degrees for display: rounding residue below 1e-9 shows as 0.
+fn fmt_margin(x: f64, sig: usize) -> String {
+    fmt_sig(if x.abs() < 1e-9 { 0.0 } else { x }, sig)
 }

@@ -375,14 +375,19 @@ fn draw(
                 ),
                 col,
             ));
-            info_rows.push(LegendEntry::text(
+            // A monotone response approaches its peak |y∞| only as t → ∞ (peak_time = ∞).
+            let peak = if i.peak_time.is_finite() {
                 format!(
-                    "{prefix}overshoot {} %, peak {} at {} s, final value {}",
+                    "overshoot {} %, peak {} at {} s",
                     fmt_sig(i.overshoot_percent, 3),
                     fmt_sig(i.peak, 4),
-                    fmt_sig(i.peak_time, 3),
-                    fmt_sig(yss, 4)
-                ),
+                    fmt_sig(i.peak_time, 3)
+                )
+            } else {
+                "no overshoot (monotone)".to_string()
+            };
+            info_rows.push(LegendEntry::text(
+                format!("{prefix}{peak}, final value {}", fmt_sig(yss, 4)),
                 col,
             ));
         } else if let Some(f) = s.response.final_value {

@@ -2,6 +2,7 @@
 
 use anyhow::Result;
 
+use super::super::plots;
 use super::Ctx;
 use super::md::Md;
 use crate::TransferFunction;
@@ -379,5 +380,36 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
         },
     ]);
     super::verify_margins(ctx, &p.file.name, g, &m)?;
+
+    let label = format!("G(s) = {g}");
+    let plant = [(label.clone(), g.clone())];
+    let bode = format!("{}-bode.png", p.slug);
+    plots::bode_figure(
+        &ctx.figure(&bode),
+        &plant,
+        None,
+        true,
+        true,
+        &super::fig(format!("{}: Bode diagram", p.file.name)),
+    )?;
+    let step = format!("{}-step.png", p.slug);
+    plots::step_figure(
+        &ctx.figure(&step),
+        &plant,
+        &Input::Step,
+        None,
+        &super::fig(format!("{}: step response", p.file.name)),
+    )?;
+    let pz = format!("{}-pzmap.png", p.slug);
+    plots::pzmap_figure(
+        &ctx.figure(&pz),
+        &label,
+        g,
+        true,
+        &super::fig(format!("{}: poles and zeros", p.file.name)),
+    )?;
+    md.image(&format!("Bode diagram of the {}", p.file.name), &bode);
+    md.image(&format!("Step response of the {}", p.file.name), &step);
+    md.image(&format!("Pole-zero map of the {}", p.file.name), &pz);
     Ok(a)
 }

@@ -56,6 +56,15 @@ impl Ctx {
     }
 }
 
+/// Plot options for the report's figures.
+pub fn fig(title: impl Into<String>) -> crate::plot::PlotOptions {
+    crate::plot::PlotOptions {
+        size: (1000, 650),
+        title: Some(title.into()),
+        ..Default::default()
+    }
+}
+
 #[derive(Serialize)]
 struct Summary {
     out_dir: String,

@@ -3,11 +3,13 @@
 
 use anyhow::Result;
 
+use super::super::plots;
 use super::Ctx;
 use super::linear::roots_text;
 use super::md::Md;
 use crate::TransferFunction;
 use crate::analysis::Input;
+use crate::plot::{Curve, Equilibrium, PhasePortrait, phase_portrait_png, series_color};
 use crate::poly::fmt_sig;
 
 /// ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1.
@@ -24,6 +26,7 @@ pub const CASES: [f64; 4] = [0.0, 0.1, 1.0, 2.0];
 /// Initial displacement of fig. 2.6.
 pub const X0: f64 = std::f64::consts::PI / 36.0;
 
+#[allow(clippy::float_cmp)] // ζ = 0 exactly selects the undamped window
 pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
     md.h2(&format!("{index}. The four damping cases of the seed"));
     md.p(
@@ -74,11 +77,77 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         ],
         &rows,
     );
+    let plants: Vec<(String, TransferFunction)> = CASES
+        .iter()
+        .map(|&z| Ok((format!("ζ = {z}"), second_order(z)?)))
+        .collect::<Result<_>>()?;
+    let step = "damping-step.png";
+    plots::step_figure(
+        &ctx.figure(step),
+        &plants,
+        &Input::Step,
+        Some(40.0),
+        &super::fig("Step responses for ζ = 0, 0.1, 1, 2 (ωn = 1; seed figs. 2.3, 2.5)"),
+    )?;
+    let bode = "damping-bode.png";
+    plots::bode_figure(
+        &ctx.figure(bode),
+        &plants,
+        Some((0.01, 100.0)),
+        false,
+        false,
+        &super::fig("Bode diagrams for ζ = 0, 0.1, 1, 2 (ωn = 1; exercise 3.2)"),
+    )?;
+    // Phase plots ẋ against x from x(0) = π/36 (fig. 2.6), from the exact closed forms.
+    let mut curves = Vec::new();
+    for (k, &z) in CASES.iter().enumerate() {
+        let free = second_order(z)?.inverse_laplace(&Input::None, &[X0, 0.0])?;
+        let t_end = if z == 0.0 {
+            2.0 * std::f64::consts::PI
+        } else {
+            40.0
+        };
+        let pts: Vec<(f64, f64)> = (0..=2000)
+            .map(|i| {
+                let t = t_end * i as f64 / 2000.0;
+                (
+                    free.closed_form.eval(t),
+                    free.closed_form.eval_derivative(t),
+                )
+            })
+            .collect();
+        curves.push(
+            Curve::new(pts)
+                .label(format!("ζ = {z}"))
+                .color(series_color(k)),
+        );
+    }
+    let phase = "damping-phase.png";
+    phase_portrait_png(
+        ctx.figure(phase),
+        &PhasePortrait {
+            trajectories: curves,
+            equilibria: vec![Equilibrium {
+                at: (0.0, 0.0),
+                stable: true,
+                label: None,
+            }],
+            x_label: "x (rad)".into(),
+            y_label: "ẋ (rad/s)".into(),
+            equal_aspect: true,
+            ..Default::default()
+        },
+        &super::fig("Phase plot ẋ against x from x(0) = π/36 (seed fig. 2.6)"),
+    )?;
+    md.image("Step responses of the four damping cases", step);
+    md.image("Bode diagrams of the four damping cases", bode);
+    md.image("Phase plot of the four damping cases", phase);
     Ok(())
 }
 
 /// Analytic free response of the seed (eqs. 3.33–3.35 and the overdamped form) for
 /// ẍ + 2ζẋ + x = 0 (ωₙ = 1). Eq. 3.33 prints cos(ω_d t + φ); the mathematics gives −φ.
+#[allow(clippy::float_cmp)] // ζ = 0 and ζ = 1 select the seed's exact special cases
 pub fn free_analytic(zeta: f64, y0: f64, v0: f64, t: f64) -> f64 {
     if zeta == 0.0 {
         // eq. 3.34
@@ -105,6 +174,7 @@ pub fn free_analytic(zeta: f64, y0: f64, v0: f64, t: f64) -> f64 {
 }
 
 /// Analytic unit-step response of 1/(s² + 2ζs + 1).
+#[allow(clippy::float_cmp)] // ζ = 1 selects the critically damped form
 pub fn step_analytic(zeta: f64, t: f64) -> f64 {
     if zeta < 1.0 {
         let wd = (1.0 - zeta * zeta).sqrt();

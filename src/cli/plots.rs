@@ -1,0 +1,319 @@
+//! `ltikit bode|step|pzmap|nyquist -o FILE.png` and the figure helpers shared with the demo.
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+use super::{Plant, PlantArgs};
+use crate::TransferFunction;
+use crate::analysis::{Input, TimeResponse, auto_frequency_grid, auto_time_span};
+use crate::plot::{
+    BodeSeries, InputKind, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png,
+    parse_size, pzmap_png, step_png,
+};
+
+/// Options common to every picture.
+#[derive(Args, Debug, Clone)]
+pub struct PlotArgs {
+    /// Output PNG file.
+    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    pub output: PathBuf,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1000x700", value_name = "WxH")]
+    pub size: String,
+    /// Title (default: names the plant; "" for none).
+    #[arg(long)]
+    pub title: Option<String>,
+    /// Font scale, like a dpi setting (1 = default; 0.25 … 8).
+    #[arg(long, default_value_t = 1.0, value_name = "SCALE")]
+    pub font_scale: f64,
+}
+
+impl PlotArgs {
+    pub fn options(&self) -> Result<PlotOptions> {
+        let opts = PlotOptions {
+            size: parse_size(&self.size)?,
+            title: self.title.clone(),
+            font_scale: self.font_scale,
+            ..Default::default()
+        };
+        opts.validate()?;
+        Ok(opts)
+    }
+}
+
+/// A grid over [w_min, w_max]: 600 log-spaced points plus the plant's own automatic points
+/// (which refine lightly damped resonances) inside the range.
+fn merged_grid(tf: &TransferFunction, w_min: f64, w_max: f64) -> Result<Vec<f64>> {
+    let mut w = super::freq::logspace(w_min, w_max, 600)?;
+    w.extend(
+        auto_frequency_grid(tf, 400)?
+            .into_iter()
+            .filter(|x| *x > w_min && *x < w_max),
+    );
+    w.sort_by(f64::total_cmp);
+    w.dedup();
+    Ok(w)
+}
+
+/// Writes a Bode diagram of `plants` (labels, transfer functions), with their margins when
+/// `margins`; the frequency range covers every plant's automatic range unless given.
+pub fn bode_figure(
+    path: &Path,
+    plants: &[(String, TransferFunction)],
+    range: Option<(f64, f64)>,
+    asymptotes: bool,
+    margins: bool,
+    opts: &PlotOptions,
+) -> Result<()> {
+    let (lo, hi) = match range {
+        Some(r) => r,
+        None => {
+            let mut lo = f64::INFINITY;
+            let mut hi: f64 = 0.0;
+            for (_, g) in plants {
+                let w = auto_frequency_grid(g, 100)?;
+                lo = lo.min(w[0]);
+                hi = hi.max(w[w.len() - 1]);
+            }
+            (lo, hi)
+        }
+    };
+    let mut data = Vec::new();
+    for (label, g) in plants {
+        let w = merged_grid(g, lo, hi)?;
+        let fr = g.freq_response(&w)?;
+        // A plant whose margins cannot be computed is still drawn.
+        let m = if margins { g.margins().ok() } else { None };
+        let asym = if asymptotes {
+            Some(g.bode_asymptotes(lo, hi)?)
+        } else {
+            None
+        };
+        data.push((label, fr, m, asym));
+    }
+    let series: Vec<BodeSeries> = data
+        .iter()
+        .map(|(label, fr, m, asym)| {
+            let mut s = BodeSeries::new(fr).label(label);
+            if let Some(m) = m {
+                s = s.margins(m);
+            }
+            if let Some(a) = asym {
+                s = s.asymptotes(a);
+            }
+            s
+        })
+        .collect();
+    bode_png(path, &series, opts)?;
+    Ok(())
+}
+
+/// Step, impulse or ramp responses of `plants` on one plot, with step metrics for steps.
+pub fn step_figure(
+    path: &Path,
+    plants: &[(String, TransferFunction)],
+    input: &Input,
+    t_end: Option<f64>,
+    opts: &PlotOptions,
+) -> Result<()> {
+    let t_end = match t_end {
+        Some(t) if t.is_finite() && t > 0.0 => t,
+        Some(t) => bail!("--t-end must be > 0, got {t}"),
+        None => {
+            let mut t: f64 = 0.0;
+            for (_, g) in plants {
+                t = t.max(auto_time_span(g)?.t_end);
+            }
+            t
+        }
+    };
+    let t: Vec<f64> = (0..=1000).map(|i| t_end * i as f64 / 1000.0).collect();
+    let kind = match input {
+        Input::Step => InputKind::Step,
+        Input::Impulse => InputKind::Impulse,
+        Input::Ramp => InputKind::Ramp,
+        other => InputKind::Other(other.to_string()),
+    };
+    let mut data: Vec<(
+        &String,
+        TimeResponse,
+        Option<crate::analysis::StepInfo>,
+        bool,
+    )> = Vec::new();
+    for (label, g) in plants {
+        let r = match input {
+            Input::Step => g.step_response(&t)?,
+            Input::Impulse => g.impulse_response(&t)?,
+            other => g.time_response(other, &[], &t)?,
+        };
+        let info = if matches!(input, Input::Step) {
+            g.step_info()?
+        } else {
+            None
+        };
+        let unstable = response_diverges(g, input)?;
+        data.push((label, r, info, unstable));
+    }
+    let series: Vec<StepSeries> = data
+        .iter()
+        .map(|(label, r, info, unstable)| {
+            let mut s = StepSeries::new(r)
+                .label(label)
+                .input(kind.clone())
+                .unstable(*unstable);
+            if let Some(i) = info {
+                s = s.info(i);
+            }
+            s
+        })
+        .collect();
+    step_png(path, &series, opts)?;
+    Ok(())
+}
+
+/// True when the response of G to `input` grows without bound: a pole of G in lowest terms or
+/// of U(s) lies in the right half plane, or a pole on the imaginary axis is repeated (counting
+/// a system pole that coincides with an input pole, e.g. the step response of 1/s).
+pub fn response_diverges(g: &TransferFunction, input: &Input) -> Result<bool> {
+    use crate::analysis::{HalfPlane, half_plane};
+    let mut poles: Vec<crate::Root> = g.pole_zero()?.reduced_poles;
+    let (_, den) = input.laplace();
+    if den.degree() > 0 {
+        for r in den.roots()? {
+            match poles
+                .iter_mut()
+                .find(|p| (p.value - r.value).norm() <= 1e-9 * r.value.norm().max(1e-300))
+            {
+                Some(p) => p.multiplicity += r.multiplicity,
+                None => poles.push(r),
+            }
+        }
+    }
+    Ok(poles.iter().any(|p| match half_plane(p.value) {
+        HalfPlane::Right => true,
+        HalfPlane::Axis => p.multiplicity > 1,
+        HalfPlane::Left => false,
+    }))
+}
+
+/// Pole-zero map of one plant.
+pub fn pzmap_figure(
+    path: &Path,
+    label: &str,
+    g: &TransferFunction,
+    guides: bool,
+    opts: &PlotOptions,
+) -> Result<()> {
+    let pz = g.pole_zero()?;
+    pzmap_png(
+        path,
+        &PzMap::new(&pz).label(label).damping_guides(guides),
+        opts,
+    )?;
+    Ok(())
+}
+
+fn labelled(plants: Vec<Plant>) -> Vec<(String, TransferFunction)> {
+    plants.into_iter().map(|p| (p.name, p.tf)).collect()
+}
+
+#[derive(Args, Debug)]
+pub struct BodeArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    #[command(flatten)]
+    pub plot: PlotArgs,
+    /// Draw the straight-line asymptotes too.
+    #[arg(long)]
+    pub asymptotes: bool,
+    /// Lowest frequency (rad/s); default from the poles and zeros.
+    #[arg(long, requires = "wmax")]
+    pub wmin: Option<f64>,
+    /// Highest frequency (rad/s).
+    #[arg(long, requires = "wmin")]
+    pub wmax: Option<f64>,
+}
+
+pub fn bode(a: &BodeArgs) -> Result<()> {
+    let opts = a.plot.options()?;
+    let plants = labelled(a.plant.resolve()?);
+    let range = match (a.wmin, a.wmax) {
+        (Some(lo), Some(hi)) => {
+            if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
+                bail!("--wmin/--wmax: need 0 < wmin < wmax, got {lo} and {hi}");
+            }
+            Some((lo, hi))
+        }
+        _ => None,
+    };
+    bode_figure(&a.plot.output, &plants, range, a.asymptotes, true, &opts)
+        .with_context(|| format!("Bode plot {}", a.plot.output.display()))
+}
+
+#[derive(Args, Debug)]
+pub struct StepArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    #[command(flatten)]
+    pub plot: PlotArgs,
+    /// step, impulse or ramp (or any response input: exp:A, sin:W, cos:W).
+    #[arg(long, default_value = "step", allow_hyphen_values = true)]
+    pub input: String,
+    /// End time (s); default from the slowest mode.
+    #[arg(long = "t-end", allow_hyphen_values = true)]
+    pub t_end: Option<f64>,
+}
+
+pub fn step(a: &StepArgs) -> Result<()> {
+    let opts = a.plot.options()?;
+    let input: Input = a.input.parse()?;
+    if matches!(input, Input::None) {
+        bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
+    }
+    let plants = labelled(a.plant.resolve()?);
+    step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
+        .with_context(|| format!("response plot {}", a.plot.output.display()))
+}
+
+#[derive(Args, Debug)]
+pub struct PzmapArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    #[command(flatten)]
+    pub plot: PlotArgs,
+    /// Draw constant-ζ lines and constant-ωn circles.
+    #[arg(long)]
+    pub guides: bool,
+}
+
+pub fn pzmap(a: &PzmapArgs) -> Result<()> {
+    let opts = a.plot.options()?;
+    let p = a.plant.single()?;
+    pzmap_figure(&a.plot.output, &p.name, &p.tf, a.guides, &opts)
+        .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
+}
+
+#[derive(Args, Debug)]
+pub struct NyquistArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    #[command(flatten)]
+    pub plot: PlotArgs,
+}
+
+pub fn nyquist(a: &NyquistArgs) -> Result<()> {
+    let opts = a.plot.options()?;
+    let plants = labelled(a.plant.resolve()?);
+    let contours = plants
+        .iter()
+        .map(|(_, g)| g.nyquist())
+        .collect::<crate::Result<Vec<_>>>()?;
+    let series: Vec<NyquistSeries> = plants
+        .iter()
+        .zip(&contours)
+        .map(|((label, _), c)| NyquistSeries::new(c).label(label))
+        .collect();
+    nyquist_png(&a.plot.output, &series, &opts)
+        .with_context(|| format!("Nyquist plot {}", a.plot.output.display()))
+}

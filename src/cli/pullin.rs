@@ -1,0 +1,109 @@
+//! `ltikit mems-pullin -o FILE.png`: equilibrium gap against voltage, stable and unstable
+//! branches, the pull-in point.
+
+use anyhow::{Result, bail};
+use clap::Args;
+
+use super::output::print;
+use super::parse;
+use crate::nonlinear::mems_pullin;
+use crate::nonlinear::models::{MEMS_PARAMS, Mems};
+use crate::plot::{Curve, LineStyle, Marker, MarkerShape, PlotOptions, XyPlot, parse_size, xy_png};
+use crate::poly::fmt_sig;
+
+#[derive(Args, Debug)]
+pub struct PullinArgs {
+    /// Output PNG file.
+    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    pub output: std::path::PathBuf,
+    /// A MEMS parameter, NAME=VALUE (eps, A, m, k, l0, b, R; repeatable).
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+    /// Highest voltage drawn (default 1.25 × the pull-in voltage).
+    #[arg(long)]
+    pub vmax: Option<f64>,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1000x700", value_name = "WxH")]
+    pub size: String,
+}
+
+/// The MEMS model with parameter overrides.
+pub fn mems_with(params: &[(String, f64)]) -> Result<Mems> {
+    let mut values: Vec<f64> = MEMS_PARAMS.iter().map(|p| p.default).collect();
+    for (k, v) in params {
+        let Some(i) = MEMS_PARAMS.iter().position(|p| p.name == k) else {
+            bail!(
+                "model 'mems' has no parameter '{k}' (parameters: {})",
+                MEMS_PARAMS
+                    .iter()
+                    .map(|p| p.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        };
+        values[i] = *v;
+    }
+    Ok(Mems::from_values(&values)?)
+}
+
+/// Draws the pull-in diagram; returns the formula and the found pull-in voltage.
+pub fn pullin_figure(
+    path: &std::path::Path,
+    m: &Mems,
+    vmax: Option<f64>,
+    opts: &PlotOptions,
+) -> Result<(f64, f64)> {
+    let v_pi = m.pull_in_voltage();
+    let vmax = vmax.unwrap_or(1.25 * v_pi);
+    if !(vmax.is_finite() && vmax > 0.0) {
+        bail!("--vmax must be > 0, got {vmax}");
+    }
+    let d = mems_pullin(m, vmax, 401)?;
+    let stable = Curve::new(d.stable.iter().map(|p| (p[0], p[1])))
+        .label("stable equilibrium")
+        .width(1.5);
+    let unstable = Curve::new(d.unstable.iter().map(|p| (p[0], p[1])))
+        .label("unstable equilibrium")
+        .style(LineStyle::Dashed);
+    let plot = XyPlot {
+        curves: vec![stable, unstable],
+        markers: vec![
+            Marker::new((d.pull_in_voltage, d.pull_in_gap), MarkerShape::Disc).label(format!(
+                "pull-in: v = {} V, l = 2 l0/3 = {}",
+                fmt_sig(d.pull_in_voltage, 5),
+                fmt_sig(d.pull_in_gap, 4)
+            )),
+        ],
+        x_label: "voltage v (V)".into(),
+        y_label: "equilibrium gap l (m)".into(),
+        notes: vec![format!(
+            "l²(l0 − l) = εA v²/(2k); pull-in √(8 k l0³/(27 εA)) = {} V",
+            fmt_sig(v_pi, 6)
+        )],
+        title: "MEMS mirror: equilibrium gap against voltage (pull-in)".into(),
+        ..Default::default()
+    };
+    xy_png(path, &plot, opts)?;
+    Ok((v_pi, d.pull_in_voltage_found))
+}
+
+pub fn run(a: &PullinArgs) -> Result<()> {
+    let params: Vec<(String, f64)> = a
+        .params
+        .iter()
+        .map(|p| parse::param(p))
+        .collect::<Result<_>>()?;
+    let m = mems_with(&params)?;
+    let opts = PlotOptions {
+        size: parse_size(&a.size)?,
+        ..Default::default()
+    };
+    let (v_pi, found) = pullin_figure(&a.output, &m, a.vmax, &opts)?;
+    print(&format!(
+        "pull-in voltage {} V (formula √(8 k l0³/(27 εA))), {} V where the stable branch ends; \
+         wrote {}\n",
+        fmt_sig(v_pi, 10),
+        fmt_sig(found, 10),
+        a.output.display()
+    ))
+}
