@@ -24,3 +24,8 @@ pub mod poly;
 pub use error::{LtiError, Result};
 pub use lti::{StateSpace, TransferFunction};
 pub use poly::{MAX_ORDER, Poly, Root};
+
+/// The README's Rust example, compiled and run as a doctest.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
