@@ -313,3 +313,240 @@ fn bad_input_is_a_clear_error() {
     assert_eq!(c, 1);
     assert!(err.contains("order 300"), "{err}");
 }
+
+/// A fresh empty directory under the target dir for files written by a test.
+fn scratch_dir(name: &str) -> std::path::PathBuf {
+    let d = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn is_png(path: &std::path::Path) -> bool {
+    std::fs::read(path)
+        .map(|b| b.len() > 1000 && b.starts_with(b"\x89PNG\r\n\x1a\n"))
+        .unwrap_or(false)
+}
+
+#[test]
+fn plot_commands_write_pngs() {
+    let d = scratch_dir("cli-plots");
+    let p = |f: &str| d.join(f).to_string_lossy().into_owned();
+    let runs: Vec<Vec<String>> = vec![
+        vec![
+            "bode".into(),
+            "--num".into(),
+            "2".into(),
+            "--den".into(),
+            "1 3 2 0".into(),
+            "--asymptotes".into(),
+            "-o".into(),
+            p("b.png"),
+        ],
+        vec![
+            "bode".into(),
+            "--den".into(),
+            "1 0.2 1".into(),
+            "--den".into(),
+            "1 2 1".into(),
+            "-o".into(),
+            p("b2.png"),
+            "--size".into(),
+            "640x480".into(),
+        ],
+        vec![
+            "step".into(),
+            "--den".into(),
+            "1 0.8 4".into(),
+            "--num".into(),
+            "4".into(),
+            "-o".into(),
+            p("s.png"),
+        ],
+        vec![
+            "step".into(),
+            "--den".into(),
+            "1 1".into(),
+            "--input".into(),
+            "impulse".into(),
+            "-o".into(),
+            p("i.png"),
+        ],
+        vec![
+            "step".into(),
+            "--den".into(),
+            "1 -0.5 4".into(),
+            "-o".into(),
+            p("u.png"),
+        ],
+        vec![
+            "pzmap".into(),
+            "--num".into(),
+            "1 1".into(),
+            "--den".into(),
+            "1 3 2 0".into(),
+            "--guides".into(),
+            "-o".into(),
+            p("pz.png"),
+        ],
+        vec![
+            "nyquist".into(),
+            "--num".into(),
+            "2".into(),
+            "--den".into(),
+            "1 3 2 0".into(),
+            "-o".into(),
+            p("n.png"),
+        ],
+        vec!["mems-pullin".into(), "-o".into(), p("pull.png")],
+        vec![
+            "simulate".into(),
+            "pendulum".into(),
+            "--x0".into(),
+            "2 0".into(),
+            "--t-end".into(),
+            "5".into(),
+            "--points".into(),
+            "101".into(),
+            "-o".into(),
+            p("ph.png"),
+            "--phase".into(),
+            "1,2".into(),
+        ],
+    ];
+    for args in &runs {
+        let a: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        let out = ltikit(&a);
+        assert!(
+            out.status.success(),
+            "{a:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let file = args[args.iter().position(|s| s == "-o").unwrap() + 1].clone();
+        assert!(is_png(std::path::Path::new(&file)), "{file}");
+    }
+}
+
+#[test]
+fn plot_errors_leave_no_file() {
+    let d = scratch_dir("cli-plot-errors");
+    let target = d.join("x.png");
+    let t = target.to_string_lossy().into_owned();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["bode", "--den", "1 1", "--size", "0x100", "-o", &t],
+            "empty",
+        ),
+        (
+            &["step", "--num", "1 0 0", "--den", "1 1", "-o", &t],
+            "proper",
+        ),
+        (
+            &["bode", "--den", "1 1", "-o", "/nonexistent-dir/x.png"],
+            "nonexistent-dir",
+        ),
+    ];
+    for (args, needle) in cases {
+        let (code, err) = fails(args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!target.exists(), "{args:?} left a file");
+    }
+    assert_eq!(
+        std::fs::read_dir(&d).unwrap().count(),
+        0,
+        "no temporary files left"
+    );
+}
+
+#[test]
+fn infinite_margins_are_reported_not_errors() {
+    // 1/(s + 1): |G| < 1 for ω > 0 and the phase never reaches −180°.
+    let v = json(&["margins", "--den", "1 1", "--json"]);
+    assert!(v["gain_margin"].is_null() && v["phase_margin_deg"].is_null());
+    let out = ltikit(&["margins", "--den", "1 1"]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains('∞'));
+}
+
+#[test]
+fn simulation_limits_are_clean_errors() {
+    let (code, err) = fails(&[
+        "simulate",
+        "lorenz",
+        "--x0",
+        "1 0 0",
+        "--t-end",
+        "100",
+        "--max-steps",
+        "50",
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("step limit"), "{err}");
+    // Above pull-in the MEMS plates touch: the simulation stops there and says when.
+    let v = json(&[
+        "simulate", "mems", "--param", "v=3.2", "--x0", "3 0 0", "--t-end", "20", "--json",
+    ]);
+    let t = v["stopped"]["t"].as_f64().unwrap();
+    assert!(t > 1.0 && t < 20.0, "{t}");
+}
+
+#[test]
+fn batch_keeps_order_and_reports_bad_lines() {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(["analyze", "--batch", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"{\"name\":\"a\",\"num\":[1],\"den\":[1,2,1]}\n{\"den\":[0]}\nnot json\n{\"name\":\"d\",\"den\":\"1 0.8 4\"}\n")
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let lines: Vec<Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 4);
+    assert_eq!(lines[0]["name"], "a");
+    assert_eq!(lines[0]["second_order"]["class"], "critically_damped");
+    assert!(lines[0]["margins"].is_object());
+    assert!(
+        lines[1]["error"]
+            .as_str()
+            .unwrap()
+            .contains("zero polynomial")
+    );
+    assert_eq!(lines[2]["line"], 3);
+    assert!(lines[2]["error"].is_string());
+    assert_eq!(lines[3]["name"], "d");
+    assert!(close(&lines[3]["dc_gain"], 0.25, 1e-15));
+}
+
+#[test]
+fn demo_writes_the_report_and_its_figures() {
+    let d = scratch_dir("cli-demo");
+    let out = ltikit(&["demo", "--out", d.to_str().unwrap(), "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["checks"], v["checks_passed"]);
+    let report = std::fs::read_to_string(d.join("report.md")).unwrap();
+    assert!(report.contains("## Verification"));
+    let figures = v["figures"].as_array().unwrap();
+    assert!(figures.len() >= 25);
+    for f in figures {
+        let name = f.as_str().unwrap();
+        assert!(report.contains(&format!("]({name})")), "{name} not linked");
+        assert!(is_png(&d.join(name)), "{name}");
+    }
+}

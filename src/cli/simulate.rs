@@ -35,6 +35,9 @@ pub struct SimulateArgs {
     /// Absolute tolerance.
     #[arg(long, default_value_t = 1e-12)]
     pub atol: f64,
+    /// Largest number of integration steps (accepted plus rejected).
+    #[arg(long = "max-steps", default_value_t = 1_000_000)]
+    pub max_steps: usize,
     /// Print JSON instead of CSV.
     #[arg(long)]
     pub json: bool,
@@ -177,6 +180,7 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
     let opts = Rk45Options {
         rtol: a.rtol,
         atol: a.atol,
+        max_steps: a.max_steps,
         ..Default::default()
     };
     let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
