@@ -2,7 +2,7 @@
 //! search with the exact (AD) Jacobian from many starting points, de-duplicated.
 //!
 //! Every equilibrium carries its residual ‖f(x̄, ū)‖∞ (evaluated, not assumed) and whether it
-//! is physically meaningful ([`SystemInfo::is_physical`]).
+//! is physically meaningful ([`SystemInfo::is_physical`](crate::nonlinear::SystemInfo::is_physical)).
 
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;

@@ -4,7 +4,7 @@
 //! # Conventions
 //! - States, inputs and outputs are plain `f64` slices in the model's declared order
 //!   ([`SystemInfo::state_names`]); the seed's models fix these orders (DESIGN §4):
-//!   `pendulum` x = [θ, θ̇], u = [τ], y = θ; `mems` x = [l, l̇, q], u = [v], y = l; `lorenz`
+//!   `pendulum` x = [θ, θ̇], u = \[τ\], y = θ; `mems` x = [l, l̇, q], u = \[v\], y = l; `lorenz`
 //!   x = [x₁, x₂, x₃], no input, y = x; `vanderpol` x = [x₁, x₂], no input, y = x.
 //! - Angles in rad, time in s, SI units for parameters ([`ModelParam::unit`]).
 //! - Jacobians are exact: models are generic over the scalar type ([`Scalar`]) and are
@@ -16,7 +16,7 @@
 //! | concept | items |
 //! |---|---|
 //! | model traits | [`SystemInfo`], [`NonlinearSystem`], [`DynSystem`], [`jacobians`] |
-//! | seed models | [`models`]: [`models::Pendulum`], [`models::Mems`], [`models::Lorenz`], [`models::VanDerPol`], [`models::LinearModel`] |
+//! | seed models | [`models`](mod@models): [`models::Pendulum`], [`models::Mems`], [`models::Lorenz`], [`models::VanDerPol`], [`models::LinearModel`] |
 //! | registry | [`model_names`], [`model_info`], [`build_model`] |
 //! | equilibria | [`equilibria()`], [`newton_equilibria`] |
 //! | linearisation | [`linearize()`], [`linearize_at`], [`local_stability`] |

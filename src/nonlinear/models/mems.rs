@@ -2,7 +2,7 @@
 //! k (rest gap l0) with damping b, a parallel-plate capacitor C(l) = εA/l charged through a
 //! resistor R from the voltage v.
 //!
-//! m l̈ = −k (l − l0) − b l̇ − q²/(2εA),  R q̇ = v − q l/(εA);  x = [l, l̇, q], u = [v], y = l.
+//! m l̈ = −k (l − l0) − b l̇ − q²/(2εA),  R q̇ = v − q l/(εA);  x = [l, l̇, q], u = \[v\], y = l.
 //!
 //! **Equilibria** (q̇ = 0: q = εA v/l; l̈ = 0): l²(l0 − l) = εA v²/(2k), a cubic solved with
 //! [`Poly::roots`]. Below the pull-in voltage v_pi = √(8 k l0³/(27 εA)) it has three real roots:

@@ -1,7 +1,7 @@
 //! The rigid pendulum of seed §2.3.1 (eq. 2.15): a bar of mass M and length L swinging about
 //! its end, viscous friction torque C θ̇, driven by a torque τ.
 //!
-//! θ̈ = −(3C/(M L²)) θ̇ − (3g/(2L)) sin θ + 3τ/(M L²);  x = [θ, θ̇], u = [τ], y = θ.
+//! θ̈ = −(3C/(M L²)) θ̇ − (3g/(2L)) sin θ + 3τ/(M L²);  x = [θ, θ̇], u = \[τ\], y = θ.
 //!
 //! Equilibria for a constant torque τ: sin θ̄ = 2τ/(M g L), θ̇ = 0 — for τ = 0 the hanging
 //! θ̄ = 0 and the upright θ̄ = π (all others differ by 2π). Linearisation (seed eq. 2.18):
