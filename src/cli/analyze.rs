@@ -5,6 +5,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::output::{finite, pair, print, print_json};
+use super::text::roots_text;
 use super::{Plant, PlantArgs};
 use crate::analysis::Analysis;
 use crate::poly::{fmt_num, fmt_root, fmt_sig, roots::flatten};
@@ -130,25 +131,6 @@ impl From<&Analysis> for AnalyzeJson {
     }
 }
 
-fn roots_line(roots: &[crate::Root]) -> String {
-    if roots.is_empty() {
-        return "none".into();
-    }
-    roots
-        .iter()
-        .filter(|r| r.value.im >= 0.0)
-        .map(|r| {
-            let m = if r.multiplicity > 1 {
-                format!(" (×{})", r.multiplicity)
-            } else {
-                String::new()
-            };
-            format!("{}{m}", fmt_root(r.value, 6))
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// The human-readable report.
 pub fn report(plant: &Plant, a: &Analysis) -> String {
     let pz = &a.pole_zero;
@@ -164,8 +146,8 @@ pub fn report(plant: &Plant, a: &Analysis) -> String {
         "  order {}, relative degree {}\n\n",
         a.order, a.relative_degree
     ));
-    s.push_str(&format!("Poles:     {}\n", roots_line(&pz.poles)));
-    s.push_str(&format!("Zeros:     {}", roots_line(&pz.zeros)));
+    s.push_str(&format!("Poles:     {}\n", roots_text(&pz.poles)));
+    s.push_str(&format!("Zeros:     {}", roots_text(&pz.zeros)));
     if pz.zeros_at_infinity > 0 {
         s.push_str(&format!("; {} at infinity", pz.zeros_at_infinity));
     }
@@ -173,7 +155,7 @@ pub fn report(plant: &Plant, a: &Analysis) -> String {
     if !pz.cancelled.is_empty() {
         s.push_str(&format!(
             "Cancelled: {} (common to numerator and denominator; reduced G = {})\n",
-            roots_line(&pz.cancelled),
+            roots_text(&pz.cancelled),
             pz.reduced
         ));
     }

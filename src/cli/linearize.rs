@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use super::output::{pair, print, print_json};
 use super::parse;
+use super::text::vector_text;
 use crate::nonlinear::{
     EquilibriumSearch, Linearization, LocalStability, build_model, linearize, model_info,
 };
@@ -28,11 +29,7 @@ pub struct LinearizeArgs {
 }
 
 pub fn run(a: &LinearizeArgs) -> Result<()> {
-    let params: Vec<(String, f64)> = a
-        .params
-        .iter()
-        .map(|p| parse::param(p))
-        .collect::<Result<_>>()?;
+    let params = parse::params(&a.params)?;
     let sys = build_model(&a.model, &params)?;
     let u =
         a.u.as_deref()
@@ -121,16 +118,6 @@ impl From<&Linearization> for LinearizeJson {
     }
 }
 
-fn vector(v: &[f64]) -> String {
-    format!(
-        "[{}]",
-        v.iter()
-            .map(|x| fmt_sig(*x, 6))
-            .collect::<Vec<_>>()
-            .join(", ")
-    )
-}
-
 fn matrix(name: &str, m: &[Vec<f64>], out: &mut String) {
     if m.is_empty() || m[0].is_empty() {
         out.push_str(&format!("    {name} = []\n"));
@@ -178,11 +165,11 @@ pub fn report(title: &str, l: &Linearization) -> String {
         s.push_str(&format!(
             "\nEquilibrium {}: x = {}{}{}\n",
             i + 1,
-            vector(&e.x),
+            vector_text(&e.x),
             if e.u.is_empty() {
                 String::new()
             } else {
-                format!(", u = {}", vector(&e.u))
+                format!(", u = {}", vector_text(&e.u))
             },
             if e.physical { "" } else { "  (not physical)" }
         ));

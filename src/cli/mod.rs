@@ -15,6 +15,7 @@ mod pullin;
 mod residue;
 mod response;
 mod simulate;
+mod text;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};

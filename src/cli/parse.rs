@@ -23,6 +23,11 @@ pub fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
     Ok(out)
 }
 
+/// Parses every `NAME=VALUE` of a repeated `--param`.
+pub fn params(list: &[String]) -> Result<Vec<(String, f64)>> {
+    list.iter().map(|p| param(p)).collect()
+}
+
 /// Parses `NAME=VALUE`.
 pub fn param(text: &str) -> Result<(String, f64)> {
     let Some((k, v)) = text.split_once('=') else {

@@ -92,11 +92,7 @@ impl PlantArgs {
             });
         }
         if let Some(m) = &self.model {
-            let params: Vec<(String, f64)> = self
-                .params
-                .iter()
-                .map(|p| parse::param(p))
-                .collect::<Result<_>>()?;
+            let params = parse::params(&self.params)?;
             let (tf, used) = build_plant(m, &params)?;
             let list = used
                 .iter()

@@ -88,11 +88,7 @@ pub fn pullin_figure(
 }
 
 pub fn run(a: &PullinArgs) -> Result<()> {
-    let params: Vec<(String, f64)> = a
-        .params
-        .iter()
-        .map(|p| parse::param(p))
-        .collect::<Result<_>>()?;
+    let params = parse::params(&a.params)?;
     let m = mems_with(&params)?;
     let opts = PlotOptions {
         size: parse_size(&a.size)?,

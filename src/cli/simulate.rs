@@ -165,11 +165,7 @@ pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<Input> {
 }
 
 pub fn run(a: &SimulateArgs) -> Result<()> {
-    let params: Vec<(String, f64)> = a
-        .params
-        .iter()
-        .map(|p| parse::param(p))
-        .collect::<Result<_>>()?;
+    let params = parse::params(&a.params)?;
     let sys = build_model(&a.model, &params)?;
     let x0 = parse::numbers(&a.x0, "--x0")?;
     let input = parse_input(a.input.as_deref(), &sys.operating_input())?;

@@ -7,8 +7,9 @@ use super::Ctx;
 use super::md::Md;
 use crate::TransferFunction;
 use crate::analysis::{Analysis, Input, auto_time_span};
+pub use crate::cli::text::roots_text;
 use crate::lti::PlantFile;
-use crate::poly::{Root, fmt_num, fmt_root, fmt_sig};
+use crate::poly::{fmt_num, fmt_root, fmt_sig};
 
 /// A plant of the tour.
 pub struct DemoPlant {
@@ -78,27 +79,6 @@ pub fn ode_of(g: &TransferFunction) -> String {
         if s.is_empty() { "0".into() } else { s }
     };
     format!("{} = {}", side(g.den(), "y"), side(g.num(), "u"))
-}
-
-/// Roots with multiplicities for the report ("−1 (×2), −0.2 ± 1.99j").
-pub fn roots_text(r: &[Root]) -> String {
-    let v: Vec<String> = r
-        .iter()
-        .filter(|r| r.value.im >= 0.0)
-        .map(|r| {
-            let m = if r.multiplicity > 1 {
-                format!(" (×{})", r.multiplicity)
-            } else {
-                String::new()
-            };
-            format!("{}{m}", fmt_root(r.value, 6))
-        })
-        .collect();
-    if v.is_empty() {
-        "none".into()
-    } else {
-        v.join(", ")
-    }
 }
 
 /// Summary table rows of an analysis.

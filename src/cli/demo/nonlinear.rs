@@ -4,6 +4,7 @@ use anyhow::Result;
 
 use super::md::Md;
 use super::{Ctx, fig};
+use crate::cli::text::vector_text;
 use crate::nonlinear::models::{Lorenz, Mems, Pendulum, VanDerPol};
 use crate::nonlinear::{
     DynSystem, EquilibriumSearch, Linearization, LocalStability, linearize, pendulum_periods,
@@ -18,16 +19,6 @@ use crate::plot::{
     series_color, time_plot_png, xy_png,
 };
 use crate::poly::{fmt_root, fmt_sig};
-
-fn vec_text(v: &[f64]) -> String {
-    format!(
-        "[{}]",
-        v.iter()
-            .map(|x| fmt_sig(*x, 6))
-            .collect::<Vec<_>>()
-            .join(", ")
-    )
-}
 
 fn stability_text(s: LocalStability) -> &'static str {
     match s {
@@ -55,7 +46,11 @@ pub fn equilibria_table(md: &mut Md, lin: &Linearization, show_physical: bool) {
                 .map(|z| fmt_root(*z, 5))
                 .collect::<Vec<_>>()
                 .join(", ");
-            let mut r = vec![vec_text(&e.x), ev, stability_text(e.stability).to_string()];
+            let mut r = vec![
+                vector_text(&e.x),
+                ev,
+                stability_text(e.stability).to_string(),
+            ];
             if show_physical {
                 r.push(if e.physical { "yes" } else { "no" }.into());
             }

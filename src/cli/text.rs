@@ -1,0 +1,37 @@
+//! Text formatting shared by the reports (CLI text output and the demo's Markdown).
+
+use crate::Root;
+use crate::poly::{fmt_root, fmt_sig};
+
+/// Roots with multiplicities, one entry per conjugate pair: "-1 (×2), -0.2 ± 1.98997j", or
+/// "none".
+pub fn roots_text(r: &[Root]) -> String {
+    let v: Vec<String> = r
+        .iter()
+        .filter(|r| r.value.im >= 0.0)
+        .map(|r| {
+            let m = if r.multiplicity > 1 {
+                format!(" (×{})", r.multiplicity)
+            } else {
+                String::new()
+            };
+            format!("{}{m}", fmt_root(r.value, 6))
+        })
+        .collect();
+    if v.is_empty() {
+        "none".into()
+    } else {
+        v.join(", ")
+    }
+}
+
+/// A vector as "[a, b, c]" with 6 significant digits.
+pub fn vector_text(v: &[f64]) -> String {
+    format!(
+        "[{}]",
+        v.iter()
+            .map(|x| fmt_sig(*x, 6))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
