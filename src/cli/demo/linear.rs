@@ -257,7 +257,7 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
     md.p(&intro);
     md.p(&format!("ODE: `{}`", ode_of(g)));
     let a = g.analyze()?;
-    md.table(&["", ""], &analysis_rows(g, &a));
+    md.table(&["property", "value"], &analysis_rows(g, &a));
     modes_table(md, &a);
 
     md.h3("Step response");
