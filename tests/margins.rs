@@ -234,3 +234,48 @@ fn cancelled_factors_do_not_create_crossings() {
     assert!(rel(m.gain_margin.unwrap(), 8.0) < 1e-12);
     assert!(rel(m.phase_crossover.unwrap(), 3f64.sqrt()) < 1e-12);
 }
+
+/// A shallow resonance of an ill-conditioned order-10 plant (one of the random batch plants):
+/// |G| rises 2.3e-6 above the dc gain at ω ≈ 0.0662. Reference: the maximum of |G(jω)| on a
+/// fine grid (Horner on the coefficients).
+#[test]
+fn shallow_resonance_of_an_order_10_plant() {
+    let num = [
+        34.23913997766383,
+        1275.6111062519974,
+        18904.976397165203,
+        139281.3110671061,
+        510006.40588201844,
+        742441.9772736663,
+    ];
+    let den = [
+        1.0,
+        44.79244757385845,
+        840.2687201102128,
+        8632.529748990331,
+        53717.04422142902,
+        213941.28576771013,
+        567676.4328482284,
+        1022523.8391660086,
+        1226483.0132091339,
+        908082.7583826012,
+        331913.0058952744,
+    ];
+    let g = TransferFunction::from_descending(&num, &den).unwrap();
+    let dc = num[5] / den[10];
+    let (mut best_w, mut best) = (0.0, 0.0);
+    for k in 0..=20000 {
+        let w = 0.03 + 0.07 * k as f64 / 20000.0;
+        let m = g.eval(num_complex::Complex64::new(0.0, w)).norm() / dc;
+        if m > best {
+            best = m;
+            best_w = w;
+        }
+    }
+    let m = g.margins().unwrap();
+    let mr = m.resonant_peak.expect("the shallow peak is found");
+    let wr = m.resonant_frequency.unwrap();
+    assert!((mr - best).abs() < 1e-10, "Mr {mr} vs grid {best}");
+    assert!((wr - best_w).abs() < 1e-4, "wr {wr} vs grid {best_w}");
+    assert!(mr > 1.0 + 2e-6);
+}

@@ -58,7 +58,7 @@ fn record(line: usize, text: &str) -> Value {
     };
     let result = (|| -> Result<Value> {
         let a = tf.analyze()?;
-        let m = tf.margins()?;
+        let m = tf.margins_with_pole_zero(&a.pole_zero)?;
         let mut v = serde_json::to_value(AnalyzeJson::from(&a))?;
         if let Value::Object(map) = &mut v {
             map.insert("margins".into(), serde_json::to_value(&m)?);
