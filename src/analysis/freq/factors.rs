@@ -183,6 +183,33 @@ pub(super) fn rescale(re: &mut f64, im: &mut f64, e: &mut i32) {
 #[cfg(test)]
 pub(super) const LANES: usize = 4;
 
+/// (re + j·im) ← (re + j·im)·(fr + j·fi) for a factor with fr ≥ 0 (angle in [−π/2, π/2]),
+/// counting full turns: `upper` says the argument is in (0, π] (Im > 0, or on the negative
+/// real axis) and `turns` gains ±1 when the product crosses the negative real axis. It passes
+/// the real axis through π iff the point nearer to the axis (in angle) has Re < 0: one of the
+/// two is within π/4 of the crossing. Shared by the per-frequency lanes and the fused kernel.
+#[inline(always)]
+pub(super) fn mul_tracked(
+    re: &mut f64,
+    im: &mut f64,
+    upper: &mut bool,
+    turns: &mut i32,
+    fr: f64,
+    fi: f64,
+) {
+    let (r, i) = (*re, *im);
+    let nr = r * fr - i * fi;
+    let ni = r * fi + i * fr;
+    let nup = ni > 0.0 || (ni == 0.0 && nr < 0.0);
+    let s = if r.abs() >= i.abs() { r } else { nr };
+    let cross = (nup != *upper) & (s < 0.0);
+    let dir = if *upper { 1 } else { -1 };
+    *turns += if cross { dir } else { 0 };
+    *re = nr;
+    *im = ni;
+    *upper = nup;
+}
+
 /// Running products of factors with positive real part at `L` frequencies at once, tracking
 /// the full turns of each argument, plus the exact half and quarter turns pulled out.
 #[derive(Clone, Copy)]
@@ -220,19 +247,14 @@ impl<const L: usize> Lanes<L> {
     /// Multiplies lane `l` by (fr + j·fi), fr ≥ 0 (the factor's angle is in [−π/2, π/2]).
     #[inline(always)]
     pub(super) fn mul(&mut self, l: usize, fr: f64, fi: f64) {
-        let (re, im) = (self.re[l], self.im[l]);
-        let nr = re * fr - im * fi;
-        let ni = re * fi + im * fr;
-        let nup = ni > 0.0 || (ni == 0.0 && nr < 0.0);
-        // When the argument passes the real axis it does so through π iff the point nearer
-        // to the axis (in angle) has Re < 0: one of the two is within π/4 of the crossing.
-        let s = if re.abs() >= im.abs() { re } else { nr };
-        let cross = (nup != self.upper[l]) & (s < 0.0);
-        let dir = if self.upper[l] { 1 } else { -1 };
-        self.turns[l] += if cross { dir } else { 0 };
-        self.re[l] = nr;
-        self.im[l] = ni;
-        self.upper[l] = nup;
+        mul_tracked(
+            &mut self.re[l],
+            &mut self.im[l],
+            &mut self.upper[l],
+            &mut self.turns[l],
+            fr,
+            fi,
+        );
     }
 
     #[inline(always)]

@@ -76,21 +76,18 @@ impl Products {
         }
     }
 
-    /// Multiplies lane `l` by (fr + j·fi), fr ≥ 0 (the factor's angle is in [−π/2, π/2]);
-    /// see `Lanes::mul` for why the crossing test is exact.
+    /// Multiplies lane `l` by (fr + j·fi), fr ≥ 0 (the factor's angle is in [−π/2, π/2]),
+    /// counting turns (`factors::mul_tracked`).
     #[inline(always)]
     fn mul(&mut self, l: usize, fr: f64, fi: f64) {
-        let (re, im) = (self.re[l], self.im[l]);
-        let nr = re * fr - im * fi;
-        let ni = re * fi + im * fr;
-        let nup = ni > 0.0 || (ni == 0.0 && nr < 0.0);
-        let s = if re.abs() >= im.abs() { re } else { nr };
-        let cross = (nup != self.upper[l]) & (s < 0.0);
-        let dir = if self.upper[l] { 1 } else { -1 };
-        self.turns[l] += if cross { dir } else { 0 };
-        self.re[l] = nr;
-        self.im[l] = ni;
-        self.upper[l] = nup;
+        super::factors::mul_tracked(
+            &mut self.re[l],
+            &mut self.im[l],
+            &mut self.upper[l],
+            &mut self.turns[l],
+            fr,
+            fi,
+        );
     }
 
     /// d2 ← d2·|F|² for lane `l` (|F| ≤ 2^200 on the fast path: one factor cannot overflow).
