@@ -1,0 +1,108 @@
+//! `cargo bench`: divan benchmarks of ltikit's hot paths on the inputs of the python
+//! comparison (`benches/compare/inputs.toml`; see docs/PERFORMANCE.md for what each measures).
+//!
+//! `cargo bench -- freq` runs the benches whose path contains "freq".
+
+mod common;
+
+use divan::{Bencher, black_box};
+use ltikit::analysis::{Input, partial_fractions};
+use ltikit::{Poly, TransferFunction};
+
+fn main() {
+    divan::main();
+}
+
+/// `Poly::roots` (exact multiplicities) of the fixed random polynomials.
+#[divan::bench(args = [4, 10, 50])]
+fn roots(bencher: Bencher, deg: usize) {
+    let p = Poly::from_descending(&common::root_poly(deg)).unwrap();
+    bencher.bench(|| black_box(&p).roots().unwrap());
+}
+
+/// Frequency response of the order-8 plant on logspace(−2, 3, n), next to the bare loops.
+mod freq {
+    use super::*;
+
+    /// `freq_response`: |G|, dB and the continuous phase (factored form, branch tracking).
+    #[divan::bench(args = [1_000, 1_000_000], sample_count = 20)]
+    fn freq_response(bencher: Bencher, n: usize) {
+        let g = common::order8();
+        let w = common::freq_grid(n);
+        bencher.bench(|| g.freq_response(black_box(&w)).unwrap());
+    }
+
+    /// Reference limit: f64 Horner for the complex G(jω) = N(jω)/D(jω) only.
+    #[divan::bench(args = [1_000, 1_000_000], sample_count = 20)]
+    fn horner_complex_only(bencher: Bencher, n: usize) {
+        let (num, den) = common::order8_coeffs();
+        let w = common::freq_grid(n);
+        bencher.bench(|| common::horner_complex(&num, &den, black_box(&w)));
+    }
+
+    /// Reference loop with the same outputs: f64 Horner, then |G|, dB and atan2 (principal
+    /// phase, not unwrapped).
+    #[divan::bench(args = [1_000, 1_000_000], sample_count = 20)]
+    fn horner_mag_db_atan2(bencher: Bencher, n: usize) {
+        let (num, den) = common::order8_coeffs();
+        let w = common::freq_grid(n);
+        bencher.bench(|| common::horner_full(&num, &den, black_box(&w)));
+    }
+}
+
+/// Exact step response of the order-8 plant on linspace(0, 60, n).
+#[divan::bench(args = [1_000, 100_000], sample_count = 50)]
+fn step_response(bencher: Bencher, n: usize) {
+    let g = common::order8();
+    let t = common::time_grid(n);
+    bencher.bench(|| g.step_response(black_box(&t)).unwrap());
+}
+
+/// Partial fractions and closed forms of the order-8 plant.
+mod closed_form {
+    use super::*;
+
+    /// `partial_fractions(num, den)` (roots of den included), as `scipy.signal.residue`.
+    #[divan::bench]
+    fn partial_fractions_order8(bencher: Bencher) {
+        let g = common::order8();
+        bencher.bench(|| partial_fractions(black_box(g.num()), black_box(g.den())).unwrap());
+    }
+
+    /// `inverse_laplace` of the step response: partial fractions of G(s)/s and the closed
+    /// form y(t) with its transient/steady-state split.
+    #[divan::bench]
+    fn step_closed_form_order8(bencher: Bencher) {
+        let g = common::order8();
+        bencher.bench(|| black_box(&g).inverse_laplace(&Input::Step, &[]).unwrap());
+    }
+}
+
+/// Exact step metrics of the order-8 plant.
+#[divan::bench]
+fn step_info(bencher: Bencher) {
+    let g = common::order8();
+    bencher.bench(|| black_box(&g).step_info().unwrap());
+}
+
+/// `analyze()` plus `margins()` of the order-8 plant: one line of `ltikit analyze --batch`.
+#[divan::bench]
+fn analyze(bencher: Bencher) {
+    let g = common::order8();
+    bencher.bench(|| {
+        let g: &TransferFunction = black_box(&g);
+        (g.analyze().unwrap(), g.margins().unwrap())
+    });
+}
+
+/// One 1000 × 700 Bode PNG of the order-8 plant from scratch (grid, response, margins,
+/// asymptotes, drawing, encoding, atomic file write).
+#[divan::bench(sample_count = 30)]
+fn bode_png(bencher: Bencher) {
+    let g = common::order8();
+    let dir = std::env::temp_dir().join(format!("ltikit-divan-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bode.png");
+    bencher.bench(|| common::bode_png_of(black_box(&g), &path).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}
