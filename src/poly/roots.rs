@@ -3,7 +3,8 @@
 //! # Method
 //! 1. Exact zero roots (trailing zero coefficients) are deflated exactly.
 //! 2. Candidates: degree 1 and 2 by stable closed forms; otherwise the eigenvalues of the
-//!    balanced companion matrix ([`crate::numeric::eigenvalues`]). Simple roots come out to
+//!    balanced companion matrix (Francis double-shift QR directly on the Hessenberg companion
+//!    matrix, capped, with [`crate::numeric::eigenvalues`] as the fallback). Simple roots come out to
 //!    ~eps, but an m-fold root scatters by ~eps^(1/m) (numpy gives (s+1)⁴ as −1 ± 2e-4).
 //! 3. Clustering on the closed upper half plane (each upper candidate stands for a conjugate
 //!    pair): candidates closer than a generous relative distance form a group; a group is
@@ -25,6 +26,8 @@
 
 use num_complex::Complex64;
 use serde::Serialize;
+
+mod companion;
 
 use super::{MAX_ORDER, Poly};
 use crate::error::{LtiError, Result};
@@ -138,17 +141,26 @@ fn candidates(q: &Poly) -> Result<Vec<Complex64>> {
         2 => Ok(quadratic(c[0], c[1], c[2])),
         _ => {
             let lead = c[0];
-            let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
-            for j in 0..n {
-                let v = -c[j + 1] / lead;
+            let mut tail = Vec::with_capacity(n);
+            for &cj in &c[1..] {
+                let v = cj / lead;
                 if !v.is_finite() {
                     return Err(LtiError::BadScaling {
                         what: "polynomial".into(),
-                        ratio: v,
+                        ratio: -v,
                         leading: lead,
                     });
                 }
-                a[(0, j)] = v;
+                tail.push(v);
+            }
+            if let Some(ev) = companion::companion_eigenvalues(&tail) {
+                return Ok(ev);
+            }
+            // The capped double-shift iteration did not converge: the general solver (with
+            // its own cap and a retry after a similarity transformation).
+            let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
+            for (j, &v) in tail.iter().enumerate() {
+                a[(0, j)] = -v;
             }
             for i in 1..n {
                 a[(i, i - 1)] = 1.0;
