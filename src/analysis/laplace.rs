@@ -31,6 +31,7 @@ use crate::analysis::input::{Input, ic_polynomial};
 use crate::analysis::pfe::{
     PartialFractions, PfTerm, partial_fractions_with_poles, principal_parts,
 };
+use crate::analysis::pz::PoleZero;
 use crate::analysis::stability::{HalfPlane, half_plane};
 use crate::error::Result;
 use crate::lti::TransferFunction;
@@ -117,8 +118,18 @@ pub(crate) fn decompose(g: &TransferFunction, input: &Input, ics: &[f64]) -> Res
     input.validate()?;
     g.require_proper(&format!("the {input} response"), false)?;
     let p_ic = ic_polynomial(g.den(), ics)?;
-    let pz = g.pole_zero()?;
+    decompose_with(g, &g.pole_zero()?, input, p_ic)
+}
 
+/// As [`decompose`] with the pole/zero analysis of `g` already at hand and the initial-condition
+/// polynomial formed (`input` validated, `g` proper): saves the root finding when the caller
+/// (step metrics, `analyze`) has it.
+pub(crate) fn decompose_with(
+    g: &TransferFunction,
+    pz: &PoleZero,
+    input: &Input,
+    p_ic: Poly,
+) -> Result<Decomposition> {
     // Input poles against the zeros of G.
     let mut zeros = pz.reduced_zeros.clone();
     let mut cancelled_zeros: Vec<Complex64> = Vec::new();

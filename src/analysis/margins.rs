@@ -36,6 +36,7 @@
 use serde::Serialize;
 
 use super::freq::{BodeForm, mul_pow2};
+use super::pz::PoleZero;
 use crate::error::Result;
 use crate::lti::TransferFunction;
 use crate::numeric::scalar::{Bracket, all_crossings, brent};
@@ -104,9 +105,24 @@ impl TransferFunction {
     /// assert!(m.bandwidth.is_none()); // infinite dc gain
     /// ```
     pub fn margins(&self) -> Result<Margins> {
-        let pz = self.pole_zero()?;
+        self.margins_with_pole_zero(&self.pole_zero()?)
+    }
+
+    /// [`TransferFunction::margins`] reusing the pole/zero analysis `pz` of this G (from
+    /// [`TransferFunction::pole_zero`] or [`TransferFunction::analyze`]), so the roots of the
+    /// numerator and denominator are not found a second time — what a batch that reports
+    /// both the analysis and the margins of a plant wants. `pz` must be this G's.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let g = TransferFunction::from_descending(&[2.0], &[1.0, 3.0, 2.0, 0.0]).unwrap();
+    /// let a = g.analyze().unwrap();
+    /// let m = g.margins_with_pole_zero(&a.pole_zero).unwrap();
+    /// assert_eq!(m, g.margins().unwrap());
+    /// ```
+    pub fn margins_with_pole_zero(&self, pz: &PoleZero) -> Result<Margins> {
         let reduced = &pz.reduced;
-        let form = BodeForm::with_pole_zero(self, &pz);
+        let form = BodeForm::with_pole_zero(self, pz);
         let mut out = Margins {
             gain_margin: None,
             gain_margin_db: None,

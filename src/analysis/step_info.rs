@@ -28,11 +28,15 @@ use serde::Serialize;
 
 use crate::analysis::closed_form::{ClosedForm, ClosedFormTerm};
 use crate::analysis::input::Input;
-use crate::analysis::pz::dc_gain_of;
+use crate::analysis::laplace::decompose_with;
+use crate::analysis::pz::{PoleZero, dc_gain_of};
 use crate::analysis::stability::{HalfPlane, half_plane};
 use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
 use crate::numeric::scalar::{Bracket, brent};
+use crate::poly::Poly;
+
+mod grid;
 
 /// Step metrics (DESIGN §1.3). Times in seconds.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -86,21 +90,29 @@ impl TransferFunction {
     /// ```
     pub fn step_info(&self) -> Result<Option<StepInfo>> {
         self.require_proper("step metrics", false)?;
-        let pz = self.pole_zero()?;
-        if pz
-            .reduced_poles
-            .iter()
-            .any(|p| half_plane(p.value) != HalfPlane::Left)
-        {
-            return Ok(None);
-        }
-        let y_inf = match dc_gain_of(&pz.reduced) {
-            Some(k) if k != 0.0 && k.is_finite() => k,
-            _ => return Ok(None),
-        };
-        let y = self.inverse_laplace(&Input::Step, &[])?.closed_form;
-        step_info_of(&y, y_inf).map(Some)
+        step_info_with(self, &self.pole_zero()?)
     }
+}
+
+/// [`TransferFunction::step_info`] of a proper `g` whose pole/zero analysis `pz` is at hand
+/// (`analyze` has it: the roots are not found again).
+pub(crate) fn step_info_with(g: &TransferFunction, pz: &PoleZero) -> Result<Option<StepInfo>> {
+    if pz
+        .reduced_poles
+        .iter()
+        .any(|p| half_plane(p.value) != HalfPlane::Left)
+    {
+        return Ok(None);
+    }
+    let y_inf = match dc_gain_of(&pz.reduced) {
+        Some(k) if k != 0.0 && k.is_finite() => k,
+        _ => return Ok(None),
+    };
+    // zero initial conditions: no initial-condition polynomial
+    let y = decompose_with(g, pz, &Input::Step, Poly::zero())?
+        .response()?
+        .closed_form;
+    step_info_of(&y, y_inf).map(Some)
 }
 
 /// Step metrics of a closed-form step response `y` with final value `y_inf` ≠ 0, whose terms
@@ -267,6 +279,11 @@ fn horizon(terms: &[ClosedFormTerm], env: &impl Fn(f64) -> f64, eps: f64) -> Res
 }
 
 /// Zeros of y′ on (a, b]: sign changes on an adaptive grid, refined by Brent.
+///
+/// The spacing at t is [`GRID_FACTOR`]/|p| for the fastest mode still alive at t (before its
+/// envelope peaks, or with the envelope above [`DEAD_REL`]·`scale`); a dead mode stays dead
+/// (its envelope decreases), so the fastest alive mode is tracked with one pointer. Grid values
+/// of y′ come from [`grid::GridDerivative`] (exact in sign); Brent refines on the exact `df`.
 fn critical_points(
     terms: &[ClosedFormTerm],
     df: &impl Fn(f64) -> f64,
@@ -274,34 +291,30 @@ fn critical_points(
     b: f64,
     scale: f64,
 ) -> Result<Vec<f64>> {
-    let modes: Vec<(f64, f64, &ClosedFormTerm)> = terms
-        .iter()
-        .map(|t| {
-            let (rate, t_max) = mode_scales(t);
-            (rate, t_max, t)
-        })
-        .collect();
-    let spacing = |t: f64| {
-        let fastest = modes
-            .iter()
-            .filter(|(_, t_max, term)| t <= *t_max || term.envelope(t) > DEAD_REL * scale)
-            .map(|(rate, _, _)| *rate)
-            .fold(0.0, f64::max);
-        if fastest > 0.0 {
-            (GRID_FACTOR / fastest).min(b - a)
-        } else {
-            b - a
-        }
-    };
+    let dead = DEAD_REL * scale;
+    let mut grid = grid::GridDerivative::new(terms, a);
+    let by_rate = grid.by_rate();
+    let mut fastest = 0; // index into by_rate of the fastest mode that may be alive
     let mut out = Vec::new();
     let mut t = a;
     let mut ft = df(t);
     let mut count = 0usize;
     let xtol = 1e-15 * b.max(1e-300);
+    let min_step = 4.0 * f64::EPSILON * b;
     while t < b {
-        let h = spacing(t).max(4.0 * f64::EPSILON * b);
-        let u = (t + h).min(b);
-        let fu = df(u);
+        while fastest < by_rate.len() && !grid.alive(by_rate[fastest], dead) {
+            fastest += 1;
+        }
+        let rate = by_rate.get(fastest).map_or(0.0, |&k| grid.rate(k));
+        let h = if rate > 0.0 {
+            (GRID_FACTOR / rate).min(b - a)
+        } else {
+            b - a
+        }
+        .max(min_step);
+        let clipped = t + h > b;
+        let u = if clipped { b } else { t + h };
+        let fu = grid.advance(u, h, clipped, df);
         if ft != 0.0 && fu != 0.0 && ft.signum() != fu.signum() {
             let br = Bracket {
                 a: t,

@@ -47,7 +47,7 @@ impl TransferFunction {
         let modes = modes(&pz.poles);
         let second_order = second_order(self.den(), &pz.poles);
         let step_info = if self.is_proper() {
-            self.step_info()?
+            crate::analysis::step_info::step_info_with(self, &pz)?
         } else {
             None
         };
