@@ -153,7 +153,8 @@ def ltikit_batch(path, repeat=3):
     """Median wall time of `ltikit analyze --batch` over `repeat` runs (process start, JSON
     parsing and output included), and the number of error records in its output."""
     subprocess.run(["cargo", "build", "--quiet", "--release"], cwd=ROOT, check=True)
-    exe = os.path.join(ROOT, "target", "release", "ltikit")
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    exe = os.path.join(target, "release", "ltikit")
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
