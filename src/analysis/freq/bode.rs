@@ -4,6 +4,7 @@
 use std::f64::consts::{LN_2, TAU};
 
 use super::factors::*;
+use super::fastmath;
 use super::horner::{AxisHorner, FACTORED_CHECK_TOL, wrap_pi};
 use crate::analysis::pz::PoleZero;
 use crate::error::Result;
@@ -14,24 +15,24 @@ use crate::lti::TransferFunction;
 #[derive(Debug, Clone)]
 pub(crate) struct BodeForm {
     /// G ≡ 0.
-    zero: bool,
+    pub(super) zero: bool,
     /// |K| = k_mant·2^k_exp.
-    k_mant: f64,
-    k_exp: i32,
+    pub(super) k_mant: f64,
+    pub(super) k_exp: i32,
     /// ln|K|.
-    ln_k: f64,
+    pub(super) ln_k: f64,
     /// Quarter turns of the low-frequency asymptote: −2 for K < 0, plus k.
-    base_quarters: i64,
+    pub(super) base_quarters: i64,
     /// Order k of (jω)^k (zeros at 0 minus poles at 0).
-    int_order: i32,
-    num: FactorSet,
-    den: FactorSet,
+    pub(super) int_order: i32,
+    pub(super) num: FactorSet,
+    pub(super) den: FactorSet,
     /// Above this ω the logarithmic path is used.
-    fast_limit: f64,
+    pub(super) fast_limit: f64,
     /// Set when the factored form does not reproduce the coefficients (roots too
     /// ill-conditioned, e.g. an expanded (s+1)^20): magnitude and principal phase then come
     /// from double-double Horner, the factored form only picks the branch.
-    exact: Option<Box<AxisHorner>>,
+    pub(super) exact: Option<Box<AxisHorner>>,
 }
 
 impl BodeForm {
@@ -238,7 +239,7 @@ impl BodeForm {
             // of an integer in {−1, 0, 1}.
             let qr = nr * dr + ni * di;
             let qi = ni * dr - nr * di;
-            let angle = qi.atan2(qr);
+            let angle = fastmath::atan2(qi, qr);
             let t = (quadrant_centre(nr, ni) - quadrant_centre(dr, di) - angle) * (1.0 / TAU);
             let fix: i64 = if t > 0.5 {
                 1
@@ -277,7 +278,9 @@ impl BodeForm {
     }
 
     /// Evaluates at every ω of `w` (each finite, ≥ 0), calling `out` with the value, in
-    /// order; the fast path runs [`LANES`] frequencies side by side.
+    /// order; the fast path runs [`LANES`] frequencies side by side. (The frequency response
+    /// itself uses the fused loop of `kernel`; this one checks the branch tracking in tests.)
+    #[cfg(test)]
     pub fn eval_many(&self, w: &[f64], mut out: impl FnMut(Eval)) {
         let mut chunks = w.chunks_exact(LANES);
         for c in &mut chunks {

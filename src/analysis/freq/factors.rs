@@ -116,7 +116,9 @@ impl Eval {
     }
     /// 20·log₁₀|G|.
     pub fn db(&self) -> f64 {
-        20.0 * self.mant.log10() + (20.0 * std::f64::consts::LOG10_2) * self.exp2 as f64
+        // 20·log₁₀|G| = (20/ln 10)·(ln mant + exp2·ln 2)
+        const DB_PER_NEPER: f64 = 20.0 * std::f64::consts::LOG10_E;
+        DB_PER_NEPER * (super::fastmath::ln(self.mant) + LN_2 * self.exp2 as f64)
     }
     /// ln|G|.
     pub fn ln_mag(&self) -> f64 {
@@ -178,6 +180,7 @@ pub(super) fn rescale(re: &mut f64, im: &mut f64, e: &mut i32) {
 
 /// Number of frequencies evaluated side by side on the fast path: independent dependency
 /// chains let the CPU overlap the complex multiplications.
+#[cfg(test)]
 pub(super) const LANES: usize = 4;
 
 /// Running products of factors with positive real part at `L` frequencies at once, tracking
