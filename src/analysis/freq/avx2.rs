@@ -209,3 +209,231 @@ pub(super) fn product4(num: &FactorSet, den: &FactorSet, w: &[f64; 4]) -> Produc
         d2: lanes(st.d2),
     }
 }
+
+/// |G|, dB and phase (degrees) of four frequencies, and which lanes are valid (a lane whose
+/// product is not a normal number, or whose magnitude needs the saturating path, must be
+/// redone by the caller).
+pub(super) struct Response4 {
+    pub(super) magnitude: [f64; 4],
+    pub(super) magnitude_db: [f64; 4],
+    pub(super) phase_deg: [f64; 4],
+    pub(super) valid: [bool; 4],
+}
+
+/// i64 lanes (|k| < 2^51) to f64, exactly.
+#[inline]
+#[target_feature(enable = "avx2")]
+fn i64_to_f64(k: __m256i) -> __m256d {
+    const MAGIC: f64 = 6_755_399_441_055_744.0; // 1.5·2^52
+    let bits = _mm256_add_epi64(k, _mm256_castpd_si256(_mm256_set1_pd(MAGIC)));
+    _mm256_sub_pd(_mm256_castsi256_pd(bits), _mm256_set1_pd(MAGIC))
+}
+
+/// `fastmath::atan2` for lanes with finite (y, x) not both zero, same operations.
+#[inline]
+#[target_feature(enable = "avx2")]
+fn atan2(y: __m256d, x: __m256d) -> __m256d {
+    use super::fastmath::{AT, ATANHI, ATANLO, PI_LO};
+    let zero = _mm256_setzero_pd();
+    let one = _mm256_set1_pd(1.0);
+    let (ax, ay) = (abs(x), abs(y));
+    let r = _mm256_div_pd(ay, ax);
+    // argument reduction of atan(r), r ≥ 0: t = num/den by range
+    let lt = |v: f64| _mm256_cmp_pd::<_CMP_LT_OQ>(r, _mm256_set1_pd(v));
+    let (r0, r1, r2, r3) = (lt(0.4375), lt(0.6875), lt(1.1875), lt(2.4375));
+    let two_r = _mm256_mul_pd(_mm256_set1_pd(2.0), r);
+    // from the top range down, so the smallest matching range wins
+    let mut num = _mm256_set1_pd(-1.0);
+    let mut den = r;
+    let mut hi = _mm256_set1_pd(ATANHI[3]);
+    let mut lo = _mm256_set1_pd(ATANLO[3]);
+    let pick = |m: __m256d, a: __m256d, b: __m256d| _mm256_blendv_pd(a, b, m);
+    num = pick(r3, num, _mm256_sub_pd(r, _mm256_set1_pd(1.5)));
+    den = pick(
+        r3,
+        den,
+        _mm256_add_pd(one, _mm256_mul_pd(_mm256_set1_pd(1.5), r)),
+    );
+    hi = pick(r3, hi, _mm256_set1_pd(ATANHI[2]));
+    lo = pick(r3, lo, _mm256_set1_pd(ATANLO[2]));
+    num = pick(r2, num, _mm256_sub_pd(r, one));
+    den = pick(r2, den, _mm256_add_pd(r, one));
+    hi = pick(r2, hi, _mm256_set1_pd(ATANHI[1]));
+    lo = pick(r2, lo, _mm256_set1_pd(ATANLO[1]));
+    num = pick(r1, num, _mm256_sub_pd(two_r, one));
+    den = pick(r1, den, _mm256_add_pd(_mm256_set1_pd(2.0), r));
+    hi = pick(r1, hi, _mm256_set1_pd(ATANHI[0]));
+    lo = pick(r1, lo, _mm256_set1_pd(ATANLO[0]));
+    num = pick(r0, num, r);
+    den = pick(r0, den, one);
+    let t = _mm256_div_pd(num, den);
+    let z = _mm256_mul_pd(t, t);
+    let w = _mm256_mul_pd(z, z);
+    let c = |k: usize| _mm256_set1_pd(AT[k]);
+    let madd = |a: __m256d, b: __m256d, acc: __m256d| _mm256_add_pd(a, _mm256_mul_pd(b, acc));
+    // s1 = z·(AT0 + w·(AT2 + w·(AT4 + w·(AT6 + w·(AT8 + w·AT10)))))
+    let s1 = _mm256_mul_pd(
+        z,
+        madd(
+            c(0),
+            w,
+            madd(c(2), w, madd(c(4), w, madd(c(6), w, madd(c(8), w, c(10))))),
+        ),
+    );
+    // s2 = w·(AT1 + w·(AT3 + w·(AT5 + w·(AT7 + w·AT9))))
+    let s2 = _mm256_mul_pd(
+        w,
+        madd(c(1), w, madd(c(3), w, madd(c(5), w, madd(c(7), w, c(9))))),
+    );
+    let ts = _mm256_mul_pd(t, _mm256_add_pd(s1, s2));
+    let small = _mm256_sub_pd(t, ts);
+    let reduced = _mm256_sub_pd(hi, _mm256_sub_pd(_mm256_sub_pd(ts, lo), t));
+    let mut zr = _mm256_blendv_pd(reduced, small, r0);
+    // r = ∞ (ax = 0, or overflow): π/2; r = 0 (ay = 0, or underflow): 0
+    let inf = _mm256_cmp_pd::<_CMP_EQ_OQ>(r, _mm256_set1_pd(f64::INFINITY));
+    zr = _mm256_blendv_pd(zr, _mm256_set1_pd(std::f64::consts::FRAC_PI_2), inf);
+    zr = _mm256_blendv_pd(zr, zero, _mm256_cmp_pd::<_CMP_EQ_OQ>(r, zero));
+    // x < 0: π − (z − π_lo), or π exactly on the negative real axis
+    let xneg = _mm256_cmp_pd::<_CMP_LT_OQ>(x, zero);
+    let pi = _mm256_set1_pd(std::f64::consts::PI);
+    let left = _mm256_sub_pd(pi, _mm256_sub_pd(zr, _mm256_set1_pd(PI_LO)));
+    let on_axis = _mm256_and_pd(
+        _mm256_cmp_pd::<_CMP_EQ_OQ>(zr, zero),
+        _mm256_cmp_pd::<_CMP_EQ_OQ>(ay, zero),
+    );
+    let left = _mm256_blendv_pd(left, pi, on_axis);
+    let a = _mm256_blendv_pd(zr, left, xneg);
+    // the sign of y
+    _mm256_xor_pd(a, _mm256_and_pd(y, _mm256_set1_pd(-0.0)))
+}
+
+/// `fastmath::ln` for lanes holding positive normal numbers, same operations.
+#[inline]
+#[target_feature(enable = "avx2")]
+fn ln(x: __m256d) -> __m256d {
+    use super::fastmath::{LG, LN2_HI, LN2_LO};
+    let bits = _mm256_castpd_si256(x);
+    let k = _mm256_sub_epi64(biased_exponent(x), _mm256_set1_epi64x(1023));
+    let m = _mm256_and_si256(bits, _mm256_set1_epi64x(0x000f_ffff_ffff_ffff));
+    // 1 + f in [√2/2, √2): mantissas at or above √2's go one binade down
+    let high = _mm256_cmpgt_epi64(m, _mm256_set1_epi64x(0x0006_a09e_667f_3bcc));
+    let k = _mm256_sub_epi64(k, high); // high is −1 where set
+    let expo = _mm256_blendv_epi8(
+        _mm256_set1_epi64x(0x3ff0_0000_0000_0000),
+        _mm256_set1_epi64x(0x3fe0_0000_0000_0000),
+        high,
+    );
+    let f = _mm256_sub_pd(
+        _mm256_castsi256_pd(_mm256_or_si256(m, expo)),
+        _mm256_set1_pd(1.0),
+    );
+    let dk = i64_to_f64(k);
+    let hfsq = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(0.5), f), f);
+    let s = _mm256_div_pd(f, _mm256_add_pd(_mm256_set1_pd(2.0), f));
+    let z = _mm256_mul_pd(s, s);
+    let w = _mm256_mul_pd(z, z);
+    let c = |k: usize| _mm256_set1_pd(LG[k]);
+    let madd = |a: __m256d, b: __m256d, acc: __m256d| _mm256_add_pd(a, _mm256_mul_pd(b, acc));
+    let t1 = _mm256_mul_pd(w, madd(c(1), w, madd(c(3), w, c(5))));
+    let t2 = _mm256_mul_pd(z, madd(c(0), w, madd(c(2), w, madd(c(4), w, c(6)))));
+    let r = _mm256_add_pd(t2, t1);
+    // dk·ln2_hi − ((hfsq − (s·(hfsq + r) + dk·ln2_lo)) − f)
+    let inner = _mm256_add_pd(
+        _mm256_mul_pd(s, _mm256_add_pd(hfsq, r)),
+        _mm256_mul_pd(dk, _mm256_set1_pd(LN2_LO)),
+    );
+    _mm256_sub_pd(
+        _mm256_mul_pd(dk, _mm256_set1_pd(LN2_HI)),
+        _mm256_sub_pd(_mm256_sub_pd(hfsq, inner), f),
+    )
+}
+
+/// The whole fast path for four frequencies of a G without integrators or differentiators
+/// (k = 0) and without imaginary-axis pairs: the product of [`product4`], then magnitude,
+/// dB and phase exactly as `BodeForm::finish` and `kernel::response_fill` compute them.
+/// `k_mant·2^k_exp` = |K|; `base_quarters` the quarter turns of K.
+#[target_feature(enable = "avx2")]
+pub(super) fn response4(
+    num: &FactorSet,
+    den: &FactorSet,
+    w: &[f64; 4],
+    k_mant: f64,
+    k_exp: i32,
+    base_quarters: i64,
+) -> Response4 {
+    let wv = _mm256_set_pd(w[3], w[2], w[1], w[0]);
+    let w2 = _mm256_mul_pd(wv, wv);
+    let mut st = State {
+        re: _mm256_set1_pd(1.0),
+        im: _mm256_setzero_pd(),
+        exp: _mm256_setzero_si256(),
+        upper: _mm256_setzero_pd(),
+        turns: _mm256_setzero_pd(),
+        quarters: _mm256_setzero_pd(),
+        d2: _mm256_set1_pd(1.0),
+    };
+    st.mul_set(num, wv, w2, false);
+    st.mul_set(den, wv, w2, true);
+    st.rescale();
+    let (re, im) = (st.re, st.im);
+    let zero = _mm256_setzero_pd();
+    let finite = _mm256_and_pd(
+        _mm256_cmp_pd::<_CMP_LT_OQ>(abs(re), _mm256_set1_pd(f64::INFINITY)),
+        _mm256_cmp_pd::<_CMP_LT_OQ>(abs(im), _mm256_set1_pd(f64::INFINITY)),
+    );
+    let nonzero = _mm256_or_pd(
+        _mm256_cmp_pd::<_CMP_NEQ_OQ>(re, zero),
+        _mm256_cmp_pd::<_CMP_NEQ_OQ>(im, zero),
+    );
+    let angle = atan2(im, re);
+    let mant = _mm256_div_pd(
+        _mm256_mul_pd(
+            _mm256_set1_pd(k_mant),
+            _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(re, re), _mm256_mul_pd(im, im))),
+        ),
+        st.d2,
+    );
+    let exp2 = _mm256_add_epi64(st.exp, _mm256_set1_epi64x(k_exp as i64));
+    let in_range = _mm256_andnot_si256(
+        _mm256_or_si256(
+            _mm256_cmpgt_epi64(exp2, _mm256_set1_epi64x(1000)),
+            _mm256_cmpgt_epi64(_mm256_set1_epi64x(-1000), exp2),
+        ),
+        _mm256_set1_epi64x(-1),
+    );
+    let scale = _mm256_castsi256_pd(_mm256_slli_epi64::<52>(_mm256_add_epi64(
+        exp2,
+        _mm256_set1_epi64x(1023),
+    )));
+    let magnitude = _mm256_mul_pd(mant, scale);
+    const DB_PER_NEPER: f64 = 20.0 * std::f64::consts::LOG10_E;
+    let magnitude_db = _mm256_mul_pd(
+        _mm256_set1_pd(DB_PER_NEPER),
+        _mm256_add_pd(
+            ln(mant),
+            _mm256_mul_pd(_mm256_set1_pd(std::f64::consts::LN_2), i64_to_f64(exp2)),
+        ),
+    );
+    // quarter turns: base + 4·turns + quarters (small integers, exact in f64)
+    let quarters = _mm256_add_pd(
+        _mm256_add_pd(
+            _mm256_set1_pd(base_quarters as f64),
+            _mm256_mul_pd(_mm256_set1_pd(4.0), st.turns),
+        ),
+        st.quarters,
+    );
+    let phase_deg = _mm256_add_pd(
+        _mm256_mul_pd(angle, _mm256_set1_pd(180.0f64 / std::f64::consts::PI)),
+        _mm256_mul_pd(_mm256_set1_pd(90.0), quarters),
+    );
+    let valid = lanes(_mm256_and_pd(
+        _mm256_and_pd(finite, nonzero),
+        _mm256_castsi256_pd(in_range),
+    ));
+    Response4 {
+        magnitude: lanes(magnitude),
+        magnitude_db: lanes(magnitude_db),
+        phase_deg: lanes(phase_deg),
+        valid: valid.map(|v| v.to_bits() != 0),
+    }
+}

@@ -11,19 +11,19 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// atan(0.5), atan(1), atan(1.5), atan(∞) (high parts).
-const ATANHI: [f64; 4] = [
+pub(super) const ATANHI: [f64; 4] = [
     4.636_476_090_008_061e-1,
     std::f64::consts::FRAC_PI_4,
     9.827_937_232_473_29e-1,
     FRAC_PI_2,
 ];
-const ATANLO: [f64; 4] = [
+pub(super) const ATANLO: [f64; 4] = [
     2.269_877_745_296_168_7e-17,
     3.061_616_997_868_383e-17,
     1.390_331_103_123_099_8e-17,
     6.123_233_995_736_766e-17,
 ];
-const AT: [f64; 11] = [
+pub(super) const AT: [f64; 11] = [
     3.333_333_333_333_293e-1,
     -1.999_999_999_987_648_3e-1,
     1.428_571_427_250_346_6e-1,
@@ -37,7 +37,7 @@ const AT: [f64; 11] = [
     1.628_582_011_536_578_2e-2,
 ];
 /// The low part of π (π − `PI` rounded), as in fdlibm.
-const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
+pub(super) const PI_LO: f64 = 1.224_646_799_147_353_2e-16;
 
 /// atan(x) for x ≥ 0 (finite or +∞), fdlibm `s_atan.c`.
 #[inline(always)]
@@ -96,9 +96,9 @@ pub(super) fn atan2(y: f64, x: f64) -> f64 {
     if y.is_sign_negative() { -a } else { a }
 }
 
-const LN2_HI: f64 = 6.931_471_803_691_238e-1;
-const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
-const LG: [f64; 7] = [
+pub(super) const LN2_HI: f64 = 6.931_471_803_691_238e-1;
+pub(super) const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+pub(super) const LG: [f64; 7] = [
     6.666_666_666_666_735e-1,
     3.999_999_999_940_942e-1,
     2.857_142_874_366_239e-1,

@@ -150,6 +150,25 @@ impl Products {
     }
 }
 
+/// Writes |G|, dB and the phase (degrees) of `e` at index `i`.
+#[inline(always)]
+fn store(
+    e: Eval,
+    i: usize,
+    magnitude: &mut [f64],
+    magnitude_db: &mut [f64],
+    phase_deg: &mut [f64],
+) {
+    const DB_PER_NEPER: f64 = 20.0 * std::f64::consts::LOG10_E;
+    magnitude[i] = if e.mant > 0.0 && e.mant.is_finite() && (-1000..=1000).contains(&e.exp2) {
+        e.mant * pow2(e.exp2)
+    } else {
+        mul_pow2(e.mant, e.exp2)
+    };
+    magnitude_db[i] = DB_PER_NEPER * (fastmath::ln(e.mant) + LN_2 * e.exp2 as f64);
+    phase_deg[i] = e.phase_deg();
+}
+
 impl BodeForm {
     /// The end of the fused fast path for one frequency: principal phase, magnitude and the
     /// integrator power from the product (re, im)·2^exp / d2 with its counted turns and
@@ -264,17 +283,6 @@ impl BodeForm {
         magnitude_db: &mut [f64],
         phase_deg: &mut [f64],
     ) {
-        const DB_PER_NEPER: f64 = 20.0 * std::f64::consts::LOG10_E;
-        let mut put = |i: usize, e: Eval| {
-            magnitude[i] = if e.mant > 0.0 && e.mant.is_finite() && (-1000..=1000).contains(&e.exp2)
-            {
-                e.mant * pow2(e.exp2)
-            } else {
-                mul_pow2(e.mant, e.exp2)
-            };
-            magnitude_db[i] = DB_PER_NEPER * (fastmath::ln(e.mant) + LN_2 * e.exp2 as f64);
-            phase_deg[i] = e.phase_deg();
-        };
         let fused = self.exact.is_none() && !self.zero;
         let in_range = |x: f64| x >= f64::MIN_POSITIVE && x <= self.fast_limit;
         let width = if avx2 { 4 } else { L };
@@ -283,7 +291,7 @@ impl BodeForm {
         for c in &mut chunks {
             if !(fused && c.iter().all(|&x| in_range(x))) {
                 for &x in c {
-                    put(i, self.eval(x));
+                    store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
                     i += 1;
                 }
                 continue;
@@ -291,20 +299,52 @@ impl BodeForm {
             #[cfg(target_arch = "x86_64")]
             if avx2 {
                 let block: [f64; 4] = std::array::from_fn(|k| c[k]);
+                if self.int_order == 0 {
+                    // SAFETY: `avx2` is only true after `avx2::available()` (`avx2_path`).
+                    let r = unsafe {
+                        super::avx2::response4(
+                            &self.num,
+                            &self.den,
+                            &block,
+                            self.k_mant,
+                            self.k_exp,
+                            self.base_quarters,
+                        )
+                    };
+                    if r.valid.iter().all(|&v| v) {
+                        magnitude[i..i + 4].copy_from_slice(&r.magnitude);
+                        magnitude_db[i..i + 4].copy_from_slice(&r.magnitude_db);
+                        phase_deg[i..i + 4].copy_from_slice(&r.phase_deg);
+                        i += 4;
+                        continue;
+                    }
+                }
                 for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
-                    put(i, e.unwrap_or_else(|| self.eval(x)));
+                    store(
+                        e.unwrap_or_else(|| self.eval(x)),
+                        i,
+                        magnitude,
+                        magnitude_db,
+                        phase_deg,
+                    );
                     i += 1;
                 }
                 continue;
             }
             let block: [f64; L] = std::array::from_fn(|k| c[k]);
             for (e, &x) in self.eval_fused(&block).into_iter().zip(&block) {
-                put(i, e.unwrap_or_else(|| self.eval(x)));
+                store(
+                    e.unwrap_or_else(|| self.eval(x)),
+                    i,
+                    magnitude,
+                    magnitude_db,
+                    phase_deg,
+                );
                 i += 1;
             }
         }
         for &x in chunks.remainder() {
-            put(i, self.eval(x));
+            store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
             i += 1;
         }
     }
