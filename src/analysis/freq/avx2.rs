@@ -73,6 +73,20 @@ fn scale_of(m: __m256d) -> (__m256d, __m256i) {
 }
 
 impl State {
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    fn new() -> State {
+        State {
+            re: _mm256_set1_pd(1.0),
+            im: _mm256_setzero_pd(),
+            exp: _mm256_setzero_si256(),
+            upper: _mm256_setzero_pd(),
+            turns: _mm256_setzero_pd(),
+            quarters: _mm256_setzero_pd(),
+            d2: _mm256_set1_pd(1.0),
+        }
+    }
+
     /// Multiplies by (fr + j·fi) with fr ≥ 0, counting crossings of the negative real axis
     /// (see `Products::mul`).
     #[inline]
@@ -182,15 +196,7 @@ fn lanes(v: __m256d) -> [f64; 4] {
 pub(super) fn product4(num: &FactorSet, den: &FactorSet, w: &[f64; 4]) -> Product4 {
     let wv = _mm256_set_pd(w[3], w[2], w[1], w[0]);
     let w2 = _mm256_mul_pd(wv, wv);
-    let mut st = State {
-        re: _mm256_set1_pd(1.0),
-        im: _mm256_setzero_pd(),
-        exp: _mm256_setzero_si256(),
-        upper: _mm256_setzero_pd(),
-        turns: _mm256_setzero_pd(),
-        quarters: _mm256_setzero_pd(),
-        d2: _mm256_set1_pd(1.0),
-    };
+    let mut st = State::new();
     st.mul_set(num, wv, w2, false);
     st.mul_set(den, wv, w2, true);
     st.rescale();
@@ -348,33 +354,151 @@ fn ln(x: __m256d) -> __m256d {
     )
 }
 
-/// The whole fast path for four frequencies of a G without integrators or differentiators
-/// (k = 0) and without imaginary-axis pairs: the product of [`product4`], then magnitude,
-/// dB and phase exactly as `BodeForm::finish` and `kernel::response_fill` compute them.
-/// `k_mant·2^k_exp` = |K|; `base_quarters` the quarter turns of K.
+/// Groups of four frequencies interleaved by [`response8`] (its state is kept in locals, so
+/// it stays in registers).
+const G: usize = 2;
+
+/// The whole fast path for eight frequencies of a G without integrators or differentiators
+/// (k = 0) and without imaginary-axis pairs: the product of [`product4`] for two groups of
+/// four frequencies whose independent dependency chains interleave (one group alone is
+/// latency-bound), then magnitude, dB and phase exactly as `BodeForm::finish` and
+/// `kernel::store` compute them. `k_mant·2^k_exp` = |K|; `base_quarters` the quarter turns
+/// of K. Same operations in the same order as [`State`]'s methods.
 #[target_feature(enable = "avx2")]
-pub(super) fn response4(
+#[allow(clippy::needless_range_loop)] // g indexes the parallel per-group locals
+pub(super) fn response8(
     num: &FactorSet,
     den: &FactorSet,
-    w: &[f64; 4],
+    w: &[f64; 8],
     k_mant: f64,
     k_exp: i32,
     base_quarters: i64,
-) -> Response4 {
-    let wv = _mm256_set_pd(w[3], w[2], w[1], w[0]);
-    let w2 = _mm256_mul_pd(wv, wv);
-    let mut st = State {
-        re: _mm256_set1_pd(1.0),
-        im: _mm256_setzero_pd(),
-        exp: _mm256_setzero_si256(),
-        upper: _mm256_setzero_pd(),
-        turns: _mm256_setzero_pd(),
-        quarters: _mm256_setzero_pd(),
-        d2: _mm256_set1_pd(1.0),
-    };
-    st.mul_set(num, wv, w2, false);
-    st.mul_set(den, wv, w2, true);
-    st.rescale();
+) -> [Response4; 2] {
+    let wv = [
+        _mm256_set_pd(w[3], w[2], w[1], w[0]),
+        _mm256_set_pd(w[7], w[6], w[5], w[4]),
+    ];
+    let w2 = [_mm256_mul_pd(wv[0], wv[0]), _mm256_mul_pd(wv[1], wv[1])];
+    let zero = _mm256_setzero_pd();
+    let one = _mm256_set1_pd(1.0);
+    let neg_zero = _mm256_set1_pd(-0.0);
+    let mut re = [one; G];
+    let mut im = [zero; G];
+    let mut exp = [_mm256_setzero_si256(); G];
+    let mut upper = [zero; G];
+    let mut turns = [zero; G];
+    let mut quarters = [zero; G];
+    let mut d2 = [one; G];
+    // State::mul
+    macro_rules! mul {
+        ($g:expr, $fr:expr, $fi:expr) => {{
+            let g = $g;
+            let (fr, fi) = ($fr, $fi);
+            let (r, i) = (re[g], im[g]);
+            let nr = _mm256_sub_pd(_mm256_mul_pd(r, fr), _mm256_mul_pd(i, fi));
+            let ni = _mm256_add_pd(_mm256_mul_pd(r, fi), _mm256_mul_pd(i, fr));
+            let nup = _mm256_or_pd(
+                _mm256_cmp_pd::<_CMP_GT_OQ>(ni, zero),
+                _mm256_and_pd(
+                    _mm256_cmp_pd::<_CMP_EQ_OQ>(ni, zero),
+                    _mm256_cmp_pd::<_CMP_LT_OQ>(nr, zero),
+                ),
+            );
+            let re_nearer = _mm256_cmp_pd::<_CMP_GE_OQ>(abs(r), abs(i));
+            let sx = _mm256_blendv_pd(nr, r, re_nearer);
+            let cross = _mm256_and_pd(
+                _mm256_xor_pd(nup, upper[g]),
+                _mm256_cmp_pd::<_CMP_LT_OQ>(sx, zero),
+            );
+            let dir = _mm256_blendv_pd(_mm256_set1_pd(-1.0), one, upper[g]);
+            turns[g] = _mm256_add_pd(turns[g], _mm256_and_pd(cross, dir));
+            re[g] = nr;
+            im[g] = ni;
+            upper[g] = nup;
+        }};
+    }
+    // State::div_norm2
+    macro_rules! div_norm2 {
+        ($g:expr, $fr:expr, $fi:expr) => {{
+            let g = $g;
+            let (fr, fi) = ($fr, $fi);
+            let d = _mm256_mul_pd(
+                d2[g],
+                _mm256_add_pd(_mm256_mul_pd(fr, fr), _mm256_mul_pd(fi, fi)),
+            );
+            let (sc, e) = scale_of(d);
+            d2[g] = _mm256_mul_pd(d, sc);
+            exp[g] = _mm256_sub_epi64(exp[g], e);
+        }};
+    }
+    // State::rescale
+    macro_rules! rescale {
+        () => {{
+            for g in 0..G {
+                let (sc, e) = scale_of(_mm256_max_pd(abs(re[g]), abs(im[g])));
+                re[g] = _mm256_mul_pd(re[g], sc);
+                im[g] = _mm256_mul_pd(im[g], sc);
+                exp[g] = _mm256_add_epi64(exp[g], e);
+            }
+        }};
+    }
+    for (set, conj) in [(num, false), (den, true)] {
+        let sign = if conj { -1.0 } else { 1.0 };
+        for chunk in set.real_c.chunks(4) {
+            for &c in chunk {
+                let sc = _mm256_set1_pd(sign * c);
+                for g in 0..G {
+                    let fi = _mm256_mul_pd(sc, wv[g]);
+                    mul!(g, one, fi);
+                    if conj {
+                        div_norm2!(g, one, fi);
+                    }
+                }
+            }
+            rescale!();
+        }
+        for chunk in set.quad.chunks(4) {
+            for q in chunk {
+                let (a, b) = (_mm256_set1_pd(q.a), _mm256_set1_pd(sign * q.b));
+                let half = _mm256_set1_pd(if conj { -2.0 } else { 2.0 } * q.sb as f64);
+                for g in 0..G {
+                    let x = _mm256_sub_pd(one, _mm256_mul_pd(a, w2[g]));
+                    let y = _mm256_mul_pd(b, wv[g]);
+                    let neg = _mm256_cmp_pd::<_CMP_LT_OQ>(x, zero);
+                    quarters[g] = _mm256_add_pd(quarters[g], _mm256_and_pd(neg, half));
+                    let flip = _mm256_and_pd(neg, neg_zero);
+                    mul!(g, _mm256_xor_pd(x, flip), _mm256_xor_pd(y, flip));
+                    if conj {
+                        div_norm2!(g, x, y);
+                    }
+                }
+            }
+            rescale!();
+        }
+    }
+    rescale!();
+    std::array::from_fn(|g| {
+        finish4(
+            &State {
+                re: re[g],
+                im: im[g],
+                exp: exp[g],
+                upper: upper[g],
+                turns: turns[g],
+                quarters: quarters[g],
+                d2: d2[g],
+            },
+            k_mant,
+            k_exp,
+            base_quarters,
+        )
+    })
+}
+
+/// Magnitude, dB and phase of four finished products.
+#[inline]
+#[target_feature(enable = "avx2")]
+fn finish4(st: &State, k_mant: f64, k_exp: i32, base_quarters: i64) -> Response4 {
     let (re, im) = (st.re, st.im);
     let zero = _mm256_setzero_pd();
     let finite = _mm256_and_pd(

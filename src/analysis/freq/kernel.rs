@@ -285,7 +285,7 @@ impl BodeForm {
     ) {
         let fused = self.exact.is_none() && !self.zero;
         let in_range = |x: f64| x >= f64::MIN_POSITIVE && x <= self.fast_limit;
-        let width = if avx2 { 4 } else { L };
+        let width = if avx2 { 8 } else { L };
         let mut chunks = w.chunks_exact(width);
         let mut i = 0;
         for c in &mut chunks {
@@ -298,11 +298,11 @@ impl BodeForm {
             }
             #[cfg(target_arch = "x86_64")]
             if avx2 {
-                let block: [f64; 4] = std::array::from_fn(|k| c[k]);
                 if self.int_order == 0 {
+                    let block: [f64; 8] = std::array::from_fn(|k| c[k]);
                     // SAFETY: `avx2` is only true after `avx2::available()` (`avx2_path`).
                     let r = unsafe {
-                        super::avx2::response4(
+                        super::avx2::response8(
                             &self.num,
                             &self.den,
                             &block,
@@ -311,23 +311,29 @@ impl BodeForm {
                             self.base_quarters,
                         )
                     };
-                    if r.valid.iter().all(|&v| v) {
-                        magnitude[i..i + 4].copy_from_slice(&r.magnitude);
-                        magnitude_db[i..i + 4].copy_from_slice(&r.magnitude_db);
-                        phase_deg[i..i + 4].copy_from_slice(&r.phase_deg);
-                        i += 4;
+                    if r.iter().all(|h| h.valid.iter().all(|&v| v)) {
+                        for (h, r) in r.iter().enumerate() {
+                            let j = i + 4 * h;
+                            magnitude[j..j + 4].copy_from_slice(&r.magnitude);
+                            magnitude_db[j..j + 4].copy_from_slice(&r.magnitude_db);
+                            phase_deg[j..j + 4].copy_from_slice(&r.phase_deg);
+                        }
+                        i += 8;
                         continue;
                     }
                 }
-                for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
-                    store(
-                        e.unwrap_or_else(|| self.eval(x)),
-                        i,
-                        magnitude,
-                        magnitude_db,
-                        phase_deg,
-                    );
-                    i += 1;
+                for half in c.chunks_exact(4) {
+                    let block: [f64; 4] = std::array::from_fn(|k| half[k]);
+                    for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
+                        store(
+                            e.unwrap_or_else(|| self.eval(x)),
+                            i,
+                            magnitude,
+                            magnitude_db,
+                            phase_deg,
+                        );
+                        i += 1;
+                    }
                 }
                 continue;
             }
