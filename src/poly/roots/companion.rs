@@ -228,26 +228,38 @@ fn hqr(a: &mut [f64], n: usize) -> Option<Vec<Complex64>> {
                 let z = r / s;
                 q /= p;
                 r /= p;
-                // row modification
-                for j in k..=nu {
-                    let mut pp = a[idx(k, j)] + q * a[idx(k + 1, j)];
-                    if k != nu - 1 {
-                        pp += r * a[idx(k + 2, j)];
-                        a[idx(k + 2, j)] -= pp * z;
+                // row modification (rows k, k+1 and k+2, columns k..=nn), on row slices
+                let (head, rest) = a[k * n..].split_at_mut(n);
+                let (row1, rest) = rest.split_at_mut(n);
+                let row0 = &mut head[k..=nu];
+                let row1 = &mut row1[k..=nu];
+                if k != nu - 1 {
+                    let row2 = &mut rest[k..=nu];
+                    for ((a0, a1), a2) in row0.iter_mut().zip(row1.iter_mut()).zip(row2) {
+                        let pp = *a0 + q * *a1 + r * *a2;
+                        *a2 -= pp * z;
+                        *a1 -= pp * y;
+                        *a0 -= pp * x;
                     }
-                    a[idx(k + 1, j)] -= pp * y;
-                    a[idx(k, j)] -= pp * x;
+                } else {
+                    for (a0, a1) in row0.iter_mut().zip(row1.iter_mut()) {
+                        let pp = *a0 + q * *a1;
+                        *a1 -= pp * y;
+                        *a0 -= pp * x;
+                    }
                 }
-                // column modification
+                // column modification (columns k, k+1 and k+2, rows l..=min(nn, k+3))
                 let mmin = if nu < k + 3 { nu } else { k + 3 };
+                let three = k != nu - 1;
                 for i in l..=mmin {
-                    let mut pp = x * a[idx(i, k)] + y * a[idx(i, k + 1)];
-                    if k != nu - 1 {
-                        pp += z * a[idx(i, k + 2)];
-                        a[idx(i, k + 2)] -= pp * r;
+                    let row = &mut a[i * n + k..i * n + k + if three { 3 } else { 2 }];
+                    let mut pp = x * row[0] + y * row[1];
+                    if three {
+                        pp += z * row[2];
+                        row[2] -= pp * r;
                     }
-                    a[idx(i, k + 1)] -= pp * q;
-                    a[idx(i, k)] -= pp;
+                    row[1] -= pp * q;
+                    row[0] -= pp;
                 }
             }
             k += 1;
