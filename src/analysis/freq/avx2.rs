@@ -356,7 +356,7 @@ fn ln(x: __m256d) -> __m256d {
 
 /// Groups of four frequencies interleaved by [`response8`] (its state is kept in locals, so
 /// it stays in registers).
-const G: usize = 2;
+pub(super) const G: usize = 2;
 
 /// The whole fast path for eight frequencies of a G without integrators or differentiators
 /// (k = 0) and without imaginary-axis pairs: the product of [`product4`] for two groups of
@@ -369,16 +369,14 @@ const G: usize = 2;
 pub(super) fn response8(
     num: &FactorSet,
     den: &FactorSet,
-    w: &[f64; 8],
+    w: &[f64; 4 * G],
     k_mant: f64,
     k_exp: i32,
     base_quarters: i64,
-) -> [Response4; 2] {
-    let wv = [
-        _mm256_set_pd(w[3], w[2], w[1], w[0]),
-        _mm256_set_pd(w[7], w[6], w[5], w[4]),
-    ];
-    let w2 = [_mm256_mul_pd(wv[0], wv[0]), _mm256_mul_pd(wv[1], wv[1])];
+) -> [Response4; G] {
+    let wv: [__m256d; G] =
+        std::array::from_fn(|g| _mm256_set_pd(w[4 * g + 3], w[4 * g + 2], w[4 * g + 1], w[4 * g]));
+    let w2: [__m256d; G] = std::array::from_fn(|g| _mm256_mul_pd(wv[g], wv[g]));
     let zero = _mm256_setzero_pd();
     let one = _mm256_set1_pd(1.0);
     let neg_zero = _mm256_set1_pd(-0.0);

@@ -285,7 +285,10 @@ impl BodeForm {
     ) {
         let fused = self.exact.is_none() && !self.zero;
         let in_range = |x: f64| x >= f64::MIN_POSITIVE && x <= self.fast_limit;
-        let width = if avx2 { 8 } else { L };
+        #[cfg(target_arch = "x86_64")]
+        let width = if avx2 { 4 * super::avx2::G } else { L };
+        #[cfg(not(target_arch = "x86_64"))]
+        let width = L;
         let mut chunks = w.chunks_exact(width);
         let mut i = 0;
         for c in &mut chunks {
@@ -299,7 +302,7 @@ impl BodeForm {
             #[cfg(target_arch = "x86_64")]
             if avx2 {
                 if self.int_order == 0 {
-                    let block: [f64; 8] = std::array::from_fn(|k| c[k]);
+                    let block: [f64; 4 * super::avx2::G] = std::array::from_fn(|k| c[k]);
                     // SAFETY: `avx2` is only true after `avx2::available()` (`avx2_path`).
                     let r = unsafe {
                         super::avx2::response8(
@@ -318,7 +321,7 @@ impl BodeForm {
                             magnitude_db[j..j + 4].copy_from_slice(&r.magnitude_db);
                             phase_deg[j..j + 4].copy_from_slice(&r.phase_deg);
                         }
-                        i += 8;
+                        i += 4 * super::avx2::G;
                         continue;
                     }
                 }

@@ -97,6 +97,7 @@ impl TransferFunction {
             // (Writing the fresh output pages is a good part of the cost at 10⁶ points, and
             // it parallelises too.)
             let chunk = n.div_ceil(threads);
+            let blocks_count = n.div_ceil(chunk);
             let mut not_started = Vec::new();
             std::thread::scope(|scope| {
                 let blocks = w
@@ -107,11 +108,16 @@ impl TransferFunction {
                     .zip(phase_deg.chunks_mut(chunk));
                 for (k, ((((wc, ow), m), db), ph)) in blocks.enumerate() {
                     let form = &form;
-                    let spawned = std::thread::Builder::new().spawn_scoped(scope, move || {
+                    let mut job = move || {
                         ow.copy_from_slice(wc);
                         form.response_fill(wc, m, db, ph);
-                    });
-                    if spawned.is_err() {
+                    };
+                    if k + 1 == blocks_count {
+                        job(); // the last block on the calling thread
+                    } else if std::thread::Builder::new()
+                        .spawn_scoped(scope, job)
+                        .is_err()
+                    {
                         not_started.push(k);
                     }
                 }

@@ -7,7 +7,8 @@
 //! caller falls back to [`crate::numeric::eigenvalues_checked`].
 //!
 //! Same backward stability as the general routine (orthogonal similarity transformations of
-//! the balanced matrix); 4–6× faster for the small orders of control plants.
+//! the balanced matrix); `Poly::roots` as a whole got 1.7–2× faster with it (degree 50:
+//! 0.53 → 0.27 ms).
 
 use num_complex::Complex64;
 
