@@ -7,6 +7,10 @@
 //! Only factor sets without imaginary-axis pairs come here (the caller checks); those, and
 //! every lane whose product is not a normal number, go through the portable path.
 
+// Compiled only where build.rs found rustc ≥ 1.89 (`cfg(ltikit_simd)`), whatever the crate's
+// declared minimum: the intrinsics used here are stable from there on.
+#![allow(clippy::incompatible_msrv)]
+
 use std::arch::x86_64::*;
 
 use super::factors::FactorSet;
@@ -178,7 +182,7 @@ impl State {
 /// The four lanes of a vector.
 #[inline]
 #[target_feature(enable = "avx2")]
-fn lanes(v: __m256d) -> [f64; 4] {
+pub(super) fn lanes(v: __m256d) -> [f64; 4] {
     let lo = _mm256_castpd256_pd128(v);
     let hi = _mm256_extractf128_pd::<1>(v);
     [
@@ -507,7 +511,8 @@ fn finish4(st: &State, k_mant: f64, k_exp: i32, base_quarters: i64) -> Response4
         _mm256_cmp_pd::<_CMP_NEQ_OQ>(re, zero),
         _mm256_cmp_pd::<_CMP_NEQ_OQ>(im, zero),
     );
-    let angle = atan2(im, re);
+    // −0 imaginary parts to +0: the negative real axis counts as +π (see `BodeForm::finish`)
+    let angle = atan2(_mm256_add_pd(im, zero), re);
     let mant = _mm256_div_pd(
         _mm256_mul_pd(
             _mm256_set1_pd(k_mant),

@@ -19,6 +19,19 @@ use super::bode::BodeForm;
 use super::factors::{Eval, FactorSet, exponent, mul_pow2, pow2};
 use super::fastmath;
 
+/// Which evaluation loop `response_fill` runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Path {
+    /// The lane loop below (any CPU).
+    Portable,
+    /// `avx2::response8` (x86-64 with AVX2, no imaginary-axis pairs).
+    #[cfg_attr(not(all(target_arch = "x86_64", ltikit_simd)), allow(dead_code))]
+    Avx2,
+    /// `avx512::response16` (x86-64 with AVX-512F, no imaginary-axis pairs).
+    #[cfg_attr(not(all(target_arch = "x86_64", ltikit_simd)), allow(dead_code))]
+    Avx512,
+}
+
 /// Frequencies evaluated side by side: independent dependency chains hide the latency of
 /// the serial product (one frequency at a time is latency-bound, ~4× slower).
 const L: usize = 8;
@@ -188,7 +201,9 @@ impl BodeForm {
         if !(re.is_finite() && im.is_finite()) || (re == 0.0 && im == 0.0) {
             return None;
         }
-        let angle = fastmath::atan2(im, re);
+        // The turn count takes the negative real axis as the upper side (argument +π): an
+        // imaginary part of −0 must not make atan2 say −π (+ 0.0 turns −0 into +0).
+        let angle = fastmath::atan2(im + 0.0, re);
         let mut mant = self.k_mant * (re * re + im * im).sqrt() / d2;
         let mut exp2 = self.k_exp + exp as i32;
         if self.int_order != 0 {
@@ -230,11 +245,13 @@ impl BodeForm {
     }
 
     /// As [`BodeForm::eval_fused`] for 4 frequencies with the AVX2 product (bitwise the same
-    /// values). The factor sets must have no imaginary-axis pairs and the CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
+    /// values). The factor sets must have no imaginary-axis pairs and the CPU must have AVX2
+    /// (`Path::Avx2` or `Path::Avx512`).
+    #[cfg(all(target_arch = "x86_64", ltikit_simd))]
     #[inline(always)]
     fn eval_fused_avx2(&self, w: &[f64; 4]) -> [Option<Eval>; 4] {
-        // SAFETY: only called after `avx2::available()` returned true (see `response_into`).
+        // SAFETY: only on `Path::Avx2`/`Path::Avx512`, chosen after `avx2::available()` or
+        // `avx512::available()` (AVX-512F implies AVX2) in `simd_path`.
         let p = unsafe { super::avx2::product4(&self.num, &self.den, w) };
         std::array::from_fn(|l| {
             self.finish(
@@ -249,16 +266,19 @@ impl BodeForm {
         })
     }
 
-    /// True when [`BodeForm::response_into`] takes the AVX2 product.
-    fn avx2_path(&self) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        {
-            self.num.axis.is_empty() && self.den.axis.is_empty() && super::avx2::available()
+    /// The vector path the CPU allows for this G (imaginary-axis pairs always take the
+    /// portable loop).
+    fn simd_path(&self) -> Path {
+        #[cfg(all(target_arch = "x86_64", ltikit_simd))]
+        if self.num.axis.is_empty() && self.den.axis.is_empty() {
+            if super::avx512::available() {
+                return Path::Avx512;
+            }
+            if super::avx2::available() {
+                return Path::Avx2;
+            }
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        {
-            false
-        }
+        Path::Portable
     }
 
     /// |G|, 20·log₁₀|G| and the continuous phase (degrees) at every ω of `w` (each finite,
@@ -270,25 +290,28 @@ impl BodeForm {
         magnitude_db: &mut [f64],
         phase_deg: &mut [f64],
     ) {
-        self.response_fill_with(w, self.avx2_path(), magnitude, magnitude_db, phase_deg);
+        self.response_fill_with(w, self.simd_path(), magnitude, magnitude_db, phase_deg);
     }
 
-    /// [`BodeForm::response_fill`] with the product path chosen by the caller (`avx2` only
-    /// where [`BodeForm::avx2_path`] allows it).
+    /// [`BodeForm::response_fill`] on the given path (a vector path only where
+    /// [`BodeForm::simd_path`] allows it: AVX-512 implies AVX2).
     fn response_fill_with(
         &self,
         w: &[f64],
-        avx2: bool,
+        path: Path,
         magnitude: &mut [f64],
         magnitude_db: &mut [f64],
         phase_deg: &mut [f64],
     ) {
         let fused = self.exact.is_none() && !self.zero;
         let in_range = |x: f64| x >= f64::MIN_POSITIVE && x <= self.fast_limit;
-        #[cfg(target_arch = "x86_64")]
-        let width = if avx2 { 4 * super::avx2::G } else { L };
-        #[cfg(not(target_arch = "x86_64"))]
-        let width = L;
+        let width = match path {
+            #[cfg(all(target_arch = "x86_64", ltikit_simd))]
+            Path::Avx512 => super::avx512::WIDTH,
+            #[cfg(all(target_arch = "x86_64", ltikit_simd))]
+            Path::Avx2 => 4 * super::avx2::G,
+            _ => L,
+        };
         let mut chunks = w.chunks_exact(width);
         let mut i = 0;
         for c in &mut chunks {
@@ -299,11 +322,53 @@ impl BodeForm {
                 }
                 continue;
             }
-            #[cfg(target_arch = "x86_64")]
-            if avx2 {
+            #[cfg(all(target_arch = "x86_64", ltikit_simd))]
+            if path == Path::Avx512 {
+                if self.int_order == 0 {
+                    let block: [f64; super::avx512::WIDTH] = std::array::from_fn(|k| c[k]);
+                    // SAFETY: `Path::Avx512` only after `avx512::available()` (`simd_path`).
+                    let r = unsafe {
+                        super::avx512::response16(
+                            &self.num,
+                            &self.den,
+                            &block,
+                            self.k_mant,
+                            self.k_exp,
+                            self.base_quarters,
+                        )
+                    };
+                    if r.iter().all(|h| h.valid.iter().all(|&v| v)) {
+                        for (h, r) in r.iter().enumerate() {
+                            let j = i + 8 * h;
+                            magnitude[j..j + 8].copy_from_slice(&r.magnitude);
+                            magnitude_db[j..j + 8].copy_from_slice(&r.magnitude_db);
+                            phase_deg[j..j + 8].copy_from_slice(&r.phase_deg);
+                        }
+                        i += super::avx512::WIDTH;
+                        continue;
+                    }
+                }
+                // AVX-512 implies AVX2: the four-wide product with the scalar tail
+                for quarter in c.chunks_exact(4) {
+                    let block: [f64; 4] = std::array::from_fn(|k| quarter[k]);
+                    for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
+                        store(
+                            e.unwrap_or_else(|| self.eval(x)),
+                            i,
+                            magnitude,
+                            magnitude_db,
+                            phase_deg,
+                        );
+                        i += 1;
+                    }
+                }
+                continue;
+            }
+            #[cfg(all(target_arch = "x86_64", ltikit_simd))]
+            if path == Path::Avx2 {
                 if self.int_order == 0 {
                     let block: [f64; 4 * super::avx2::G] = std::array::from_fn(|k| c[k]);
-                    // SAFETY: `avx2` is only true after `avx2::available()` (`avx2_path`).
+                    // SAFETY: `Path::Avx2` only after `avx2::available()` (`simd_path`).
                     let r = unsafe {
                         super::avx2::response8(
                             &self.num,
@@ -352,9 +417,27 @@ impl BodeForm {
                 i += 1;
             }
         }
-        for &x in chunks.remainder() {
-            store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
-            i += 1;
+        // The rest (fewer than `width`): the portable lanes, padded with its last frequency,
+        // so every frequency gets the fused path's values whatever the block width.
+        for c in chunks.remainder().chunks(L) {
+            if !(fused && c.iter().all(|&x| in_range(x))) {
+                for &x in c {
+                    store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
+                    i += 1;
+                }
+                continue;
+            }
+            let block: [f64; L] = std::array::from_fn(|k| c[k.min(c.len() - 1)]);
+            for (e, &x) in self.eval_fused(&block).into_iter().zip(c) {
+                store(
+                    e.unwrap_or_else(|| self.eval(x)),
+                    i,
+                    magnitude,
+                    magnitude_db,
+                    phase_deg,
+                );
+                i += 1;
+            }
         }
     }
 }
@@ -395,12 +478,37 @@ mod tests {
         )
     }
 
+    /// A double pole pair on the unit circle, hit exactly at ω = 1: both factors are purely
+    /// imaginary there and the product lands on the negative real axis with a −0 imaginary
+    /// part (found by `fused_matches_eval`): the phase is −180° (K < 0) − 2·90° = −360°.
+    #[test]
+    fn product_on_the_negative_real_axis_keeps_its_branch() {
+        let p = Complex64::new(-0.8148459734085408, 0.5796775307184915);
+        let poles = [p, p.conj(), p, p.conj()];
+        let g = TransferFunction::from_zpk(&[], &poles, -4.67837878872059).unwrap();
+        let f = BodeForm::new(&g).unwrap();
+        let w = [
+            0.5, 1.0, 2.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0,
+        ];
+        let (mut m, mut db, mut ph) = ([0.0; 16], [0.0; 16], [0.0; 16]);
+        f.response_fill(&w, &mut m, &mut db, &mut ph);
+        for (i, &x) in w.iter().enumerate() {
+            assert!(
+                (ph[i] - f.eval(x).phase_deg()).abs() < 1e-9,
+                "ω = {x}: {}",
+                ph[i]
+            );
+        }
+        assert!((ph[1] + 360.0).abs() < 1e-9, "{}", ph[1]);
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig { cases: 96, .. ProptestConfig::default() })]
 
-        /// The AVX2 product gives bitwise the values of the portable lane loop.
+        /// The AVX2 and AVX-512 paths give bitwise the values of the portable lane loop.
+        #[cfg(all(target_arch = "x86_64", ltikit_simd))]
         #[test]
-        fn avx2_is_bitwise_portable(z in roots(6), p in roots(12), int in -2i32..2) {
+        fn vector_paths_are_bitwise_portable(z in roots(6), p in roots(12), int in -2i32..2) {
             let z: Vec<Complex64> = z.into_iter().filter(|r| r.re != 0.0).collect();
             let p: Vec<Complex64> = p.into_iter().filter(|r| r.re != 0.0).collect();
             let mut g = TransferFunction::from_zpk(&z, &p, 2.5).unwrap();
@@ -409,19 +517,27 @@ mod tests {
                 g = if int > 0 { &g * &s } else { &g * &s.inv().unwrap() };
             }
             let f = BodeForm::new(&g).unwrap();
-            prop_assume!(f.avx2_path());
+            let best = f.simd_path();
+            prop_assume!(best != Path::Portable);
             let w: Vec<f64> = (0..203).map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 202.0)).collect();
             let n = w.len();
-            let run = |avx2: bool| {
+            let run = |path: Path| {
                 let (mut m, mut db, mut ph) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-                f.response_fill_with(&w, avx2, &mut m, &mut db, &mut ph);
+                f.response_fill_with(&w, path, &mut m, &mut db, &mut ph);
                 (m, db, ph)
             };
-            let (a, b) = (run(true), run(false));
-            for i in 0..n {
-                prop_assert_eq!(a.0[i].to_bits(), b.0[i].to_bits());
-                prop_assert_eq!(a.1[i].to_bits(), b.1[i].to_bits());
-                prop_assert_eq!(a.2[i].to_bits(), b.2[i].to_bits());
+            let portable = run(Path::Portable);
+            let mut paths = vec![Path::Avx2];
+            if best == Path::Avx512 {
+                paths.push(Path::Avx512);
+            }
+            for path in paths {
+                let a = run(path);
+                for (i, x) in w.iter().enumerate() {
+                    prop_assert_eq!(a.0[i].to_bits(), portable.0[i].to_bits(), "{:?} |G| at {}", path, x);
+                    prop_assert_eq!(a.1[i].to_bits(), portable.1[i].to_bits(), "{:?} dB at {}", path, x);
+                    prop_assert_eq!(a.2[i].to_bits(), portable.2[i].to_bits(), "{:?} φ at {}", path, x);
+                }
             }
         }
 

@@ -173,8 +173,10 @@ pub(crate) fn check_frequencies(w: &[f64]) -> Result<()> {
     Ok(())
 }
 
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", ltikit_simd))]
 mod avx2;
+#[cfg(all(target_arch = "x86_64", ltikit_simd))]
+mod avx512;
 mod bode;
 mod factors;
 mod fastmath;
