@@ -9,6 +9,13 @@
 //! separate numerator and denominator products to reconcile, no per-factor `atan2`. The
 //! libm calls are replaced by inlined fdlibm `atan2`/`ln` ([`super::fastmath`]).
 //!
+//! Three loops compute it, chosen per call: the portable lane loop here, and on x86-64 (when
+//! build.rs enables `cfg(ltikit_simd)`) `avx2::response8` and `avx512::response16`, picked at
+//! run time from the CPU's features for a G without imaginary-axis pairs. They perform the
+//! same floating-point operations in the same order, so they return bitwise the same values
+//! (tested); the rest of a grid that does not fill a vector block goes through the portable
+//! lanes, padded.
+//!
 //! Frequencies the fast path does not cover (ω = 0, beyond the overflow-free limit, an
 //! exact hit of an imaginary-axis root, a product that is not a normal number, the
 //! double-double Horner fallback) go through [`BodeForm::eval`].
@@ -32,8 +39,8 @@ enum Path {
     Avx512,
 }
 
-/// Frequencies evaluated side by side: independent dependency chains hide the latency of
-/// the serial product (one frequency at a time is latency-bound, ~4× slower).
+/// Frequencies evaluated side by side by the portable loop (independent dependency chains;
+/// also the block the SIMD paths must reproduce lane by lane).
 const L: usize = 8;
 
 /// The running products of `L` frequencies with their branch bookkeeping.
