@@ -155,6 +155,9 @@ def ltikit_batch(path, repeat=3):
     subprocess.run(["cargo", "build", "--quiet", "--release"], cwd=ROOT, check=True)
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
     exe = os.path.join(target, "release", "ltikit")
+    usage = subprocess.run([exe, "analyze", "--help"], capture_output=True, text=True).stdout
+    if "--batch" not in usage:
+        return None, None  # this tree's CLI has no batch mode
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
@@ -187,6 +190,8 @@ def one_run(plants, path):
                  f"numpy {list(num)} / {list(den)}")
     py = python_timings()
     tb_lt, lt_errors = ltikit_batch(path)
+    if tb_lt is None:
+        return {"ltikit": lt, "python": py, "batch": None}
     tb_py, py_failed = python_batch(plants)
     return {"ltikit": lt, "python": py, "batch": {"ltikit": tb_lt, "python": tb_py,
             "ltikit_error_records": lt_errors, "python_step_info_failures": py_failed}}
@@ -246,6 +251,9 @@ def main():
                   f"  (freq_response takes {rf:.2f}x its time)")
     if "bode_png" in runs[0]["ltikit"]:
         print(f"one Bode PNG (from the plant, 1000x700): {lt('bode_png')*1e3:.1f} ms")
+    if any(r["batch"] is None for r in runs):
+        print("\nbatch: skipped (this tree's ltikit has no `analyze --batch`)")
+        return
     b_lt = med([r["batch"]["ltikit"] for r in runs])
     b_py = med([r["batch"]["python"] for r in runs])
     b_ratio = med([r["batch"]["python"] / r["batch"]["ltikit"] for r in runs])
