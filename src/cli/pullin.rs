@@ -8,6 +8,7 @@ use super::output::print;
 use super::parse;
 use crate::nonlinear::mems_pullin;
 use crate::nonlinear::models::{MEMS_PARAMS, Mems};
+use crate::nonlinear::params::with_overrides;
 use crate::plot::{Curve, LineStyle, Marker, MarkerShape, PlotOptions, XyPlot, parse_size, xy_png};
 use crate::poly::fmt_sig;
 
@@ -29,21 +30,11 @@ pub struct PullinArgs {
 
 /// The MEMS model with parameter overrides.
 pub fn mems_with(params: &[(String, f64)]) -> Result<Mems> {
-    let mut values: Vec<f64> = MEMS_PARAMS.iter().map(|p| p.default).collect();
-    for (k, v) in params {
-        let Some(i) = MEMS_PARAMS.iter().position(|p| p.name == k) else {
-            bail!(
-                "model 'mems' has no parameter '{k}' (parameters: {})",
-                MEMS_PARAMS
-                    .iter()
-                    .map(|p| p.name)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
-        };
-        values[i] = *v;
-    }
-    Ok(Mems::from_values(&values)?)
+    Ok(Mems::from_values(&with_overrides(
+        "mems",
+        MEMS_PARAMS,
+        params,
+    )?)?)
 }
 
 /// Draws the pull-in diagram; returns the formula and the found pull-in voltage.

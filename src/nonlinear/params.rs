@@ -102,6 +102,42 @@ pub fn defaults(specs: &[ModelParam]) -> Vec<f64> {
     specs.iter().map(|p| p.default).collect()
 }
 
+/// The defaults of `specs` with `overrides` (name, value) applied, in declaration order.
+/// An unknown name is [`LtiError::UnknownParameter`] naming `model` and the known parameters;
+/// the values themselves are checked by the model's constructor.
+///
+/// ```
+/// use ltikit::nonlinear::models::MEMS_PARAMS;
+/// use ltikit::nonlinear::params::with_overrides;
+/// let v = with_overrides("mems", MEMS_PARAMS, &[("v".into(), 2.5)]).unwrap();
+/// assert_eq!(v[7], 2.5);
+/// assert!(with_overrides("mems", MEMS_PARAMS, &[("Q".into(), 1.0)]).is_err());
+/// ```
+pub fn with_overrides(
+    model: &str,
+    specs: &[ModelParam],
+    overrides: &[(String, f64)],
+) -> Result<Vec<f64>> {
+    let mut values = defaults(specs);
+    for (k, v) in overrides {
+        let i =
+            specs
+                .iter()
+                .position(|p| p.name == k)
+                .ok_or_else(|| LtiError::UnknownParameter {
+                    model: model.into(),
+                    name: k.clone(),
+                    known: if specs.is_empty() {
+                        "none".into()
+                    } else {
+                        specs.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")
+                    },
+                })?;
+        values[i] = *v;
+    }
+    Ok(values)
+}
+
 /// `(name, value)` pairs for reporting.
 pub fn named(specs: &[ModelParam], values: &[f64]) -> Vec<(String, f64)> {
     specs

@@ -8,7 +8,7 @@ use crate::lti::plant_specs;
 use crate::nonlinear::models::{
     LORENZ_PARAMS, LinearModel, Lorenz, MEMS_PARAMS, Mems, PENDULUM_PARAMS, Pendulum, VanDerPol,
 };
-use crate::nonlinear::params::{Constraint, ModelParam, defaults};
+use crate::nonlinear::params::{Constraint, ModelParam, with_overrides};
 use crate::nonlinear::system::BoxedSystem;
 
 /// Whether a model is nonlinear or a linear plant.
@@ -177,26 +177,6 @@ pub fn build_model(name: &str, overrides: &[(String, f64)]) -> Result<BoxedSyste
         }
         return Err(unknown(name));
     };
-    let mut values = defaults(spec.params);
-    for (k, v) in overrides {
-        let i = spec
-            .params
-            .iter()
-            .position(|p| p.name == k)
-            .ok_or_else(|| LtiError::UnknownParameter {
-                model: spec.name.into(),
-                name: k.clone(),
-                known: if spec.params.is_empty() {
-                    "none".into()
-                } else {
-                    spec.params
-                        .iter()
-                        .map(|p| p.name)
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                },
-            })?;
-        values[i] = *v;
-    }
+    let values = with_overrides(spec.name, spec.params, overrides)?;
     (spec.build)(&values)
 }
