@@ -6,9 +6,9 @@ use clap::Args;
 
 use super::output::print;
 use super::parse;
+use crate::lti::params::with_overrides;
 use crate::nonlinear::mems_pullin;
 use crate::nonlinear::models::{MEMS_PARAMS, Mems};
-use crate::nonlinear::params::with_overrides;
 use crate::plot::{Curve, LineStyle, Marker, MarkerShape, PlotOptions, XyPlot, parse_size, xy_png};
 use crate::poly::fmt_sig;
 

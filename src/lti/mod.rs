@@ -1,11 +1,13 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod params;
 pub mod plant_file;
 pub mod plants;
 pub mod ss;
 pub mod tf;
 
+pub use params::{Constraint, ModelParam};
 pub use plant_file::PlantFile;
-pub use plants::{ParamSpec, PlantSpec, build_plant, plant_spec, plant_specs};
+pub use plants::{PlantSpec, build_plant, plant_spec, plant_specs};
 pub use ss::StateSpace;
 pub use tf::TransferFunction;

@@ -16,24 +16,12 @@
 //! m₁ẍ₁ = f − K₁x₁ − K₂(x₁ − x₂) − C(ẋ₁ − ẋ₂), m₂ẍ₂ = K₂(x₁ − x₂) + C(ẋ₁ − ẋ₂), so
 //! Δ(s) = (m₁s² + Cs + K₁ + K₂)(m₂s² + Cs + K₂) − (Cs + K₂)².
 
-use crate::error::{LtiError, Result, check_finite};
+use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
+use crate::lti::params::{
+    Constraint, ModelParam, check_values, defaults, named, param, with_overrides,
+};
 use crate::poly::Poly;
-
-/// A model parameter: name, default, unit, meaning, and whether it must be > 0 (else ≥ 0).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ParamSpec {
-    /// Name used on the command line (`--param NAME=VALUE`).
-    pub name: &'static str,
-    /// Default value.
-    pub default: f64,
-    /// SI unit.
-    pub unit: &'static str,
-    /// What it is.
-    pub description: &'static str,
-    /// True: must be > 0; false: must be ≥ 0.
-    pub positive: bool,
-}
 
 /// A named linear plant.
 #[derive(Debug, Clone, Copy)]
@@ -51,42 +39,20 @@ pub struct PlantSpec {
     /// Output signal and unit.
     pub output: &'static str,
     /// Parameters in order.
-    pub params: &'static [ParamSpec],
+    pub params: &'static [ModelParam],
     build: fn(&[f64]) -> Result<TransferFunction>,
 }
 
 impl PlantSpec {
     /// Builds the transfer function from parameter values given in the order of `params`.
     pub fn build(&self, values: &[f64]) -> Result<TransferFunction> {
-        if values.len() != self.params.len() {
-            return Err(LtiError::invalid(format!(
-                "{} takes {} parameters, got {}",
-                self.name,
-                self.params.len(),
-                values.len()
-            )));
-        }
-        for (p, &v) in self.params.iter().zip(values) {
-            check_finite(|| format!("parameter {}", p.name), v)?;
-            if (p.positive && v <= 0.0) || (!p.positive && v < 0.0) {
-                return Err(LtiError::InvalidParameter {
-                    name: p.name.into(),
-                    value: v,
-                    reason: format!(
-                        "{} must be {} ({})",
-                        p.description,
-                        if p.positive { "> 0" } else { "≥ 0" },
-                        p.unit
-                    ),
-                });
-            }
-        }
+        check_values(self.params, values)?;
         (self.build)(values)
     }
 
     /// The default parameter values.
     pub fn defaults(&self) -> Vec<f64> {
-        self.params.iter().map(|p| p.default).collect()
+        defaults(self.params)
     }
 }
 
@@ -96,14 +62,18 @@ const fn p(
     unit: &'static str,
     description: &'static str,
     positive: bool,
-) -> ParamSpec {
-    ParamSpec {
+) -> ModelParam {
+    param(
         name,
         default,
         unit,
         description,
-        positive,
-    }
+        if positive {
+            Constraint::Positive
+        } else {
+            Constraint::NonNegative
+        },
+    )
 }
 
 fn tf(num: &[f64], den: &[f64]) -> Result<TransferFunction> {
@@ -234,32 +204,9 @@ pub fn build_plant(
     overrides: &[(String, f64)],
 ) -> Result<(TransferFunction, Vec<(String, f64)>)> {
     let spec = plant_spec(name)?;
-    let mut values = spec.defaults();
-    for (k, v) in overrides {
-        let i = spec
-            .params
-            .iter()
-            .position(|p| p.name == k)
-            .ok_or_else(|| LtiError::UnknownParameter {
-                model: spec.name.into(),
-                name: k.clone(),
-                known: spec
-                    .params
-                    .iter()
-                    .map(|p| p.name)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })?;
-        values[i] = *v;
-    }
+    let values = with_overrides(spec.name, spec.params, overrides)?;
     let g = spec.build(&values)?;
-    let used = spec
-        .params
-        .iter()
-        .zip(&values)
-        .map(|(p, v)| (p.name.to_string(), *v))
-        .collect();
-    Ok((g, used))
+    Ok((g, named(spec.params, &values)))
 }
 
 #[cfg(test)]

@@ -26,7 +26,6 @@
 pub mod equilibria;
 pub mod linearize;
 pub mod models;
-pub mod params;
 pub mod period;
 pub mod portraits;
 pub mod pullin;
@@ -34,6 +33,7 @@ pub mod registry;
 pub mod simulate;
 pub mod system;
 
+pub use crate::lti::params::{Constraint, ModelParam};
 pub use equilibria::{
     Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria, newton_equilibria, residual,
 };
@@ -41,7 +41,6 @@ pub use linearize::{
     Linearization, LinearizedEquilibrium, LinearizedTf, LocalStability, analyze_equilibrium,
     linearize, linearize_at, local_stability,
 };
-pub use params::{Constraint, ModelParam};
 pub use period::{
     PeriodPoint, agm, elliptic_k, pendulum_period_exact, pendulum_period_simulated,
     pendulum_periods,

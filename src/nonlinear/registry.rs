@@ -4,11 +4,11 @@
 use serde::Serialize;
 
 use crate::error::{LtiError, Result};
+use crate::lti::params::{ModelParam, with_overrides};
 use crate::lti::plant_specs;
 use crate::nonlinear::models::{
     LORENZ_PARAMS, LinearModel, Lorenz, MEMS_PARAMS, Mems, PENDULUM_PARAMS, Pendulum, VanDerPol,
 };
-use crate::nonlinear::params::{Constraint, ModelParam, with_overrides};
 use crate::nonlinear::system::BoxedSystem;
 
 /// Whether a model is nonlinear or a linear plant.
@@ -132,21 +132,7 @@ pub fn model_info(name: &str) -> Result<ModelInfo> {
         source: p.source,
         equations: p.ode,
         kind: ModelKind::Linear,
-        params: p
-            .params
-            .iter()
-            .map(|q| ModelParam {
-                name: q.name,
-                default: q.default,
-                unit: q.unit,
-                description: q.description,
-                constraint: if q.positive {
-                    Constraint::Positive
-                } else {
-                    Constraint::NonNegative
-                },
-            })
-            .collect(),
+        params: p.params.to_vec(),
     })
 }
 

@@ -7,13 +7,14 @@
 //!
 //! Roots come with exact multiplicities ([`Poly::roots`], see [`roots`] for the method).
 
+mod root;
 pub mod roots;
 
 use num_complex::Complex64;
 use std::fmt;
 
 use crate::error::{LtiError, Result, check_finite};
-pub use roots::Root;
+pub use root::Root;
 
 /// Highest polynomial degree (system order) ltikit accepts.
 pub const MAX_ORDER: usize = 200;

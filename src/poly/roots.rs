@@ -25,30 +25,13 @@
 //! 5e-4 apart (which scipy's `residue` merges) stay distinct.
 
 use num_complex::Complex64;
-use serde::Serialize;
 
 mod companion;
 
-use super::{MAX_ORDER, Poly};
+use super::{MAX_ORDER, Poly, Root};
 use crate::error::{LtiError, Result};
 use crate::numeric::dd::{self, Dd, two_prod};
 use crate::numeric::tol::EPS;
-
-/// A root and its multiplicity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Root {
-    /// The root.
-    pub value: Complex64,
-    /// How many times it is repeated (≥ 1).
-    pub multiplicity: usize,
-}
-
-impl Root {
-    /// True when the root is exactly real (imaginary part 0).
-    pub fn is_real(&self) -> bool {
-        self.value.im == 0.0
-    }
-}
 
 /// Generous relative distance under which candidates are grouped for the multiplicity test.
 /// The scatter of an m-fold root is ~eps^(1/m) relative: 2.5e-3 for m = 6, 0.03 for m = 10.

@@ -5,7 +5,7 @@
 //! origin the eigenvalues are −b and (−(σ+1) ± √((σ+1)² + 4σ(r−1)))/2.
 
 use crate::error::Result;
-use crate::nonlinear::params::{Constraint, ModelParam, check_values, named, param};
+use crate::lti::params::{Constraint, ModelParam, check_values, named, param};
 use crate::nonlinear::system::{NonlinearSystem, Scalar, SystemInfo};
 
 /// Parameters of `lorenz`: sigma, r, b (10, 28, 8/3 as in seed fig. 2.9).

@@ -15,7 +15,7 @@
 //! ([`SystemInfo::in_domain`]); beyond it the model would blow up (q grows like e^{|l|t/(RεA)}).
 
 use crate::error::Result;
-use crate::nonlinear::params::{Constraint, ModelParam, check_values, named, param};
+use crate::lti::params::{Constraint, ModelParam, check_values, named, param};
 use crate::nonlinear::system::{NonlinearSystem, Scalar, SystemInfo};
 use crate::poly::Poly;
 

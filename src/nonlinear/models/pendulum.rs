@@ -8,7 +8,7 @@
 //! A = [[0, 1], [−(3g/(2L)) cos θ̄, −3C/(M L²)]], B = [0, 3/(M L²)]ᵀ.
 
 use crate::error::Result;
-use crate::nonlinear::params::{Constraint, ModelParam, check_values, named, param};
+use crate::lti::params::{Constraint, ModelParam, check_values, named, param};
 use crate::nonlinear::system::{NonlinearSystem, Scalar, SystemInfo};
 
 /// Parameters of `pendulum`: M, L, C, g.

@@ -108,7 +108,7 @@ pub fn defaults(specs: &[ModelParam]) -> Vec<f64> {
 ///
 /// ```
 /// use ltikit::nonlinear::models::MEMS_PARAMS;
-/// use ltikit::nonlinear::params::with_overrides;
+/// use ltikit::lti::params::with_overrides;
 /// let v = with_overrides("mems", MEMS_PARAMS, &[("v".into(), 2.5)]).unwrap();
 /// assert_eq!(v[7], 2.5);
 /// assert!(with_overrides("mems", MEMS_PARAMS, &[("Q".into(), 1.0)]).is_err());
