@@ -106,7 +106,13 @@ fn analytic_step_info(zeta: f64) -> StepInfo {
         StepInfo {
             rise_time: rise_end - rise_start,
             settling_time: settling,
+            // the largest error is 1 at t = 0 (overshoot < 100 %): the same band
+            transient_time: settling,
+            // after the rise: the first trough at 2π/ω_d, unless 90 % is lower
+            settling_min: (1.0 - (-2.0 * zeta * tp).exp()).min(0.9),
+            settling_max: 1.0 + os,
             overshoot_percent: 100.0 * os,
+            undershoot_percent: 0.0,
             peak: 1.0 + os,
             peak_time: tp,
             steady_state: 1.0,
@@ -116,10 +122,16 @@ fn analytic_step_info(zeta: f64) -> StepInfo {
     } else {
         let rise_start = bisect(|t| y(t) - 0.1, 0.0, 100.0);
         let rise_end = bisect(|t| y(t) - 0.9, 0.0, 100.0);
+        let settling = bisect(|t| y(t) - 0.98, 0.0, 100.0);
         StepInfo {
             rise_time: rise_end - rise_start,
-            settling_time: bisect(|t| y(t) - 0.98, 0.0, 100.0),
+            settling_time: settling,
+            transient_time: settling,
+            // monotone: 90 % at the end of the rise, 1 only approached
+            settling_min: 0.9,
+            settling_max: 1.0,
             overshoot_percent: 0.0,
+            undershoot_percent: 0.0,
             peak: 1.0,
             peak_time: f64::INFINITY,
             steady_state: 1.0,
@@ -143,6 +155,14 @@ fn second_order_against_analytic() {
             ("overshoot", got.overshoot_percent, want.overshoot_percent),
             ("peak", got.peak, want.peak),
             ("rise start", got.rise_start, want.rise_start),
+            ("transient time", got.transient_time, want.transient_time),
+            ("settling min", got.settling_min, want.settling_min),
+            ("settling max", got.settling_max, want.settling_max),
+            (
+                "undershoot",
+                got.undershoot_percent,
+                want.undershoot_percent,
+            ),
         ];
         let mut worst: f64 = 0.0;
         for (what, g, w) in pairs {

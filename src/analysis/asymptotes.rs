@@ -22,6 +22,7 @@
 
 use serde::Serialize;
 
+use crate::analysis::factored::Factored;
 use crate::analysis::stability::{HalfPlane, half_plane};
 use crate::error::{LtiError, Result, check_finite};
 use crate::lti::TransferFunction;
@@ -229,7 +230,7 @@ pub fn bode_asymptotes(
 
 impl TransferFunction {
     /// Straight-line Bode asymptotes over [w_min, w_max] (see [`bode_asymptotes`]), from the
-    /// poles and zeros as given and the gain b_m/a_n.
+    /// reduced poles and zeros and the gain b_m/a_n ([`Factored::bode_asymptotes`]).
     ///
     /// ```
     /// use ltikit::TransferFunction;
@@ -240,10 +241,21 @@ impl TransferFunction {
     /// assert!(a.phase_deg.iter().all(|p| (p.1 + 270.0).abs() < 1e-12));
     /// ```
     pub fn bode_asymptotes(&self, w_min: f64, w_max: f64) -> Result<BodeAsymptotes> {
-        if self.num().is_zero() {
-            return bode_asymptotes(&[], &[], 0.0, w_min, w_max);
-        }
-        bode_asymptotes(&self.zeros()?, &self.poles()?, self.gain(), w_min, w_max)
+        self.factored()?.bode_asymptotes(w_min, w_max)
+    }
+}
+
+impl Factored {
+    /// Straight-line Bode asymptotes of G in lowest terms over [w_min, w_max]
+    /// ([`bode_asymptotes`]).
+    pub fn bode_asymptotes(&self, w_min: f64, w_max: f64) -> Result<BodeAsymptotes> {
+        bode_asymptotes(
+            self.reduced_zeros(),
+            self.reduced_poles(),
+            self.gain(),
+            w_min,
+            w_max,
+        )
     }
 }
 

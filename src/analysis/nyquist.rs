@@ -20,9 +20,10 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::analysis::stability::{HalfPlane, half_plane};
+use crate::analysis::factored::Factored;
 use crate::error::Result;
 use crate::lti::TransferFunction;
+use crate::poly::{HalfPlane, half_plane};
 
 /// Which part of the D contour a point lies on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -135,7 +136,7 @@ fn too_coarse(a: Complex64, b: Complex64) -> bool {
 }
 
 /// Samples one piece adaptively, appending to `out` (without duplicating a shared endpoint).
-fn sample_piece(g: &TransferFunction, piece: Piece, out: &mut Vec<NyquistPoint>) {
+fn sample_piece(g: &Factored, piece: Piece, out: &mut Vec<NyquistPoint>) {
     let n = piece.initial();
     let eval = |t: f64| {
         let s = piece.s(t);
@@ -179,17 +180,17 @@ fn sample_piece(g: &TransferFunction, piece: Piece, out: &mut Vec<NyquistPoint>)
 /// use ltikit::analysis::nyquist_contour;
 /// // K/(s + 1)³ with K = 10 is unstable in unity feedback (K > 8): two closed-loop RHP poles.
 /// let g = TransferFunction::from_descending(&[10.0], &[1.0, 3.0, 3.0, 1.0]).unwrap();
-/// let n = nyquist_contour(&g).unwrap();
+/// let n = nyquist_contour(&g.factored().unwrap()).unwrap();
 /// assert_eq!(n.open_loop_rhp_poles, 0);
 /// assert_eq!(n.encirclements, Some(2));
 /// assert_eq!(n.closed_loop_rhp_poles, Some(2));
 /// ```
-pub fn nyquist_contour(g: &TransferFunction) -> Result<NyquistContour> {
+pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
     g.require_proper("Nyquist plot", false)?;
-    let pz = g.pole_zero()?;
-    let red = &pz.reduced;
-    let g_inf = if red.num().degree() == red.den().degree() {
-        red.num().leading() / red.den().leading()
+    let pz = g.pole_zero();
+    let red = g;
+    let g_inf = if g.relative_degree() == Some(0) {
+        g.gain()
     } else {
         0.0
     };
@@ -384,6 +385,13 @@ impl TransferFunction {
     /// assert_eq!(n.closed_loop_rhp_poles, Some(0));
     /// ```
     pub fn nyquist(&self) -> Result<NyquistContour> {
+        nyquist_contour(&self.factored()?)
+    }
+}
+
+impl Factored {
+    /// The Nyquist contour ([`nyquist_contour`]).
+    pub fn nyquist(&self) -> Result<NyquistContour> {
         nyquist_contour(self)
     }
 }
@@ -423,7 +431,7 @@ mod tests {
         ];
         for (num, den) in cases {
             let g = tf(num, den);
-            let n = nyquist_contour(&g).unwrap();
+            let n = g.nyquist().unwrap();
             assert_eq!(
                 n.closed_loop_rhp_poles,
                 Some(closed_loop_rhp(&g)),
@@ -437,7 +445,7 @@ mod tests {
     #[test]
     fn indentation_goes_round_the_poles_to_the_right() {
         let g = tf(&[1.0, 0.5], &[1.0, 0.0, 4.0, 0.0]);
-        let n = nyquist_contour(&g).unwrap();
+        let n = g.nyquist().unwrap();
         assert_eq!(n.axis_poles, vec![0.0, 2.0]);
         let ind: Vec<_> = n
             .points
@@ -462,7 +470,7 @@ mod tests {
     #[test]
     fn bounded_curve_has_no_display_radius_and_ends_at_g_infinity() {
         let g = tf(&[2.0, 1.0], &[1.0, 1.0]); // (2s + 1)/(s + 1): G(0) = 1, G(∞) = 2
-        let n = nyquist_contour(&g).unwrap();
+        let n = g.nyquist().unwrap();
         assert!(n.display_radius.is_none());
         assert!((n.g_at_infinity - 2.0).abs() < 1e-15);
         assert!((n.points.last().unwrap().g - Complex64::new(2.0, 0.0)).norm() < 1e-2);
@@ -471,16 +479,16 @@ mod tests {
 
     #[test]
     fn rejects_improper_and_handles_cancellation() {
-        assert!(nyquist_contour(&tf(&[1.0, 0.0, 0.0], &[1.0, 1.0])).is_err());
+        assert!(tf(&[1.0, 0.0, 0.0], &[1.0, 1.0]).nyquist().is_err());
         // s/(s(s+1)): the origin pole cancels, no indentation.
-        let n = nyquist_contour(&tf(&[1.0, 0.0], &[1.0, 1.0, 0.0])).unwrap();
+        let n = tf(&[1.0, 0.0], &[1.0, 1.0, 0.0]).nyquist().unwrap();
         assert!(n.axis_poles.is_empty());
     }
 
     #[test]
     fn passing_through_minus_one_is_undetermined() {
         // G = −1 constant: the whole curve is the point −1.
-        let n = nyquist_contour(&tf(&[-1.0], &[1.0])).unwrap();
+        let n = tf(&[-1.0], &[1.0]).nyquist().unwrap();
         assert_eq!(n.encirclements, None);
     }
 
@@ -488,7 +496,7 @@ mod tests {
     fn origin_indentation_maps_to_the_textbook_arc() {
         // 1/(s(s + 1)): near s = 0, G ≈ 1/s = (1/ε) e^{−jθ}: radius 1/ε, sweeping from +90° to
         // −90° (clockwise) as θ goes from −90° to +90°.
-        let n = nyquist_contour(&tf(&[1.0], &[1.0, 1.0, 0.0])).unwrap();
+        let n = tf(&[1.0], &[1.0, 1.0, 0.0]).nyquist().unwrap();
         let eps = n.indent_radius[0];
         let arc: Vec<_> = n
             .points

@@ -1,73 +1,41 @@
-//! `ltikit analyze --batch FILE.jsonl`: one plant per line (`{"num": [...], "den": [...],
-//! "name": "..."}`), one JSON line out per plant — the `analyze` contract plus `margins` — in
-//! input order, computed on all cores. A bad line gives an error record and the batch goes on.
+//! `ltikit analyze --batch FILE.jsonl`: one plant record per line (the plant-file schema in
+//! JSON: `{"num": [...], "den": [...], "name": "..."}` or `{"model": ..., "params": {...}}`),
+//! one JSON line out per plant — the `analyze` contract plus `margins` — in input order,
+//! computed on all cores. A bad line gives an error record and the batch goes on.
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use serde::Deserialize;
 use serde_json::{Value, json};
 use std::io::{BufRead, IsTerminal, Write};
 
 use super::analyze::AnalyzeJson;
-use crate::TransferFunction;
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct BatchLine {
-    #[serde(default)]
-    name: Option<String>,
-    #[serde(default)]
-    num: Option<Coeffs>,
-    den: Coeffs,
-}
-
-/// Coefficients as a JSON array of numbers or a string "1 0.8 4".
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum Coeffs {
-    List(Vec<f64>),
-    Text(String),
-}
-
-impl Coeffs {
-    fn values(&self, what: &str) -> Result<Vec<f64>> {
-        match self {
-            Coeffs::List(v) => Ok(v.clone()),
-            Coeffs::Text(s) => super::parse::numbers(s, what),
-        }
-    }
-}
+use super::output::json_value;
+use crate::lti::Plant;
 
 /// The record for one input line (1-based `line`).
 fn record(line: usize, text: &str) -> Value {
-    let parsed: Result<(Option<String>, TransferFunction)> = (|| {
-        let l: BatchLine = serde_json::from_str(text).context("not a plant record")?;
-        let num = match &l.num {
-            Some(c) => c.values("num")?,
-            None => vec![1.0],
-        };
-        let den = l.den.values("den")?;
-        Ok((l.name, TransferFunction::from_descending(&num, &den)?))
-    })();
-    let (name, tf) = match parsed {
-        Ok(x) => x,
-        Err(e) => {
-            return json!({"line": line, "error": super::one_line(&e)});
-        }
+    let plant = match Plant::from_json_line(text) {
+        Ok(p) => p,
+        Err(e) => return json!({"line": line, "error": super::one_line(&e.into())}),
     };
     let result = (|| -> Result<Value> {
-        let a = tf.analyze()?;
-        let m = tf.margins_with_pole_zero(&a.pole_zero)?;
-        let mut v = serde_json::to_value(AnalyzeJson::from(&a))?;
+        let f = plant.tf.factored()?;
+        let a = f.analyze()?;
+        let m = f.margins()?;
+        let mut v = json_value(&AnalyzeJson::from(&a))?;
         if let Value::Object(map) = &mut v {
-            map.insert("margins".into(), serde_json::to_value(&m)?);
+            map.insert("margins".into(), json_value(&m)?);
         }
         Ok(v)
     })();
     let mut out = serde_json::Map::new();
     out.insert("line".into(), json!(line));
-    if let Some(n) = name {
+    // a record's own name, never the generated one
+    if let Some(n) = serde_json::from_str::<Value>(text)
+        .ok()
+        .and_then(|v| v.get("name").and_then(Value::as_str).map(String::from))
+    {
         out.insert("name".into(), json!(n));
     }
     match result {

@@ -52,12 +52,13 @@ pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
 
 pub fn run(a: &FreqArgs) -> Result<()> {
     let plant = a.plant.single()?;
+    let f = plant.tf.factored()?;
     let w = match (&a.w, a.wmin, a.wmax) {
         (Some(w), _, _) => parse::numbers(w, "--w")?,
         (None, Some(lo), Some(hi)) => logspace(lo, hi, a.points)?,
-        _ => auto_frequency_grid(&plant.tf, a.points)?,
+        _ => auto_frequency_grid(&f, a.points)?,
     };
-    let fr = plant.tf.freq_response(&w)?;
+    let fr = f.freq_response(&w)?;
     if a.json {
         print_json(&FreqJson::from(&fr))
     } else {

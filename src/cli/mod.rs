@@ -20,7 +20,8 @@ mod text;
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 
-pub use plant::{Plant, PlantArgs};
+pub use crate::lti::Plant;
+pub use plant::PlantArgs;
 
 /// A usage error (exit code 2): a missing or inconsistent option, as opposed to bad values.
 #[derive(Debug)]
@@ -105,6 +106,21 @@ pub fn main() -> i32 {
             }
         }
     }
+}
+
+/// Runs a command line in this process — `args` as `main` would see them, the program name
+/// first — and returns its error instead of printing it (for tests and embedding; the output
+/// goes to stdout as usual).
+///
+/// ```no_run
+/// ltikit::cli::run_from(["ltikit", "analyze", "--den", "1 2 1"]).unwrap();
+/// ```
+pub fn run_from<I, T>(args: I) -> Result<()>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    run(Cli::try_parse_from(args)?)
 }
 
 fn run(cli: Cli) -> Result<()> {

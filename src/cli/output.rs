@@ -19,11 +19,31 @@ pub fn print(text: &str) -> Result<()> {
 /// with a trailing newline: objects indented, arrays of numbers on one line (`[re, im]`
 /// pairs, matrix rows, sample vectors).
 pub fn print_json<T: Serialize>(value: &T) -> Result<()> {
-    let v = serde_json::to_value(value)?;
+    let v = json_value(value)?;
     let mut s = String::new();
     pretty(&v, 0, &mut s);
     s.push('\n');
     print(&s)
+}
+
+/// `value` as a JSON tree with every −0.0 written as 0.0 (a sign of zero is rounding, not
+/// information, and `-0.0` in a contract surprises scripts).
+pub fn json_value<T: Serialize>(value: &T) -> Result<serde_json::Value> {
+    let mut v = serde_json::to_value(value)?;
+    positive_zeros(&mut v);
+    Ok(v)
+}
+
+fn positive_zeros(v: &mut serde_json::Value) {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) if n.as_f64().is_some_and(|x| x == 0.0 && x.is_sign_negative()) => {
+            *v = Value::from(0.0);
+        }
+        Value::Array(items) => items.iter_mut().for_each(positive_zeros),
+        Value::Object(map) => map.values_mut().for_each(positive_zeros),
+        _ => {}
+    }
 }
 
 fn is_scalar(v: &serde_json::Value) -> bool {
@@ -88,4 +108,17 @@ pub fn finite(x: f64) -> Option<f64> {
 /// A complex number as the JSON pair `[re, im]`.
 pub fn pair(z: num_complex::Complex64) -> [f64; 2] {
     [z.re, z.im]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn negative_zero_is_written_as_zero() {
+        let v = json_value(&vec![-0.0f64, 1.0, -2.5]).unwrap();
+        assert_eq!(v.to_string(), "[0.0,1.0,-2.5]");
+        let v = json_value(&serde_json::json!({"a": [-0.0], "b": {"c": -0.0}})).unwrap();
+        assert_eq!(v.to_string(), r#"{"a":[0.0],"b":{"c":0.0}}"#);
+    }
 }

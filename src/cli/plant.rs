@@ -1,15 +1,14 @@
-//! The plant options shared by every command that takes a transfer function: coefficients
-//! (`--num/--den`, repeatable for several plants), plant files (`--plant`), or a textbook model
-//! (`--model NAME --param K=V`).
+//! The plant options shared by every command that takes a plant: coefficients (`--num/--den`,
+//! repeatable for several plants), plant files (`--plant`), or a textbook model
+//! (`--model NAME --param K=V`). The values are read by the one plant-specification module,
+//! [`crate::lti::plant`]; this module only checks the combination of options.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 
 use super::UsageError;
-use super::parse;
-use crate::TransferFunction;
-use crate::lti::{PlantFile, build_plant};
+use crate::lti::Plant;
 
 /// Plant selection.
 #[derive(Args, Debug, Clone, Default)]
@@ -32,17 +31,6 @@ pub struct PlantArgs {
     pub params: Vec<String>,
 }
 
-/// A resolved plant.
-#[derive(Debug, Clone)]
-pub struct Plant {
-    /// Display name (the file's name, the model name, or the transfer function itself).
-    pub name: String,
-    /// The transfer function.
-    pub tf: TransferFunction,
-    /// Description, input and output, when known.
-    pub description: Option<String>,
-}
-
 impl PlantArgs {
     /// All plants selected, in the order: coefficient pairs, files, model.
     pub fn resolve(&self) -> Result<Vec<Plant>> {
@@ -60,50 +48,15 @@ impl PlantArgs {
                 .into());
             }
             for (i, d) in self.den.iter().enumerate() {
-                let den = parse::numbers(d, "--den")?;
-                let num = match self.num.get(i) {
-                    Some(n) => parse::numbers(n, "--num")?,
-                    None => vec![1.0],
-                };
-                let tf = TransferFunction::from_descending(&num, &den)?;
-                out.push(Plant {
-                    name: tf.to_string(),
-                    tf,
-                    description: None,
-                });
+                out.push(Plant::from_text(self.num.get(i).map(String::as_str), d)?);
             }
         }
         for path in &self.plant {
-            let f = PlantFile::load(path)?;
-            let tf = f
-                .transfer_function()
-                .with_context(|| format!("plant file {}", path.display()))?;
-            let mut desc = f.description.clone().unwrap_or_default();
-            if let (Some(i), Some(o)) = (&f.input, &f.output) {
-                if !desc.is_empty() {
-                    desc.push(' ');
-                }
-                desc.push_str(&format!("Input: {i}; output: {o}."));
-            }
-            out.push(Plant {
-                name: f.name.clone(),
-                tf,
-                description: (!desc.is_empty()).then_some(desc),
-            });
+            out.push(Plant::from_file(path)?);
         }
         if let Some(m) = &self.model {
-            let params = parse::params(&self.params)?;
-            let (tf, used) = build_plant(m, &params)?;
-            let list = used
-                .iter()
-                .map(|(k, v)| format!("{k}={}", crate::poly::fmt_num(*v)))
-                .collect::<Vec<_>>()
-                .join(", ");
-            out.push(Plant {
-                name: format!("{m} ({list})"),
-                tf,
-                description: None,
-            });
+            let params = crate::lti::plant::parse_params(&self.params)?;
+            out.push(Plant::from_model(m, &params)?);
         } else if !self.params.is_empty() {
             return Err(UsageError("--param needs --model".into()).into());
         }

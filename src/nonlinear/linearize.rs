@@ -14,7 +14,7 @@
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
 
-use crate::analysis::{HalfPlane, Mode, half_plane, modes};
+use crate::analysis::{HalfPlane, Mode, half_plane};
 use crate::error::Result;
 use crate::lti::{StateSpace, TransferFunction};
 use crate::nonlinear::equilibria::{Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria};
@@ -209,11 +209,29 @@ pub fn local_stability(eigs: &[Complex64], scale: f64) -> (bool, LocalStability,
     )
 }
 
+/// The local stability of `sys` at the point (x, u) from the eigenvalues of the exact Jacobian
+/// (no transfer function is formed): (stability, eigenvalues sorted by decreasing real part).
+pub fn stability_at(
+    sys: &dyn DynSystem,
+    x: &[f64],
+    u: &[f64],
+) -> Result<(LocalStability, Vec<Complex64>)> {
+    let ss = linearize_at(sys, x, u)?;
+    let eigs = sorted_eigenvalues(&ss)?;
+    let (_, stability, _) = local_stability(&eigs, ss.a.norm());
+    Ok((stability, eigs))
+}
+
+fn sorted_eigenvalues(ss: &StateSpace) -> Result<Vec<Complex64>> {
+    let mut eigs = eigenvalues(&ss.a)?;
+    eigs.sort_by(|p, q| q.re.total_cmp(&p.re).then(q.im.total_cmp(&p.im)));
+    Ok(eigs)
+}
+
 /// Linearises at one equilibrium: A, B, C, D, eigenvalues, stability and the transfer function.
 pub fn analyze_equilibrium(sys: &dyn DynSystem, eq: &Equilibrium) -> Result<LinearizedEquilibrium> {
     let ss = linearize_at(sys, &eq.x, &eq.u)?;
-    let mut eigs = eigenvalues(&ss.a)?;
-    eigs.sort_by(|p, q| q.re.total_cmp(&p.re).then(q.im.total_cmp(&p.im)));
+    let eigs = sorted_eigenvalues(&ss)?;
     let scale = ss.a.norm();
     let (hyperbolic, stability, stability_reason) = local_stability(&eigs, scale);
     let tf = if ss.b.ncols() == 1 && ss.c.nrows() == 1 {
@@ -242,14 +260,14 @@ pub fn analyze_equilibrium(sys: &dyn DynSystem, eq: &Equilibrium) -> Result<Line
 
 fn tf_analysis(ss: &StateSpace) -> Result<LinearizedTf> {
     let g = ss.to_tf()?;
-    let pz = g.pole_zero()?;
+    let f = g.factored()?;
     Ok(LinearizedTf {
         num: g.num().coeffs().to_vec(),
         den: g.den().coeffs().to_vec(),
-        modes: modes(&pz.poles),
-        dc_gain: g.dc_gain()?,
-        poles: pz.poles,
-        zeros: pz.zeros,
+        modes: f.modes(),
+        dc_gain: f.dc_gain(),
+        poles: f.poles().to_vec(),
+        zeros: f.zeros().to_vec(),
         g,
     })
 }
