@@ -46,7 +46,7 @@ pub enum LtiError {
     OrderTooHigh {
         /// Requested order.
         order: usize,
-        /// Supported maximum ([`crate::MAX_ORDER`]).
+        /// Supported maximum (the polynomial limit `MAX_ORDER`, or the factored limit).
         max: usize,
     },
     /// The coefficients span a range that overflows once the polynomial is made monic.

@@ -10,15 +10,8 @@ use ltikit::numeric::dd::Dd;
 use num_complex::Complex64;
 use proptest::prelude::*;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
-        .collect()
-}
+mod common;
+use common::{logspace, tf};
 
 /// Wraps radians into (−π, π].
 fn wrap(x: f64) -> f64 {
@@ -449,4 +442,35 @@ fn time_span_covers_settling_and_bounds_growth() {
     assert_eq!(t.len(), 101);
     assert!(t[0] == 0.0 && (t[100] - 10.0).abs() < 1e-15);
     assert!(t.windows(2).all(|p| (p[1] - p[0] - 0.1).abs() < 1e-12));
+}
+
+#[test]
+fn a_cancelled_factor_costs_no_accuracy() {
+    // (s + 2)² over a degree-7 denominator with the (numerically double) factor (s + 2)² and
+    // five clustered small roots (found by testing against other projects' suites). The
+    // exact |N/D| of these f64 coefficients at ω = 3.16e-4 is 17878954.752661815 (mpmath, 50
+    // digits, the coefficients taken as their exact binary values); the dc gain is exactly
+    // 4/2.2364516754719997e-07 = 17885474.762855344. Evaluating the reduced G rebuilt from
+    // the computed common factor lost 1.3e-6 here.
+    let g = tf(
+        &[1.0, 4.0, 4.0],
+        &[
+            1.0,
+            4.191699999999999,
+            4.78116611,
+            0.824786794293,
+            0.0595628707474098,
+            0.0021255273849310865,
+            3.62779468067472e-05,
+            2.2364516754719997e-07,
+        ],
+    );
+    let f = g.factored().unwrap();
+    assert_eq!(f.pole_zero().cancelled.len(), 1);
+    let m = f.freq_response(&[0.000316]).unwrap().magnitude[0];
+    let want = 17878954.752661815;
+    assert!(((m - want) / want).abs() < 1e-13, "{m} vs {want}");
+    let dc = f.dc_gain().unwrap();
+    let want = 17885474.762855344;
+    assert!(((dc - want) / want).abs() < 1e-15, "{dc} vs {want}");
 }

@@ -2,17 +2,11 @@
 //!
 //! Run with `--nocapture` to see the worst error per case.
 
-use ltikit::TransferFunction;
 use ltikit::analysis::{ClosedFormTerm, Input};
 use ltikit::lti::build_plant;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-fn grid(t_end: f64, n: usize) -> Vec<f64> {
-    (0..=n).map(|k| t_end * k as f64 / n as f64).collect()
-}
+mod common;
+use common::{grid, tf};
 
 /// ÿ + 2ζẏ + y = 0 (ωₙ = 1) from y(0) = y0, ẏ(0) = v0.
 /// ζ = 0: seed eq. 3.34; 0 < ζ < 1: eq. 3.33 (whose "+φ" is a typo: the phase is −φ,

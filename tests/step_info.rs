@@ -4,30 +4,10 @@
 
 use std::f64::consts::PI;
 
-use ltikit::TransferFunction;
 use ltikit::analysis::StepInfo;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-/// Plain bisection for f(x) = 0 on [a, b] with f(a)·f(b) ≤ 0 (independent of the library).
-fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
-    let fa = f(a);
-    assert!(fa * f(b) <= 0.0, "no sign change on [{a}, {b}]");
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        if (f(m) > 0.0) == (fa > 0.0) {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
-    0.5 * (a + b)
-}
+mod common;
+use common::{bisect, tf};
 
 #[test]
 fn matlab_stepinfo_example_exact_values() {
@@ -50,6 +30,21 @@ fn matlab_stepinfo_example_exact_values() {
             got - want
         );
         assert!((got - want).abs() < 6e-7, "{what}: {got} vs {want}");
+    }
+    // MATLAB's further fields, exact from the same closed form in 40-digit mpmath (residues of
+    // Y = G/s, critical points after the 90 % time 4.428878892 by bisection on y′):
+    // SettlingMin 2.068793521580 at t = 6.49043 (MATLAB: 2.0689), SettlingMax = the peak
+    // 2.687824729255 (MATLAB: 2.6873); the error is largest at t = 0 (|0 − 2.5|, overshoot
+    // < 100 %), so TransientTime = SettlingTime (as MATLAB reports, 27.9762 both); no undershoot.
+    let more = [
+        ("settling min", s.settling_min, 2.068793521580),
+        ("settling max", s.settling_max, 2.687824729255),
+        ("transient time", s.transient_time, s.settling_time),
+        ("undershoot", s.undershoot_percent, 0.0),
+    ];
+    for (what, got, want) in more {
+        println!("MATLAB example {what}: {got:.12} (reference {want})");
+        assert!((got - want).abs() < 1e-9, "{what}: {got} vs {want}");
     }
     assert_eq!(s.steady_state, 2.5);
     // Self-consistency against the exact (matrix-exponential) simulation, which shares no code
@@ -291,4 +286,38 @@ fn near_coincident_poles_stay_within_1e9() {
         );
         assert!(errs.iter().all(|e| e.abs() < 1e-9), "{errs:?}");
     }
+}
+
+#[test]
+fn undershoot_and_options() {
+    // (1 − 4s)/(s + 1)²: Y = G/s = 1/s − 1/(s + 1) − 5/(s + 1)², y = 1 − (1 + 5t)e^(−t);
+    // y′ = (5t − 4)e^(−t) vanishes at t = 0.8, where y = 1 − 5e^(−0.8) = −1.2466…: the
+    // response first goes the wrong way, undershoot 100·(5e^(−0.8) − 1) %.
+    let s = tf(&[-4.0, 1.0], &[1.0, 2.0, 1.0])
+        .step_info()
+        .unwrap()
+        .unwrap();
+    let want = 100.0 * (5.0 * (-0.8f64).exp() - 1.0);
+    assert!(
+        (s.undershoot_percent - want).abs() < 1e-10,
+        "{}",
+        s.undershoot_percent
+    );
+    // the largest error is at that dip, |−1.2466 − 1| > 1: the transient time uses
+    // 2 % of it and is shorter than the settling time
+    assert!(s.transient_time < s.settling_time, "{s:?}");
+    // options: a 5 % band settles earlier, 5–95 % rise is longer
+    let g = tf(&[1.0], &[1.0, 1.0]).factored().unwrap();
+    let o = ltikit::analysis::StepInfoOptions {
+        settling_threshold: 0.05,
+        rise_limits: (0.05, 0.95),
+    };
+    let s = g.step_info_for(&o).unwrap().unwrap();
+    assert!((s.settling_time - 20f64.ln()).abs() < 1e-13);
+    assert!((s.rise_time - 19f64.ln()).abs() < 1e-13); // ln(0.95/0.05)
+    let bad = ltikit::analysis::StepInfoOptions {
+        settling_threshold: 1.5,
+        ..Default::default()
+    };
+    assert!(g.step_info_for(&bad).is_err());
 }

@@ -5,10 +5,8 @@ use std::f64::consts::{LN_2, TAU};
 
 use super::factors::*;
 use super::fastmath;
-use super::horner::{AxisHorner, FACTORED_CHECK_TOL, wrap_pi};
+use super::horner::AxisHorner;
 use crate::analysis::factored::Factored;
-use crate::lti::TransferFunction;
-use crate::poly::Root;
 
 /// The factored (Bode) form of a reduced transfer function, precomputed for evaluation at
 /// many frequencies. Shared by the frequency response, margins and grids.
@@ -78,56 +76,6 @@ impl BodeForm {
         }
     }
 
-    /// Compares the factored form with double-double Horner on the coefficients *as given*
-    /// at probe frequencies (the corner frequencies and a log grid); on disagreement beyond
-    /// [`FACTORED_CHECK_TOL`] switches to Horner magnitudes and principal phases. (The reduced
-    /// coefficients come from a division by the computed common factor and carry its error:
-    /// they are only the reference within a relative 1e-6 of a cancelled root on the axis,
-    /// where N and D both vanish.)
-    fn checked(
-        mut self,
-        given: &TransferFunction,
-        reduced: &TransferFunction,
-        cancelled: &[Root],
-    ) -> BodeForm {
-        let horner = AxisHorner::new(given, reduced, cancelled);
-        let mut probes = self.corner_frequencies();
-        probes.sort_by(f64::total_cmp);
-        probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
-        if probes.len() > 48 {
-            let step = probes.len() as f64 / 48.0;
-            probes = (0..48)
-                .map(|i| probes[(i as f64 * step) as usize])
-                .collect();
-        }
-        let (a, b) = self.decade_range();
-        probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
-        let axis: Vec<f64> = self
-            .num
-            .axis
-            .iter()
-            .chain(&self.den.axis)
-            .copied()
-            .collect();
-        for &w in &probes {
-            if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
-                continue;
-            }
-            let f = self.eval(w);
-            if !(f.mant > 0.0 && f.mant.is_finite()) {
-                continue;
-            }
-            let (ln_h, arg_h) = horner.eval(w);
-            let dl = (f.ln_mag() - ln_h).abs();
-            let dp = wrap_pi(f.phase_rad() - arg_h).abs();
-            if !(dl <= FACTORED_CHECK_TOL && dp <= FACTORED_CHECK_TOL) {
-                self.exact = Some(Box::new(horner));
-                break;
-            }
-        }
-        self
-    }
-
     /// True when evaluation falls back to double-double Horner (see [`BodeForm::checked`]).
     #[allow(dead_code)]
     pub fn uses_horner(&self) -> bool {
@@ -191,22 +139,6 @@ impl BodeForm {
         match &self.exact {
             None => f,
             Some(h) => Self::refine(f, h, w),
-        }
-    }
-
-    /// Horner magnitude and principal phase on the branch of the factored phase `f`.
-    #[cold]
-    fn refine(f: Eval, h: &AxisHorner, w: f64) -> Eval {
-        if !(f.mant > 0.0 && f.mant.is_finite()) {
-            return f; // an exact zero or pole on the axis
-        }
-        let (ln, arg) = h.eval(w);
-        let e = (ln / LN_2).floor().clamp(-2.0e9, 2.0e9);
-        Eval {
-            mant: (ln - e * LN_2).exp(),
-            exp2: e as i32,
-            angle: f.angle + wrap_pi(arg - f.phase_rad()),
-            quarters: f.quarters,
         }
     }
 
@@ -375,78 +307,12 @@ impl BodeForm {
         }
         d
     }
-
-    /// Corner frequencies |p| of every non-zero reduced pole and zero (with repetition).
-    pub fn corner_frequencies(&self) -> Vec<f64> {
-        let mut out = Vec::new();
-        for s in [&self.num, &self.den] {
-            out.extend(s.real_p.iter().map(|p| p.abs()));
-            out.extend(s.quad.iter().map(|q| q.r));
-            out.extend(s.axis.iter().copied());
-        }
-        out
-    }
-
-    /// Lightly damped pairs (ζ < `zeta_max`, including undamped ones with ζ = 0) of the
-    /// numerator and denominator, as (ωn, ζ).
-    pub fn light_pairs(&self, zeta_max: f64) -> Vec<(f64, f64)> {
-        let mut out = Vec::new();
-        for s in [&self.num, &self.den] {
-            out.extend(s.axis.iter().map(|&b| (b, 0.0)));
-            out.extend(
-                s.quad
-                    .iter()
-                    .map(|q| (q.r, q.sn.abs()))
-                    .filter(|&(_, z)| z < zeta_max),
-            );
-        }
-        out
-    }
-
-    /// The plotting range: two decades below the smallest corner frequency and above the
-    /// largest, rounded out to whole decades; 0.01…100 rad/s without corners. Returned as
-    /// (log₁₀ ω_min, log₁₀ ω_max).
-    pub fn decade_range(&self) -> (f64, f64) {
-        let c = self.corner_frequencies();
-        let lo = c.iter().copied().reduce(f64::min);
-        let hi = c.iter().copied().reduce(f64::max);
-        match (lo, hi) {
-            (Some(lo), Some(hi)) => (
-                (lo.log10() - 2.0).floor().max(-300.0),
-                (hi.log10() + 2.0).ceil().min(300.0),
-            ),
-            _ => (-2.0, 2.0),
-        }
-    }
-
-    /// A dense sampling grid for bracketing: `per_decade` log-spaced points per decade over
-    /// [`BodeForm::decade_range`] plus points around every lightly damped pair within a
-    /// few bandwidths ζ·ωn of ωn. Sorted, unique, finite, positive.
-    pub fn sampling_grid(&self, per_decade: usize) -> Vec<f64> {
-        let (a, b) = self.decade_range();
-        let n = ((b - a) * per_decade as f64).ceil().max(1.0) as usize;
-        let mut xs: Vec<f64> = (0..=n)
-            .map(|i| 10f64.powf(a + (b - a) * i as f64 / n as f64))
-            .collect();
-        for (wn, z) in self.light_pairs(0.5) {
-            let z = z.max(1e-6);
-            for k in -40..=40 {
-                let x = wn * (1.0 + 0.25 * z * k as f64);
-                if x > 0.0 {
-                    xs.push(x);
-                }
-            }
-        }
-        xs.retain(|x| x.is_finite() && *x > 0.0);
-        xs.sort_by(f64::total_cmp);
-        xs.dedup();
-        xs
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lti::TransferFunction;
     use num_complex::Complex64;
 
     fn tf(n: &[f64], d: &[f64]) -> TransferFunction {

@@ -19,6 +19,11 @@
 //! Frequencies the fast path does not cover (ω = 0, beyond the overflow-free limit, an
 //! exact hit of an imaginary-axis root, a product that is not a normal number, the
 //! double-double Horner fallback) go through [`BodeForm::eval`].
+//!
+//! Length: the per-block loop is one function of ~130 lines on purpose — its state lives in
+//! locals (registers) across the factor loop, and splitting it into calls measurably costs
+//! throughput (the loop is latency-bound); the three loops mirror each other line by line,
+//! which is what the bitwise-equality tests rely on.
 
 use std::f64::consts::LN_2;
 

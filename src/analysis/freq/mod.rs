@@ -200,6 +200,7 @@ mod avx2;
 #[cfg(all(target_arch = "x86_64", ltikit_simd))]
 mod avx512;
 mod bode;
+mod corners;
 mod factors;
 mod fastmath;
 mod horner;

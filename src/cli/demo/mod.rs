@@ -173,6 +173,17 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         eprintln!();
     }
 
+    finish(a, &ctx, &report, summaries, elapsed)
+}
+
+/// Prints the summary (text or JSON) and fails when a check failed.
+fn finish(
+    a: &DemoArgs,
+    ctx: &Ctx,
+    report: &Path,
+    summaries: Vec<PlantSummary>,
+    elapsed: f64,
+) -> Result<()> {
     let worst: Vec<CheckSummary> = ctx
         .checks
         .groups()
