@@ -20,7 +20,7 @@ fn record(line: usize, text: &str) -> Value {
         Err(e) => return json!({"line": line, "error": super::one_line(&e.into())}),
     };
     let result = (|| -> Result<Value> {
-        let f = plant.tf.factored()?;
+        let f = plant.factored()?;
         let a = f.analyze()?;
         let m = f.margins()?;
         let mut v = json_value(&AnalyzeJson::from(&a))?;

@@ -52,7 +52,7 @@ pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
 
 pub fn run(a: &FreqArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let f = plant.tf.factored()?;
+    let f = a.plant.factored(&plant)?;
     let w = match (&a.w, a.wmin, a.wmax) {
         (Some(w), _, _) => parse::numbers(w, "--w")?,
         (None, Some(lo), Some(hi)) => logspace(lo, hi, a.points)?,
@@ -62,7 +62,7 @@ pub fn run(a: &FreqArgs) -> Result<()> {
     if a.json {
         print_json(&FreqJson::from(&fr))
     } else {
-        let mut s = format!("G(s) = {}\n\n", plant.tf);
+        let mut s = format!("{}\n\n", super::text::g_text(&plant, &f));
         s.push_str(&table(&fr));
         print(&s)
     }

@@ -4,7 +4,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
-use super::{Plant, PlantArgs};
+use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
 use crate::plot::{
     BodeSeries, InputKind, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png,
@@ -208,11 +208,11 @@ pub fn pzmap_figure(
     Ok(())
 }
 
-/// The plants with their names, each factored once.
-fn labelled(plants: Vec<Plant>) -> Result<Vec<(String, Factored)>> {
-    plants
+/// The plants with their names, each factored once (the chosen channel of a MIMO plant).
+fn labelled(args: &PlantArgs) -> Result<Vec<(String, Factored)>> {
+    args.resolve()?
         .into_iter()
-        .map(|p| Ok((p.name, p.tf.factored()?)))
+        .map(|p| Ok((p.name.clone(), args.factored(&p)?)))
         .collect()
 }
 
@@ -235,7 +235,7 @@ pub struct BodeArgs {
 
 pub fn bode(a: &BodeArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(a.plant.resolve()?)?;
+    let plants = labelled(&a.plant)?;
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
@@ -269,7 +269,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if matches!(input, Input::None) {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
-    let plants = labelled(a.plant.resolve()?)?;
+    let plants = labelled(&a.plant)?;
     step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
         .with_context(|| format!("response plot {}", a.plot.output.display()))
 }
@@ -288,8 +288,14 @@ pub struct PzmapArgs {
 pub fn pzmap(a: &PzmapArgs) -> Result<()> {
     let opts = a.plot.options()?;
     let p = a.plant.single()?;
-    pzmap_figure(&a.plot.output, &p.name, &p.tf.factored()?, a.guides, &opts)
-        .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
+    pzmap_figure(
+        &a.plot.output,
+        &p.name,
+        &a.plant.factored(&p)?,
+        a.guides,
+        &opts,
+    )
+    .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
 }
 
 #[derive(Args, Debug)]
@@ -302,7 +308,7 @@ pub struct NyquistArgs {
 
 pub fn nyquist(a: &NyquistArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(a.plant.resolve()?)?;
+    let plants = labelled(&a.plant)?;
     let contours = plants
         .iter()
         .map(|(_, g)| g.nyquist())
