@@ -2,9 +2,8 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use serde::Serialize;
 
-use super::output::{Stream, finite};
+use super::output::Stream;
 use super::{PlantArgs, parse};
 use crate::analysis::grid::{MAX_POINTS, check_points};
 use crate::analysis::{FrequencyResponse, auto_frequency_grid};
@@ -126,7 +125,7 @@ pub fn run(a: &FreqArgs) -> Result<()> {
 /// One point of the `freq` JSON contract:
 /// `{"points": [{"w", "magnitude", "magnitude_db", "phase_deg"}]}`.
 #[cfg(test)]
-#[derive(Serialize)]
+#[derive(serde::Serialize)]
 struct FreqPointJson {
     w: f64,
     magnitude: Option<f64>,
@@ -153,9 +152,9 @@ fn point_text(f: &FrequencyResponse, i: usize, out: &mut String) {
 fn point_json(f: &FrequencyResponse, i: usize) -> FreqPointJson {
     FreqPointJson {
         w: f.w[i],
-        magnitude: finite(f.magnitude[i]),
-        magnitude_db: finite(f.magnitude_db[i]),
-        phase_deg: finite(f.phase_deg[i]),
+        magnitude: super::output::finite(f.magnitude[i]),
+        magnitude_db: super::output::finite(f.magnitude_db[i]),
+        phase_deg: super::output::finite(f.phase_deg[i]),
     }
 }
 
