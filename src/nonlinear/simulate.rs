@@ -97,6 +97,37 @@ pub struct Simulation {
     pub stats: Rk45Stats,
     /// Set when the simulation ended before the last requested time.
     pub stop: Option<SimulationStop>,
+    /// The drift of each conserved quantity ([`SystemInfo::conserved_names`]) over the
+    /// integrator's steps — only for zero input, the condition under which they are
+    /// conserved; empty otherwise.
+    pub conserved: Vec<ConservedDrift>,
+}
+
+/// How far a conserved quantity drifted along a simulation: the integrator's error, since the
+/// exact solution keeps it constant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConservedDrift {
+    /// Its name.
+    pub name: String,
+    /// Its value at t = 0.
+    pub initial: f64,
+    /// max |Q(tₖ) − Q(0)| over the integrator's steps tₖ.
+    pub max_drift: f64,
+    /// The reference magnitude: max(|Q(0)|, the model's natural scale of Q,
+    /// [`SystemInfo::conserved_scales`]).
+    pub reference: f64,
+    /// `max_drift / reference` (`max_drift` itself when the reference is 0).
+    pub relative_drift: f64,
+}
+
+impl Input {
+    /// True when the input is zero at every time (the condition for conservation).
+    pub fn is_zero(&self) -> bool {
+        match self {
+            Input::Constant(u) => u.iter().all(|v| *v == 0.0),
+            Input::Step { before, after, .. } => before.iter().chain(after).all(|v| *v == 0.0),
+        }
+    }
 }
 
 /// Why and when a simulation ended early.
@@ -199,6 +230,18 @@ pub fn simulate(
 
     let n = sys.nx();
     let check_domain = sys.in_domain(x0);
+    let names = if input.is_zero() {
+        sys.conserved_names()
+    } else {
+        Vec::new()
+    };
+    let mut c0 = vec![0.0; names.len()];
+    if !names.is_empty() {
+        sys.eval_conserved(x0, &mut c0);
+    }
+    let scales = sys.conserved_scales();
+    let mut cbuf = c0.clone();
+    let mut drift = vec![0.0f64; names.len()];
     let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
     let mut stats = Rk45Stats::default();
@@ -220,6 +263,12 @@ pub fn simulate(
             tb,
             opts,
             |step| {
+                if !drift.is_empty() {
+                    sys.eval_conserved(step.state_end(), &mut cbuf);
+                    for ((d, c), c0) in drift.iter_mut().zip(&cbuf).zip(&c0) {
+                        *d = d.max((c - c0).abs());
+                    }
+                }
                 let mut buf = vec![0.0; n];
                 let cut = (check_domain && !sys.in_domain(step.state_end()))
                     .then(|| leave_time(sys, step, &mut buf));
@@ -278,6 +327,25 @@ pub fn simulate(
         outputs,
         stats,
         stop,
+        conserved: names
+            .into_iter()
+            .zip(c0.iter().zip(&drift))
+            .enumerate()
+            .map(|(i, (name, (&initial, &max_drift)))| {
+                let reference = initial.abs().max(scales.get(i).copied().unwrap_or(0.0));
+                ConservedDrift {
+                    name,
+                    initial,
+                    max_drift,
+                    reference,
+                    relative_drift: if reference > 0.0 {
+                        max_drift / reference
+                    } else {
+                        max_drift
+                    },
+                }
+            })
+            .collect(),
     })
 }
 
