@@ -101,7 +101,7 @@ pub fn energy_casimir(sys: &dyn DynSystem, x: &[f64]) -> Result<Option<EnergyCas
     let Some((h, cs)) = d.split_first() else {
         return Ok(None);
     };
-    Ok(Some(test(h, cs)))
+    Ok(Some(test(h, cs, &sys.conserved_names())))
 }
 
 /// Orthonormal basis of the orthogonal complement of the columns of `g` (n × m), and of
@@ -252,7 +252,7 @@ fn best_multipliers(
     (t, best)
 }
 
-fn test(h: &Derivatives2, cs: &[Derivatives2]) -> EnergyCasimir {
+fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String]) -> EnergyCasimir {
     let n = h.gradient.len();
     let m = cs.len();
     let g = if m == 0 {
@@ -341,13 +341,12 @@ fn test(h: &Derivatives2, cs: &[Derivatives2]) -> EnergyCasimir {
     out.multipliers = lambda.iter().copied().collect();
     out.extremum = extremum;
     out.lyapunov_stable = extremum.lyapunov_stable();
+    let energy = names.first().map_or("the energy", |n| n.as_str());
     let level = if m == 0 {
-        "the energy".to_string()
+        energy.to_string()
     } else {
-        format!(
-            "the energy on the level set of the other {m} conserved quantit{}",
-            if m == 1 { "y" } else { "ies" }
-        )
+        let others: Vec<&str> = names.iter().skip(1).map(|n| n.as_str()).collect();
+        format!("{energy} on the level set of {}", others.join(", "))
     };
     let free = if null.ncols() > 0 {
         format!(

@@ -25,7 +25,8 @@ use crate::lti::{StateSpace, TransferFunction};
 use crate::nonlinear::energy_casimir::{EnergyCasimir, energy_casimir};
 use crate::nonlinear::equilibria::{Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria};
 use crate::nonlinear::system::{DynSystem, SystemInfo, jacobians};
-use crate::numeric::{eigenvalues, tol::EPS};
+use crate::numeric::eigenvalues;
+use crate::numeric::tol::{EPS, ZERO_REL_TOL};
 use crate::poly::Root;
 
 /// Local stability of an equilibrium from its linearisation.
@@ -90,6 +91,50 @@ pub struct ChannelTf {
     /// The transfer function itself.
     #[serde(skip)]
     pub g: TransferFunction,
+    /// For display: `g` with coefficient rounding noise removed (terms below
+    /// [`ZERO_REL_TOL`] of the denominator's size at the largest pole magnitude) and common
+    /// factors cancelled — 2s³/(s⁵ + 1600s³) + 1e-13 s² noise becomes 2/(s² + 1600).
+    #[serde(skip)]
+    pub reduced: TransferFunction,
+}
+
+/// `g` without coefficient rounding noise, in lowest terms (see [`ChannelTf::reduced`]).
+fn cleaned(g: &TransferFunction) -> Result<TransferFunction> {
+    let r = g
+        .poles()?
+        .iter()
+        .map(|p| p.value.norm())
+        .fold(0.0, f64::max);
+    let r = if r > 0.0 { r } else { 1.0 };
+    let size = |c: &[f64]| {
+        let n = c.len();
+        c.iter()
+            .enumerate()
+            .map(|(i, v)| v.abs() * r.powi((n - 1 - i) as i32))
+            .sum::<f64>()
+    };
+    let den = g.den().coeffs();
+    let floor = ZERO_REL_TOL * size(den);
+    let clean = |c: &[f64]| -> Vec<f64> {
+        let n = c.len();
+        c.iter()
+            .enumerate()
+            .map(|(i, v)| {
+                if v.abs() * r.powi((n - 1 - i) as i32) <= floor {
+                    0.0
+                } else {
+                    *v
+                }
+            })
+            .collect()
+    };
+    let num = clean(g.num().coeffs());
+    if num.iter().all(|v| *v == 0.0) {
+        return TransferFunction::from_descending(&[0.0], &clean(den));
+    }
+    Ok(TransferFunction::from_descending(&num, &clean(den))?
+        .pole_zero()?
+        .reduced)
 }
 
 /// One equilibrium with its linearisation.
@@ -303,6 +348,7 @@ fn channel_tfs(sys: &dyn DynSystem, ss: &StateSpace) -> Result<Vec<ChannelTf>> {
                 ss.d.view((i, j), (1, 1)).into_owned(),
             )?;
             let g = sub.to_tf()?;
+            let reduced = cleaned(&g)?;
             out.push(ChannelTf {
                 input: j,
                 output: i,
@@ -311,6 +357,7 @@ fn channel_tfs(sys: &dyn DynSystem, ss: &StateSpace) -> Result<Vec<ChannelTf>> {
                 num: g.num().coeffs().to_vec(),
                 den: g.den().coeffs().to_vec(),
                 g,
+                reduced,
             });
         }
     }
