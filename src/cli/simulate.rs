@@ -278,7 +278,10 @@ pub fn csv(s: &Simulation) -> String {
     for c in &s.conserved {
         out.push_str(&format!(
             "# conserved {}: {} at t = 0, drift {:.3e} (relative {:.3e})\n",
-            c.name, c.initial, c.max_drift, c.relative_drift
+            c.name,
+            crate::poly::fmt_sig(c.initial, 12),
+            c.max_drift,
+            c.relative_drift
         ));
     }
     out

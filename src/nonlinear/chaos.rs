@@ -119,20 +119,34 @@ pub fn lyapunov_exponent(
     })
 }
 
-/// The finite-time exponent of two nearby trajectories: least-squares slope of ln d(t) over
-/// the samples with 10³·d(0) < d < 10⁻² (module docs); `None` with fewer than 3 such samples.
+/// A straight line fitted to ln d(t): the finite-time exponent.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ExponentFit {
+    /// The slope (1/s).
+    pub exponent: f64,
+    /// ln d at t = 0 on the fitted line.
+    pub intercept: f64,
+    /// First sample time used.
+    pub t_start: f64,
+    /// Last sample time used.
+    pub t_end: f64,
+}
+
+/// The finite-time exponent of two nearby trajectories: least-squares line through ln d(t)
+/// over the samples with 10³·d(0) < d < 10⁻² (module docs); `None` with fewer than 3 such
+/// samples.
 ///
 /// ```
 /// use ltikit::nonlinear::{divergence, finite_time_exponent, sample_times, Input, models::Lorenz};
 /// use ltikit::numeric::rk45::Rk45Options;
-/// let t = sample_times(30.0, 3001).unwrap();
+/// let t = sample_times(60.0, 6001).unwrap();
 /// let o = Rk45Options { rtol: 1e-12, atol: 1e-14, ..Default::default() };
 /// let d = divergence(&Lorenz::default(), &[1.0, 0.0, 0.0], &[1.0 + 1e-9, 0.0, 0.0],
 ///                    &Input::none(), &t, &o).unwrap();
-/// let lam = finite_time_exponent(&d).unwrap();
-/// assert!(lam > 0.5 && lam < 1.5, "{lam}");
+/// let fit = finite_time_exponent(&d).unwrap();
+/// assert!(fit.exponent > 0.5 && fit.exponent < 1.5, "{fit:?}");
 /// ```
-pub fn finite_time_exponent(d: &Divergence) -> Option<f64> {
+pub fn finite_time_exponent(d: &Divergence) -> Option<ExponentFit> {
     let d0 = d.distance.first().copied()?;
     let pts: Vec<(f64, f64)> =
         d.a.t
@@ -152,5 +166,11 @@ pub fn finite_time_exponent(d: &Divergence) -> Option<f64> {
         num += (t - tm) * (y - ym);
         den += (t - tm) * (t - tm);
     }
-    (den > 0.0).then(|| num / den)
+    let slope = num / den;
+    (den > 0.0).then(|| ExponentFit {
+        exponent: slope,
+        intercept: ym - slope * tm,
+        t_start: pts[0].0,
+        t_end: pts[pts.len() - 1].0,
+    })
 }

@@ -26,7 +26,8 @@
 //! more. For the heavy top this recovers the classical I3²ω₃² > 4 I1 m g l.
 //!
 //! Tolerances: rank of the gradients at 1e-10 of the largest singular value; stationarity
-//! ‖∇H + Σλⱼ∇Cⱼ‖ ≤ 1e-8 of the size of its terms; definiteness when every eigenvalue of the
+//! ‖∇H + Σλⱼ∇Cⱼ‖ ≤ 1e-8 of the size of its terms plus 1e-12·‖∇²(H + Σλⱼ Cⱼ)‖(1 + ‖x̄‖) (the
+//! gradient that rounding x̄ to floating point leaves); definiteness when every eigenvalue of the
 //! restricted Hessian exceeds 1e-9 of its scale (‖∇²H‖ + Σ|λⱼ|‖∇²Cⱼ‖).
 
 use nalgebra::{DMatrix, DVector};
@@ -101,7 +102,8 @@ pub fn energy_casimir(sys: &dyn DynSystem, x: &[f64]) -> Result<Option<EnergyCas
     let Some((h, cs)) = d.split_first() else {
         return Ok(None);
     };
-    Ok(Some(test(h, cs, &sys.conserved_names())))
+    let xnorm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+    Ok(Some(test(h, cs, &sys.conserved_names(), xnorm)))
 }
 
 /// Orthonormal basis of the orthogonal complement of the columns of `g` (n × m), and of
@@ -252,7 +254,7 @@ fn best_multipliers(
     (t, best)
 }
 
-fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String]) -> EnergyCasimir {
+fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String], xnorm: f64) -> EnergyCasimir {
     let n = h.gradient.len();
     let m = cs.len();
     let g = if m == 0 {
@@ -271,7 +273,14 @@ fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String]) -> EnergyCasimi
             .unwrap_or_else(|_| DVector::zeros(m))
     };
     let resid = (&h.gradient + &g * &lambda_p).norm();
-    let size = h.gradient.norm() + g.norm() * lambda_p.norm();
+    // Relative to the terms, plus the gradient change that rounding x̄ itself causes
+    // (sin π = 1.2e-16: the upright pendulum's energy gradient is not exactly zero).
+    let curvature = h.hessian.norm()
+        + cs.iter()
+            .zip(lambda_p.iter())
+            .map(|(c, l)| c.hessian.norm() * l.abs())
+            .sum::<f64>();
+    let size = h.gradient.norm() + g.norm() * lambda_p.norm() + 1e-4 * curvature * (1.0 + xnorm);
     let mut out = EnergyCasimir {
         extremum: Extremum::NotCritical,
         lyapunov_stable: false,

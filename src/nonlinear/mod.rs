@@ -45,7 +45,7 @@ pub mod simulate;
 pub mod system;
 
 pub use crate::lti::params::{Constraint, ModelParam};
-pub use chaos::{LyapunovEstimate, finite_time_exponent, lyapunov_exponent};
+pub use chaos::{ExponentFit, LyapunovEstimate, finite_time_exponent, lyapunov_exponent};
 pub use energy_casimir::{EnergyCasimir, Extremum, energy_casimir};
 pub use equilibria::{
     Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria, newton_equilibria, residual,

@@ -149,7 +149,7 @@ impl FreeRigidMotion {
         let omega = ((ib - ia) * -d[c] / (ia * ib * ic)).max(0.0).sqrt();
         let k2 = ((ic - ib) * d[a] / ((ib - ia) * -d[c])).clamp(0.0, 1.0);
         let kp2 = ((ic - ia) * d[b] / ((ib - ia) * d[c])).clamp(0.0, 1.0);
-        if !(omega > 0.0 && amp_b > 0.0 && amp_c > 0.0) || !omega.is_finite() {
+        if !(omega > 0.0 && amp_b > 0.0 && amp_c > 0.0 && omega.is_finite()) {
             return Err(LtiError::Undefined {
                 what: "the elliptic solution of the rigid body".into(),
                 reason: format!("degenerate amplitudes for Π(0) = {pi0:?}"),
