@@ -254,6 +254,26 @@ fn best_multipliers(
     (t, best)
 }
 
+/// Zᵀ(∇²H + Σ λⱼ∇²Cⱼ)Z (with `with_energy`), or Zᵀ(Σ λⱼ∇²Cⱼ)Z.
+fn restricted(
+    h: &Derivatives2,
+    cs: &[Derivatives2],
+    lambda: &[f64],
+    z: &DMatrix<f64>,
+    with_energy: bool,
+) -> DMatrix<f64> {
+    let n = h.gradient.len();
+    let mut l = if with_energy {
+        h.hessian.clone()
+    } else {
+        DMatrix::zeros(n, n)
+    };
+    for (c, lj) in cs.iter().zip(lambda) {
+        l += &c.hessian * *lj;
+    }
+    z.transpose() * l * z
+}
+
 fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String], xnorm: f64) -> EnergyCasimir {
     let n = h.gradient.len();
     let m = cs.len();
@@ -304,21 +324,12 @@ fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String], xnorm: f64) -> 
             .into();
         return out;
     }
-    let hess = |lambda: &DVector<f64>| {
-        let mut l = h.hessian.clone();
-        for (c, lj) in cs.iter().zip(lambda.iter()) {
-            l += &c.hessian * *lj;
-        }
-        z.transpose() * l * &z
-    };
+    let hess = |lambda: &DVector<f64>| restricted(h, cs, lambda.as_slice(), &z, true);
     let m0 = hess(&lambda_p);
     let mi: Vec<DMatrix<f64>> = (0..null.ncols())
         .map(|k| {
-            let mut l = DMatrix::zeros(n, n);
-            for (j, c) in cs.iter().enumerate() {
-                l += &c.hessian * null[(j, k)];
-            }
-            z.transpose() * l * &z
+            let dir: Vec<f64> = null.column(k).iter().copied().collect();
+            restricted(h, cs, &dir, &z, false)
         })
         .collect();
     let scale = h.hessian.norm()
@@ -350,23 +361,28 @@ fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String], xnorm: f64) -> 
     out.multipliers = lambda.iter().copied().collect();
     out.extremum = extremum;
     out.lyapunov_stable = extremum.lyapunov_stable();
+    out.reason = reason(extremum, names, null.ncols());
+    out
+}
+
+/// The verdict in words, naming the conserved quantities.
+fn reason(extremum: Extremum, names: &[String], free: usize) -> String {
     let energy = names.first().map_or("the energy", |n| n.as_str());
-    let level = if m == 0 {
+    let level = if names.len() <= 1 {
         energy.to_string()
     } else {
         let others: Vec<&str> = names.iter().skip(1).map(|n| n.as_str()).collect();
         format!("{energy} on the level set of {}", others.join(", "))
     };
-    let free = if null.ncols() > 0 {
+    let free = if free > 0 {
         format!(
-            " (optimised over {} free multiplier{})",
-            null.ncols(),
-            if null.ncols() == 1 { "" } else { "s" }
+            " (optimised over {free} free multiplier{})",
+            if free == 1 { "" } else { "s" }
         )
     } else {
         String::new()
     };
-    out.reason = match extremum {
+    match extremum {
         Extremum::Minimum | Extremum::Maximum => format!(
             "energy–Casimir: strict {} of {level}{free} ⇒ Lyapunov stable",
             if extremum == Extremum::Minimum {
@@ -382,8 +398,7 @@ fn test(h: &Derivatives2, cs: &[Derivatives2], names: &[String], xnorm: f64) -> 
             "energy–Casimir: the Hessian of {level} is singular{free} (e.g. a continuum of \
              equilibria): the test cannot decide"
         ),
-    };
-    out
+    }
 }
 
 #[cfg(test)]

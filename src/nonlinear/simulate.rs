@@ -230,18 +230,7 @@ pub fn simulate(
 
     let n = sys.nx();
     let check_domain = sys.in_domain(x0);
-    let names = if input.is_zero() {
-        sys.conserved_names()
-    } else {
-        Vec::new()
-    };
-    let mut c0 = vec![0.0; names.len()];
-    if !names.is_empty() {
-        sys.eval_conserved(x0, &mut c0);
-    }
-    let scales = sys.conserved_scales();
-    let mut cbuf = c0.clone();
-    let mut drift = vec![0.0f64; names.len()];
+    let mut tracker = DriftTracker::new(sys, x0, input);
     let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
     let mut stats = Rk45Stats::default();
@@ -263,12 +252,7 @@ pub fn simulate(
             tb,
             opts,
             |step| {
-                if !drift.is_empty() {
-                    sys.eval_conserved(step.state_end(), &mut cbuf);
-                    for ((d, c), c0) in drift.iter_mut().zip(&cbuf).zip(&c0) {
-                        *d = d.max((c - c0).abs());
-                    }
-                }
+                tracker.observe(sys, step.state_end());
                 let mut buf = vec![0.0; n];
                 let cut = (check_domain && !sys.in_domain(step.state_end()))
                     .then(|| leave_time(sys, step, &mut buf));
@@ -327,9 +311,52 @@ pub fn simulate(
         outputs,
         stats,
         stop,
-        conserved: names
+        conserved: tracker.finish(sys),
+    })
+}
+
+/// The running drift of the conserved quantities (tracked only for zero input).
+struct DriftTracker {
+    names: Vec<String>,
+    initial: Vec<f64>,
+    buf: Vec<f64>,
+    drift: Vec<f64>,
+}
+
+impl DriftTracker {
+    fn new(sys: &dyn DynSystem, x0: &[f64], input: &Input) -> Self {
+        let names = if input.is_zero() {
+            sys.conserved_names()
+        } else {
+            Vec::new()
+        };
+        let mut initial = vec![0.0; names.len()];
+        if !names.is_empty() {
+            sys.eval_conserved(x0, &mut initial);
+        }
+        DriftTracker {
+            buf: initial.clone(),
+            drift: vec![0.0; names.len()],
+            names,
+            initial,
+        }
+    }
+
+    fn observe(&mut self, sys: &dyn DynSystem, x: &[f64]) {
+        if self.drift.is_empty() {
+            return;
+        }
+        sys.eval_conserved(x, &mut self.buf);
+        for ((d, c), c0) in self.drift.iter_mut().zip(&self.buf).zip(&self.initial) {
+            *d = d.max((c - c0).abs());
+        }
+    }
+
+    fn finish(self, sys: &dyn DynSystem) -> Vec<ConservedDrift> {
+        let scales = sys.conserved_scales();
+        self.names
             .into_iter()
-            .zip(c0.iter().zip(&drift))
+            .zip(self.initial.iter().zip(&self.drift))
             .enumerate()
             .map(|(i, (name, (&initial, &max_drift)))| {
                 let reference = initial.abs().max(scales.get(i).copied().unwrap_or(0.0));
@@ -345,8 +372,8 @@ pub fn simulate(
                     },
                 }
             })
-            .collect(),
-    })
+            .collect()
+    }
 }
 
 /// The last time in the step at which the state is still in the domain (bisection on the

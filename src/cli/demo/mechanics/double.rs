@@ -10,8 +10,8 @@ use super::super::{Ctx, fig};
 use super::{eig_error, tight, verdict_table};
 use crate::nonlinear::models::{DoublePendulum, Lorenz};
 use crate::nonlinear::{
-    EquilibriumSearch, Input, SystemInfo, divergence, finite_time_exponent, linearize,
-    lyapunov_exponent, sample_times, simulate,
+    Divergence, EquilibriumSearch, ExponentFit, Input, SystemInfo, divergence,
+    finite_time_exponent, linearize, lyapunov_exponent, sample_times, simulate,
 };
 use crate::numeric::rk45::Rk45Options;
 use crate::plot::{Curve, LineStyle, Marker, MarkerShape, XyPlot, series_color, xy_png};
@@ -143,7 +143,18 @@ fn chaos(ctx: &mut Ctx, md: &mut Md, p: &DoublePendulum) -> Result<()> {
         fmt_sig(est.exponent, 3),
         fmt_sig(lorenz.exponent, 4)
     ));
-    // The distance on a log scale, with the finite-time slope.
+    figures(ctx, md, p, &d, ftle, horizon)
+}
+
+/// The distance on a log scale with the fitted slope; the tip's path.
+fn figures(
+    ctx: &mut Ctx,
+    md: &mut Md,
+    p: &DoublePendulum,
+    d: &Divergence,
+    ftle: Option<ExponentFit>,
+    horizon: f64,
+) -> Result<()> {
     let logd: Vec<(f64, f64)> =
         d.a.t
             .iter()

@@ -157,87 +157,7 @@ fn simulations(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
     );
     let mut rows = Vec::new();
     for case in CASES {
-        let body = RigidBody::new(case.inertia[0], case.inertia[1], case.inertia[2])?;
-        let m = FreeRigidMotion::new(&body, &case.pi0)?;
-        let period = m
-            .period
-            .ok_or_else(|| anyhow::anyhow!("{}: no period", case.name))?;
-        let t = sample_times(10.0 * period, 4001)?;
-        let sim = simulate(&body, &case.pi0, &Input::none(), &t, &tight())?;
-        let scale = m.momentum2.sqrt();
-        let mut err: f64 = 0.0;
-        for (ti, x) in sim.t.iter().zip(&sim.states) {
-            let p = m.at(*ti);
-            for k in 0..3 {
-                err = err.max((p[k] - x[k]).abs() / scale);
-            }
-        }
-        let a = m.circled_axis.unwrap_or(0);
-        // The sn component: the intermediate axis unless it ties with the circled one.
-        let mut order = [0usize, 1, 2];
-        order.sort_by(|&p, &q| case.inertia[p].total_cmp(&case.inertia[q]));
-        let b = if order[1] == a { order[2] } else { order[1] };
-        let cr = crossing_times(&body, &case.pi0, &[], b, 9, 6.0 * period, &tight())?;
-        let measured = match (cr.first(), cr.get(8)) {
-            (Some(t0), Some(t8)) => (t8 - t0) / 4.0,
-            _ => f64::NAN,
-        };
-        let long = simulate(
-            &body,
-            &case.pi0,
-            &Input::none(),
-            &[0.0, 100.0 * period],
-            &tight(),
-        )?;
-        let drift = long
-            .conserved
-            .iter()
-            .map(|c| c.relative_drift)
-            .fold(0.0, f64::max);
-        ctx.checks.add(
-            "rigid body: simulation vs elliptic solution over 10 periods (relative to |Π|)",
-            case.name,
-            err,
-            1e-9,
-        );
-        ctx.checks.add(
-            "rigid body: period from the simulation vs 4K(k)/ω (relative)",
-            case.name,
-            (measured - period).abs() / period,
-            1e-9,
-        );
-        // DOPRI5's truncation error accumulates linearly: ~rtol per period. The bar
-        // (1e-10 over 100 periods) holds for the moderate orbits; the ones near the separatrix
-        // (k ≈ 0.9, ~600 steps a period) reach 1.3e-10, so those are held to 2·rtol a period.
-        if case.strict {
-            ctx.checks.add(
-                "rigid body: drift of E and |Π|² over 100 periods at rtol 1e-12 (relative)",
-                case.name,
-                drift,
-                1e-10,
-            );
-        }
-        ctx.checks.add(
-            "rigid body: drift of E and |Π|² per period over 100 periods (relative, ≤ 2·rtol)",
-            case.name,
-            drift / 100.0,
-            2e-12,
-        );
-        rows.push(vec![
-            case.name.to_string(),
-            format!(
-                "diag({}, {}, {})",
-                case.inertia[0], case.inertia[1], case.inertia[2]
-            ),
-            crate::cli::text::vector_text(&case.pi0),
-            format!("Π{}", a + 1),
-            fmt_sig(m.modulus, 6),
-            fmt_sig(period, 8),
-            case.seed.to_string(),
-            fmt_sig(err, 2),
-            fmt_sig((measured - period).abs() / period, 2),
-            fmt_sig(drift, 2),
-        ]);
+        rows.push(case_row(ctx, case)?);
     }
     md.table(
         &[
@@ -254,7 +174,95 @@ fn simulations(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         ],
         &rows,
     );
-    // Seed fig. 2.12 (a): the components against time, closed form as dots.
+    components_figure(ctx, md)
+}
+
+/// One case: elliptic solution vs simulation, period, conservation; its table row.
+fn case_row(ctx: &mut Ctx, case: &Case) -> Result<Vec<String>> {
+    let body = RigidBody::new(case.inertia[0], case.inertia[1], case.inertia[2])?;
+    let m = FreeRigidMotion::new(&body, &case.pi0)?;
+    let period = m
+        .period
+        .ok_or_else(|| anyhow::anyhow!("{}: no period", case.name))?;
+    let t = sample_times(10.0 * period, 4001)?;
+    let sim = simulate(&body, &case.pi0, &Input::none(), &t, &tight())?;
+    let scale = m.momentum2.sqrt();
+    let mut err: f64 = 0.0;
+    for (ti, x) in sim.t.iter().zip(&sim.states) {
+        let p = m.at(*ti);
+        for k in 0..3 {
+            err = err.max((p[k] - x[k]).abs() / scale);
+        }
+    }
+    let a = m.circled_axis.unwrap_or(0);
+    // The sn component: the intermediate axis unless it ties with the circled one.
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&p, &q| case.inertia[p].total_cmp(&case.inertia[q]));
+    let b = if order[1] == a { order[2] } else { order[1] };
+    let cr = crossing_times(&body, &case.pi0, &[], b, 9, 6.0 * period, &tight())?;
+    let measured = match (cr.first(), cr.get(8)) {
+        (Some(t0), Some(t8)) => (t8 - t0) / 4.0,
+        _ => f64::NAN,
+    };
+    let long = simulate(
+        &body,
+        &case.pi0,
+        &Input::none(),
+        &[0.0, 100.0 * period],
+        &tight(),
+    )?;
+    let drift = long
+        .conserved
+        .iter()
+        .map(|c| c.relative_drift)
+        .fold(0.0, f64::max);
+    ctx.checks.add(
+        "rigid body: simulation vs elliptic solution over 10 periods (relative to |Π|)",
+        case.name,
+        err,
+        1e-9,
+    );
+    ctx.checks.add(
+        "rigid body: period from the simulation vs 4K(k)/ω (relative)",
+        case.name,
+        (measured - period).abs() / period,
+        1e-9,
+    );
+    // DOPRI5's truncation error accumulates linearly: ~rtol per period. The bar
+    // (1e-10 over 100 periods) holds for the moderate orbits; the ones near the separatrix
+    // (k ≈ 0.9, ~600 steps a period) reach 1.3e-10, so those are held to 2·rtol a period.
+    if case.strict {
+        ctx.checks.add(
+            "rigid body: drift of E and |Π|² over 100 periods at rtol 1e-12 (relative)",
+            case.name,
+            drift,
+            1e-10,
+        );
+    }
+    ctx.checks.add(
+        "rigid body: drift of E and |Π|² per period over 100 periods (relative, ≤ 2·rtol)",
+        case.name,
+        drift / 100.0,
+        2e-12,
+    );
+    Ok(vec![
+        case.name.to_string(),
+        format!(
+            "diag({}, {}, {})",
+            case.inertia[0], case.inertia[1], case.inertia[2]
+        ),
+        crate::cli::text::vector_text(&case.pi0),
+        format!("Π{}", a + 1),
+        fmt_sig(m.modulus, 6),
+        fmt_sig(period, 8),
+        case.seed.to_string(),
+        fmt_sig(err, 2),
+        fmt_sig((measured - period).abs() / period, 2),
+        fmt_sig(drift, 2),
+    ])
+}
+/// Seed fig. 2.12 (a): the components against time, closed form as dots.
+fn components_figure(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
     let case = &CASES[0];
     let body = RigidBody::new(case.inertia[0], case.inertia[1], case.inertia[2])?;
     let m = FreeRigidMotion::new(&body, &case.pi0)?;

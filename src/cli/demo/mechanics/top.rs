@@ -108,7 +108,12 @@ pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         fmt_sig(from_ec, 12),
         fmt_sig(wc, 12)
     ));
-    // Nutation: tilted 0.1 rad, below and above the threshold.
+    nutation(ctx, md, &base)
+}
+
+/// Released 0.1 rad from upright below and above the threshold: tilt and drifts.
+fn nutation(ctx: &mut Ctx, md: &mut Md, base: &HeavyTop) -> Result<()> {
+    let wc = base.threshold_spin();
     let t = sample_times(10.0, 2001)?;
     let mut curves = Vec::new();
     let mut notes = Vec::new();
