@@ -474,3 +474,141 @@ fn registry_knows_the_mechanical_models() {
         assert!(lin.equilibria.iter().all(|e| e.residual < 1e-12));
     }
 }
+
+// ---------------------------------------------------------------- the command line
+
+fn ltikit(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(args)
+        .output()
+        .expect("the ltikit binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = ltikit(args);
+    assert!(
+        out.status.success(),
+        "ltikit {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn simulate_works_without_ceremony() {
+    // Issue 9 item 6: the model's own start and horizon.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mechanics-cli");
+    std::fs::create_dir_all(&dir).unwrap();
+    for model in ["lorenz", "pendulum", "rigid-body", "double-pendulum"] {
+        let png = dir.join(format!("{model}.png"));
+        let _ = std::fs::remove_file(&png);
+        let out = ltikit(&["simulate", model, "-o", png.to_str().unwrap()]);
+        assert!(
+            out.status.success(),
+            "{model}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(std::fs::metadata(&png).unwrap().len() > 10_000, "{model}");
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(text.contains("the model's defaults"), "{model}");
+    }
+    // Lorenz from [1, 0, 0] for 50 s (seed fig. 2.9).
+    let v = json(&["simulate", "lorenz", "--points", "3", "--json"]);
+    assert_eq!(v["x0"], serde_json::json!([1.0, 0.0, 0.0]));
+    assert_eq!(v["t"][2], serde_json::json!(50.0));
+    // Conserved quantities and their drift.
+    let v = json(&[
+        "simulate",
+        "rigid-body",
+        "--points",
+        "3",
+        "--rtol",
+        "1e-12",
+        "--json",
+    ]);
+    let c = v["conserved"].as_array().unwrap();
+    assert_eq!(c.len(), 2);
+    assert!((c[0]["initial"].as_f64().unwrap() - 2.31).abs() < 1e-14); // E (seed eq. 2.51)
+    assert!(
+        c.iter()
+            .all(|q| q["relative_drift"].as_f64().unwrap() < 1e-10)
+    );
+    // No conservation claimed under an input.
+    let v = json(&[
+        "simulate",
+        "double-pendulum",
+        "--input",
+        "0.5",
+        "--points",
+        "3",
+        "--json",
+    ]);
+    assert!(v.get("conserved").is_none());
+}
+
+#[test]
+fn linearize_reports_energy_casimir_and_channels() {
+    let v = json(&["linearize", "rigid-body", "--json"]);
+    let verdicts: Vec<&str> = v["equilibria"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["energy_casimir"]["extremum"].as_str().unwrap())
+        .collect();
+    // Sorted by state: −Π1, −Π2, −Π3, +Π3, +Π2, +Π1 with I = diag(3, 2, 1).
+    assert_eq!(
+        verdicts,
+        [
+            "minimum", "saddle", "maximum", "maximum", "saddle", "minimum"
+        ]
+    );
+    let v = json(&["linearize", "gyroscope", "--json"]);
+    let e = &v["equilibria"][0];
+    assert!(e["tf"].is_null());
+    let ch = e["channels"].as_array().unwrap();
+    assert_eq!(ch.len(), 6);
+    assert_eq!(ch[1]["input"], "u1");
+    assert_eq!(ch[1]["output"], "theta2");
+    // The pendulum's contract is unchanged: no new keys for a damped SISO model.
+    let v = json(&["linearize", "pendulum", "--json"]);
+    assert!(v["equilibria"][0].get("channels").is_none());
+    assert!(v["equilibria"][0].get("energy_casimir").is_none());
+    let text = String::from_utf8(ltikit(&["linearize", "heavy-top"]).stdout).unwrap();
+    assert!(text.contains("threshold"), "{text}");
+}
+
+#[test]
+fn bad_mechanical_parameters_are_one_line_errors() {
+    for (args, want) in [
+        (
+            &["linearize", "rigid-body", "--param", "I3=6"][..],
+            "triangle inequality",
+        ),
+        (
+            &["linearize", "rigid-body", "--param", "I2=-1"][..],
+            "I2 = -1",
+        ),
+        (
+            &["linearize", "rigid-body", "--param", "Pi=0"][..],
+            "angular momentum",
+        ),
+        (
+            &["simulate", "double-pendulum", "--param", "L1=0"][..],
+            "L1 = 0",
+        ),
+        (
+            &["simulate", "heavy-top", "--param", "I3=3"][..],
+            "triangle inequality",
+        ),
+        (
+            &["simulate", "gyroscope", "--x0", "0 0 0 0 1"][..],
+            "gimbal lock",
+        ),
+    ] {
+        let out = ltikit(args);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+}

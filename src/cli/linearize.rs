@@ -169,14 +169,32 @@ fn matrix(name: &str, m: &[Vec<f64>], out: &mut String) {
     }
 }
 
-/// An eigenvalue for display: a real or imaginary part below 1e-14 of |λ| is rounding noise
-/// (−1.9e-32 ± 12.7j is shown as ±12.7j).
-fn display_eigenvalue(z: num_complex::Complex64) -> num_complex::Complex64 {
-    let tiny = 1e-14 * z.norm();
-    num_complex::Complex64::new(
-        if z.re.abs() <= tiny { 0.0 } else { z.re },
-        if z.im.abs() <= tiny { 0.0 } else { z.im },
-    )
+/// Eigenvalues for display: one per conjugate pair, repeated ones as (×m); real or
+/// imaginary parts below 1e-13 of the largest |λ| are rounding noise (a zero computed as
+/// 6.6e-33, a centre as −1.9e-32 ± 12.7j) and shown as 0.
+pub(crate) fn eigenvalues_text(e: &[num_complex::Complex64], sig: usize) -> String {
+    let scale = e.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    let t = 1e-13 * scale;
+    let mut groups: Vec<(String, usize)> = Vec::new();
+    for z in e {
+        let z = num_complex::Complex64::new(
+            if z.re.abs() <= t { 0.0 } else { z.re },
+            if z.im.abs() <= t { 0.0 } else { z.im },
+        );
+        if z.im < 0.0 {
+            continue;
+        }
+        let s = fmt_root(z, sig);
+        match groups.iter_mut().find(|g| g.0 == s) {
+            Some(g) => g.1 += 1,
+            None => groups.push((s, 1)),
+        }
+    }
+    groups
+        .into_iter()
+        .map(|(s, m)| if m > 1 { format!("{s} (×{m})") } else { s })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Human-readable report; `note` is the model's remark on its equilibria.
@@ -198,7 +216,7 @@ pub fn report(title: &str, l: &Linearization, note: Option<&str>) -> String {
         if l.equilibria.len() == 1 { "um" } else { "a" }
     ));
     if let Some(note) = note {
-        s.push_str(&format!("  ({note})\n"));
+        s.push_str(&format!("  note: {note}\n"));
     }
     for (i, e) in l.equilibria.iter().enumerate() {
         s.push_str(&format!(
@@ -220,14 +238,7 @@ pub fn report(title: &str, l: &Linearization, note: Option<&str>) -> String {
         if !e.d.is_empty() && !e.d[0].is_empty() {
             matrix("D", &e.d, &mut s);
         }
-        let ev = e
-            .eigenvalues
-            .iter()
-            .map(|z| display_eigenvalue(*z))
-            .filter(|z| z.im >= 0.0)
-            .map(|z| fmt_root(z, 6))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let ev = eigenvalues_text(&e.eigenvalues, 6);
         s.push_str(&format!("  eigenvalues: {ev}\n"));
         s.push_str(&format!(
             "  {}; {}\n",

@@ -230,6 +230,20 @@ pub fn simulate(
 
     let n = sys.nx();
     let check_domain = sys.in_domain(x0);
+    if !check_domain {
+        // Outside the domain the equations may be singular: say so rather than report a NaN.
+        let mut dx = vec![0.0; n];
+        sys.eval_f(x0, input.at(0.0), &mut dx);
+        if dx.iter().any(|v| !v.is_finite()) {
+            return Err(LtiError::invalid(format!(
+                "the initial state {x0:?} is outside the model's domain{}, where its equations \
+                 are singular",
+                sys.domain_note()
+                    .map(|d| format!(" ({d})"))
+                    .unwrap_or_default()
+            )));
+        }
+    }
     let mut tracker = DriftTracker::new(sys, x0, input);
     let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());

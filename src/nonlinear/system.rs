@@ -83,6 +83,12 @@ pub trait SystemInfo {
         true
     }
 
+    /// What the domain's boundary is, in words ("the plates touch, l ≤ 0"), for the error
+    /// when a simulation starts outside it where the equations are singular. Default `None`.
+    fn domain_note(&self) -> Option<String> {
+        None
+    }
+
     /// The initial state `ltikit simulate` uses when none is given (default: zeros). The seed's
     /// where it gives one (Lorenz from [1, 0, 0], the rigid body from [0.6, −1, 2]).
     fn default_initial_state(&self) -> Vec<f64> {

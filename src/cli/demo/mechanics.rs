@@ -14,7 +14,6 @@ use super::md::Md;
 use crate::cli::text::vector_text;
 use crate::nonlinear::{Linearization, LocalStability};
 use crate::numeric::rk45::Rk45Options;
-use crate::poly::fmt_root;
 
 /// The four sections, numbered `number`.1 … `number`.4 under one heading.
 pub fn sections(ctx: &mut Ctx, md: &mut Md, number: usize) -> Result<()> {
@@ -47,32 +46,9 @@ fn tight() -> Rk45Options {
     }
 }
 
-/// Eigenvalues for a table: one per conjugate pair, repeated ones as (×m); parts below
-/// 1e-13 of the largest |λ| are rounding noise (a zero computed as −2e-32, a centre as
-/// −1e-32 ± 5j) and shown as 0.
+/// Eigenvalues for a table (one per conjugate pair, rounding noise shown as 0).
 fn eigen_text(e: &[Complex64]) -> String {
-    let scale = e.iter().map(|z| z.norm()).fold(0.0, f64::max);
-    let t = 1e-13 * scale;
-    let mut groups: Vec<(String, usize)> = Vec::new();
-    for z in e {
-        let z = Complex64::new(
-            if z.re.abs() <= t { 0.0 } else { z.re },
-            if z.im.abs() <= t { 0.0 } else { z.im },
-        );
-        if z.im < 0.0 {
-            continue;
-        }
-        let s = fmt_root(z, 5);
-        match groups.iter_mut().find(|g| g.0 == s) {
-            Some(g) => g.1 += 1,
-            None => groups.push((s, 1)),
-        }
-    }
-    groups
-        .into_iter()
-        .map(|(s, m)| if m > 1 { format!("{s} (×{m})") } else { s })
-        .collect::<Vec<_>>()
-        .join(", ")
+    crate::cli::linearize::eigenvalues_text(e, 5)
 }
 
 fn linear_words(s: LocalStability) -> &'static str {

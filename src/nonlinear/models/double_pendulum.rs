@@ -157,7 +157,7 @@ impl DoublePendulum {
         }
     }
 
-    /// The two normal-mode angular frequencies [ω₁ < ω₂] of down–down (module docs); the
+    /// The two normal-mode angular frequencies ω₁ < ω₂ of down–down (module docs); the
     /// smaller from the product ω₁²ω₂² = (m1 + m2) g²/(m1 L1 L2), free of cancellation.
     pub fn normal_modes(&self) -> [f64; 2] {
         let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);

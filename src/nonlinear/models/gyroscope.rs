@@ -164,6 +164,10 @@ impl SystemInfo for Gyroscope {
         x[1].sin().abs() > 1e-9
     }
 
+    fn domain_note(&self) -> Option<String> {
+        Some("gimbal lock: sin θ2 = 0".into())
+    }
+
     /// Steady spin with the outer gimbal knocked: θ̇₁(0) = 1 rad/s (nutation about the spin).
     fn default_initial_state(&self) -> Vec<f64> {
         vec![0.0, std::f64::consts::FRAC_PI_2, 1.0, 0.0, self.w]
@@ -252,6 +256,9 @@ impl SystemInfo for GyroscopeDiscFrame {
     }
     fn in_domain(&self, x: &[f64]) -> bool {
         x[1].sin().abs() > 1e-9
+    }
+    fn domain_note(&self) -> Option<String> {
+        Some("gimbal lock: sin θ2 = 0".into())
     }
 }
 

@@ -13,8 +13,10 @@
 //! i.e. ±p e_k on the principal axes (steady rotation about axis k). Linearised at p e_k with
 //! (i, j) the other two axes, A has the eigenvalues 0 and ±√λ² with
 //!
-//!   λ² = −(Ik − Ii)(Ik − Ij)/(Ii Ij) · (p/Ik)²   (from A = [[0,0,0],[0,0,(I3−I1)p/(I3I1)],
-//!   [0,(I1−I2)p/(I1I2),0]] for k = 1, and cyclically)
+//!   λ² = −(Ik − Ii)(Ik − Ij)/(Ii Ij) · (p/Ik)²
+//!
+//! (for k = 1 the only non-zero entries of A are A₂₃ = (I3 − I1)p/(I3 I1) and
+//! A₃₂ = (I1 − I2)p/(I1 I2), and λ² = A₂₃A₃₂; the other axes cyclically)
 //!
 //! so the intermediate axis is a saddle (a real pair) and the largest and smallest are centres
 //! (an imaginary pair: not hyperbolic, the linearisation cannot decide). The energy–Casimir

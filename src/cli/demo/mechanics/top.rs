@@ -95,7 +95,7 @@ pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         "heavy top: threshold spin from the energy–Casimir test vs √(4 I1 m g l)/I3 (relative)",
         "default top",
         (from_ec - wc).abs() / wc,
-        1e-6,
+        1e-7,
     );
     md.p(&format!(
         "Found by bisection on the eigenvalues (the spin where the last right-half-plane \
