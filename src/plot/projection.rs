@@ -127,7 +127,7 @@ fn runs(view: &View, pts: &[[f64; 3]]) -> Vec<(bool, Vec<(f64, f64)>)> {
 /// let equator: Vec<[f64; 3]> = (0..=72).map(|k| { let a = (k as f64 * 5.0).to_radians(); [a.cos(), a.sin(), 0.0] }).collect();
 /// let p = SpherePlot { radius: 1.0, curves: vec![Curve3 { points: equator, ..Default::default() }],
 ///                      ..Default::default() };
-/// sphere_png("/tmp/sphere.png", &p, &PlotOptions::default()).unwrap();
+/// sphere_png("sphere.png", &p, &PlotOptions::default()).unwrap();
 /// ```
 pub fn sphere_png(path: impl AsRef<Path>, plot: &SpherePlot, opts: &PlotOptions) -> Result<()> {
     let r = plot.radius;
