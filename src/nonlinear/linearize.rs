@@ -132,9 +132,9 @@ fn cleaned(g: &TransferFunction) -> Result<TransferFunction> {
     if num.iter().all(|v| *v == 0.0) {
         return TransferFunction::from_descending(&[0.0], &clean(den));
     }
-    Ok(TransferFunction::from_descending(&num, &clean(den))?
-        .pole_zero()?
-        .reduced)
+    TransferFunction::from_descending(&num, &clean(den))?
+        .factored()?
+        .reduced_tf()
 }
 
 /// One equilibrium with its linearisation.

@@ -96,7 +96,8 @@ impl LinearModel {
 /// The automatic time span of the plant's responses (1.5× the 2 % settling of the slowest
 /// mode, five periods of undamped modes, …), 10 s when it has none.
 fn horizon(g: &TransferFunction) -> f64 {
-    auto_time_span(g)
+    g.factored()
+        .and_then(|f| auto_time_span(&f))
         .map(|s| s.t_end)
         .ok()
         .filter(|t| t.is_finite() && *t > 0.0)
