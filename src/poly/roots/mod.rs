@@ -33,6 +33,7 @@ mod derivatives;
 mod group;
 mod newton;
 mod refine;
+mod scale;
 
 use super::{MAX_ORDER, Poly, Root};
 use crate::error::{LtiError, Result};
@@ -87,10 +88,38 @@ pub fn roots(p: &Poly) -> Result<Vec<Root>> {
     }
     let q = Poly::trimmed(p.coeffs()[..=n - k0].to_vec());
     if q.degree() > 0 {
-        let candidates = candidates(&q)?;
-        out.extend(resolve_multiplicities(&q, &candidates));
+        out.extend(solve(&q)?);
     }
     sort_roots(&mut out);
+    Ok(out)
+}
+
+/// Roots of `q` (no zero roots), in its own frame or piece by piece (see [`scale`]).
+fn solve(q: &Poly) -> Result<Vec<Root>> {
+    let pieces = match scale::plan(q)? {
+        scale::Plan::Native => {
+            let cand = candidates(q)?;
+            return Ok(resolve_multiplicities(q, &cand));
+        }
+        scale::Plan::Pieces(p) => p,
+    };
+    let mut out = Vec::new();
+    for piece in pieces {
+        let cand = candidates(&piece.poly)?;
+        for r in resolve_multiplicities(&piece.poly, &cand) {
+            let value = scale::unscale(r.value, piece.shift);
+            if !(value.re.is_finite() && value.im.is_finite()) {
+                return Err(LtiError::invalid(format!(
+                    "a root of the polynomial is about 2^{} in magnitude, beyond the range of f64",
+                    piece.shift
+                )));
+            }
+            out.push(Root {
+                value,
+                multiplicity: r.multiplicity,
+            });
+        }
+    }
     Ok(out)
 }
 
