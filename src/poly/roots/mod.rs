@@ -120,6 +120,13 @@ fn solve(q: &Poly) -> Result<Vec<Root>> {
             });
         }
     }
+    let total: usize = out.iter().map(|r| r.multiplicity).sum();
+    if total != q.degree() {
+        return Err(LtiError::NoConvergence {
+            what: format!("root finder (found {total} of {} roots)", q.degree()),
+            iterations: 0,
+        });
+    }
     Ok(out)
 }
 

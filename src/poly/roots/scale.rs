@@ -131,6 +131,15 @@ fn piece(c: &[f64], n: usize, hull: &[Vertex], lo: f64, hi: f64) -> Result<Piece
         .rev()
         .map(|i| ldexp(c[n - i], shift * (i - p0) as i32 - e_max))
         .collect();
+    // The end coefficients are hull vertices; if either fell out of the normal range the
+    // piece spans more than one f64 frame.
+    let ends = [coeffs[0], coeffs[coeffs.len() - 1]];
+    if ends
+        .iter()
+        .any(|a| a.abs() < f64::MIN_POSITIVE || !a.is_finite())
+    {
+        return Err(range_error(lo, hi, n));
+    }
     Ok(Piece {
         poly: Poly::trimmed(coeffs),
         shift,
