@@ -1,7 +1,9 @@
 //! Roots of a real polynomial with exact multiplicities.
 //!
 //! # Method
-//! 1. Exact zero roots (trailing zero coefficients) are deflated exactly.
+//! 1. Exact zero roots (trailing zero coefficients) are deflated exactly; coefficients of
+//!    extreme range are split at wide gaps between the tropical roots and each piece is centred
+//!    by an exact power of two (`scale.rs`).
 //! 2. Candidates: degree 1 and 2 by stable closed forms; otherwise the eigenvalues of the
 //!    balanced companion matrix (Francis double-shift QR directly on the Hessenberg companion
 //!    matrix, capped, with [`crate::numeric::eigenvalues`] as the fallback). Simple roots come out to
@@ -19,6 +21,13 @@
 //! 5. The result must reproduce the coefficients (lead·Π(s − rₖ)^mₖ against p, componentwise
 //!    to a small multiple of eps); if it does not, the polished candidates are returned as
 //!    simple roots — no multiplicity is ever claimed that the coefficients do not support.
+//!
+//! When a multiple root is found, all roots are refined together by Gauss–Newton with the
+//! structure fixed and a double-double residual (`refine.rs`); when the checks of step 5 fail,
+//! a second stage takes the structure from the derivatives (`derivatives.rs`).
+//!
+//! Files, by step: `scale.rs` (1), `candidates.rs` and `companion.rs` (2), `group.rs` and
+//! `newton.rs` (3, 4), `refine.rs`, `checks.rs` (5) and `derivatives.rs`.
 //!
 //! Two simple roots closer than about 2e-7 relative are indistinguishable from a double root
 //! perturbed by rounding of the coefficients and are reported as one double root; roots
