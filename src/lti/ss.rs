@@ -118,7 +118,7 @@ impl StateSpace {
     /// A diagonally similar realisation (D⁻¹AD, D⁻¹B, CD) with row and column norms of A
     /// balanced (Parlett–Reinsch, powers of two: exact). Improves the accuracy of `exp(A t)`
     /// for companion matrices with coefficients of very different sizes. Overflow-safe and
-    /// bounded ([`crate::numeric::balance`]): an entry of 1e200 is balanced like any other.
+    /// bounded ([`crate::numeric::balance()`]): an entry of 1e200 is balanced like any other.
     ///
     /// ```
     /// use ltikit::{StateSpace, TransferFunction};
