@@ -38,12 +38,24 @@ impl Rng {
 fn coefficient(r: &mut Rng) -> String {
     match r.below(12) {
         0 => "0".into(),
-        1 => format!("{:e}", (r.unit() + 0.1) * 10f64.powi(300 - r.below(10) as i32)),
-        2 => format!("-{:e}", (r.unit() + 0.1) * 10f64.powi(-300 + r.below(10) as i32)),
+        1 => format!(
+            "{:e}",
+            (r.unit() + 0.1) * 10f64.powi(300 - r.below(10) as i32)
+        ),
+        2 => format!(
+            "-{:e}",
+            (r.unit() + 0.1) * 10f64.powi(-300 + r.below(10) as i32)
+        ),
         3 => format!("{:e}", 5e-324 * (1 + r.below(1000)) as f64), // subnormal
-        4 => format!("{:e}", (r.unit() - 0.5) * 10f64.powi(r.below(600) as i32 - 300)),
+        4 => format!(
+            "{:e}",
+            (r.unit() - 0.5) * 10f64.powi(r.below(600) as i32 - 300)
+        ),
         5 => format!("{}", r.below(7) as i64 - 3),
-        _ => format!("{:.6}", (r.unit() - 0.3) * 10f64.powi(r.below(7) as i32 - 3)),
+        _ => format!(
+            "{:.6}",
+            (r.unit() - 0.3) * 10f64.powi(r.below(7) as i32 - 3)
+        ),
     }
 }
 
@@ -65,11 +77,21 @@ fn plant(r: &mut Rng) -> Vec<String> {
         _ => 1 + r.below(8),
     };
     match r.below(25) {
-        0 => vec!["--den".into(), r.pick(&["", "nan", "1 inf", "1/0", "--", "1e999999", "0 0"]).into()],
+        0 => vec![
+            "--den".into(),
+            r.pick(&["", "nan", "1 inf", "1/0", "--", "1e999999", "0 0"])
+                .into(),
+        ],
         1 => vec!["--den".into(), format!("1 {}", "9".repeat(2000))],
         2 => vec![
             "--a".into(),
-            format!("{} {}; {} {}", coefficient(r), coefficient(r), coefficient(r), coefficient(r)),
+            format!(
+                "{} {}; {} {}",
+                coefficient(r),
+                coefficient(r),
+                coefficient(r),
+                coefficient(r)
+            ),
             "--b".into(),
             "0; 1".into(),
             "--c".into(),
@@ -99,7 +121,15 @@ fn case(r: &mut Rng, dir: &std::path::Path, k: usize) -> (Vec<String>, Option<Pa
             args.push("--json".into());
             args.push(format!(
                 "--input={}",
-                r.pick(&["step", "impulse", "ramp", "exp:-1e20", "sin:1e300", "cos:3", "exp:1e-300"])
+                r.pick(&[
+                    "step",
+                    "impulse",
+                    "ramp",
+                    "exp:-1e20",
+                    "sin:1e300",
+                    "cos:3",
+                    "exp:1e-300"
+                ])
             ));
             if r.below(2) == 0 {
                 args.push("--t=0 1 10 1e6".into());
@@ -155,7 +185,12 @@ fn run(args: &[String], budget: Duration) -> (Option<i32>, String, String, f64) 
         std::thread::sleep(Duration::from_millis(5));
     };
     let secs = start.elapsed().as_secs_f64();
-    (code, to.join().unwrap_or_default(), te.join().unwrap_or_default(), secs)
+    (
+        code,
+        to.join().unwrap_or_default(),
+        te.join().unwrap_or_default(),
+        secs,
+    )
 }
 
 #[test]
@@ -223,7 +258,16 @@ fn hostile_plants_at_every_command() {
         by_code[1],
         by_code[2],
         slowest.0,
-        slowest.1.iter().map(|a| a.chars().take(60).collect::<String>()).collect::<Vec<_>>()
+        slowest
+            .1
+            .iter()
+            .map(|a| a.chars().take(60).collect::<String>())
+            .collect::<Vec<_>>()
     );
-    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -116,7 +116,12 @@ fn tropical(q: &Poly) -> (Vec<Vertex>, Vec<f64>) {
 /// The piece between two hull vertices, centred and normalised.
 fn piece(c: &[f64], n: usize, hull: &[Vertex], lo: f64, hi: f64) -> Result<Piece> {
     let (p0, p1) = (hull[0].power, hull[hull.len() - 1].power);
-    let shift = (0.5 * (lo + hi)).round() as i32;
+    let mid = (0.5 * (lo + hi)).round();
+    // a centre beyond ±2^20 bits (or not finite) is far outside f64 anyway
+    if !(mid.abs() <= 1_048_576.0) {
+        return Err(range_error(lo, hi, n));
+    }
+    let shift = mid as i32;
     let (clo, chi) = (lo - f64::from(shift), hi - f64::from(shift));
     if clo < -FRAME_BITS || chi > FRAME_BITS {
         return Err(range_error(lo, hi, n));
