@@ -118,7 +118,7 @@ fn piece(c: &[f64], n: usize, hull: &[Vertex], lo: f64, hi: f64) -> Result<Piece
     let (p0, p1) = (hull[0].power, hull[hull.len() - 1].power);
     let mid = (0.5 * (lo + hi)).round();
     // a centre beyond ±2^20 bits (or not finite) is far outside f64 anyway
-    if !(mid.abs() <= 1_048_576.0) {
+    if mid.is_nan() || mid.abs() > 1_048_576.0 {
         return Err(range_error(lo, hi, n));
     }
     let shift = mid as i32;
