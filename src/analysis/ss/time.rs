@@ -21,9 +21,9 @@ use crate::numeric::expm;
 pub struct SsTimeResponse {
     /// Times (s), in the caller's order.
     pub t: Vec<f64>,
-    /// `y[j][k]`: output j at t[k].
+    /// `y[j][k]`: output j at `t[k]`.
     pub y: Vec<Vec<f64>>,
-    /// `x[i][k]`: state i at t[k] (when asked for).
+    /// `x[i][k]`: state i at `t[k]` (when asked for).
     pub x: Option<Vec<Vec<f64>>>,
 }
 
@@ -31,7 +31,7 @@ pub struct SsTimeResponse {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Hold {
-    /// Piecewise constant: u(t) = u_k on [t_k, t_{k+1}) (zero-order hold).
+    /// Piecewise constant: u(t) = u_k on \[t_k, t_(k+1)) (zero-order hold).
     Zero,
     /// Piecewise linear between the samples (first-order hold).
     First,
@@ -42,7 +42,7 @@ pub enum Hold {
 pub struct InputSignal {
     /// Sample times (s), strictly increasing, the first ≥ 0.
     pub t: Vec<f64>,
-    /// `u[k]`: the m input values at t[k].
+    /// `u[k]`: the m input values at `t[k]`.
     pub u: Vec<Vec<f64>>,
 }
 
