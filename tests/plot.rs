@@ -1,14 +1,22 @@
-//! Plot tests: every kind of PNG is written to /tmp/ltikit-plots/, decoded, and checked for
-//! signature, size and content (not blank); error cases leave no file behind.
+//! Plot tests: every kind of PNG is written under the target directory's scratch space
+//! (`CARGO_TARGET_TMPDIR/plots`), decoded, and checked for signature, size and content (not
+//! blank); error cases leave no file behind.
 
 use std::path::PathBuf;
 
 use ltikit::plot::*;
 
-fn out(name: &str) -> PathBuf {
-    let dir = PathBuf::from("/tmp/ltikit-plots");
+/// The scratch directory of these tests (`sub` below it), created if needed.
+fn scratch(sub: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("plots")
+        .join(sub);
     std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    dir
+}
+
+fn out(name: &str) -> PathBuf {
+    scratch("").join(name)
 }
 
 /// Decodes the PNG and returns (width, height, RGB pixels).
@@ -669,8 +677,7 @@ fn leftovers(dir: &std::path::Path, stem: &str) -> usize {
 
 #[test]
 fn bad_options_and_empty_data_are_errors_without_files() {
-    let dir = PathBuf::from("/tmp/ltikit-plots/errors");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("errors");
     let fr = response(
         logspace(0.1, 10.0, 50),
         |w| 1.0 / (1.0 + w * w).sqrt(),
@@ -759,8 +766,7 @@ fn bad_options_and_empty_data_are_errors_without_files() {
 
 #[test]
 fn unwritable_paths_are_io_errors_and_leave_nothing() {
-    let dir = PathBuf::from("/tmp/ltikit-plots/errors");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("errors");
     let fr = response(
         logspace(0.1, 10.0, 50),
         |w| 1.0 / (1.0 + w * w).sqrt(),
@@ -768,12 +774,7 @@ fn unwritable_paths_are_io_errors_and_leave_nothing() {
     );
     let s = [BodeSeries::new(&fr)];
     // Missing directory.
-    let e = bode_png(
-        "/tmp/ltikit-plots/no/such/dir/b.png",
-        &s,
-        &PlotOptions::default(),
-    )
-    .unwrap_err();
+    let e = bode_png(dir.join("no/such/dir/b.png"), &s, &PlotOptions::default()).unwrap_err();
     assert!(matches!(e, ltikit::LtiError::Io { .. }), "{e}");
     // A parent that is a file.
     let file = dir.join("a_file.txt");

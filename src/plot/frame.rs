@@ -2,8 +2,9 @@
 
 use super::axes::Axis;
 use super::layout::tick_label_height;
-use super::raster::{Canvas, HAlign, VAlign, cap_height};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
+use super::text::{HAlign, Measured, VAlign, cap_height};
 use crate::error::Result;
 use crate::plot::Color;
 
@@ -288,7 +289,8 @@ impl Frame {
         }
         if let Some(t) = y_title {
             let x = left_edge + cap_height(th.label) / 2.0 + 0.1 * th.label;
-            c.text_up(t, x, (self.y0 + self.y1) / 2.0, th.label, Theme::AXIS)?;
+            let t = Measured::new(t, th.label);
+            c.text_up(&t, x, (self.y0 + self.y1) / 2.0, Theme::AXIS)?;
         }
         Ok(())
     }

@@ -1,8 +1,9 @@
 //! Legend and information boxes, placed in the frame corner that hides the least of the curves.
 
 use super::frame::Frame;
-use super::raster::{Canvas, HAlign, VAlign};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
+use super::text::{HAlign, VAlign};
 use crate::error::Result;
 use crate::plot::Color;
 
@@ -56,6 +57,114 @@ pub(crate) enum Corner {
     BottomLeft,
 }
 
+/// A box (x0, y0, x1, y1) in pixels.
+type Rect = (f64, f64, f64, f64);
+
+/// The measured box of a legend: width, height, swatch width, horizontal padding, row height.
+struct BoxSize {
+    w: f64,
+    h: f64,
+    swatch: f64,
+    padx: f64,
+    row: f64,
+}
+
+impl BoxSize {
+    fn measure(th: &Theme, entries: &[LegendEntry]) -> BoxSize {
+        let size = th.note;
+        let row = 1.45 * size;
+        let swatch = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
+            34.0 * th.s
+        } else {
+            0.0
+        };
+        let text_w = entries
+            .iter()
+            .map(|e| Canvas::text_width(&e.text, size))
+            .fold(0.0, f64::max);
+        let padx = 8.0 * th.s;
+        let w = padx + swatch + if swatch > 0.0 { 6.0 * th.s } else { 0.0 } + text_w + padx;
+        let h = row * entries.len() as f64 + 0.5 * size;
+        BoxSize {
+            w,
+            h,
+            swatch,
+            padx,
+            row,
+        }
+    }
+}
+
+/// The position of a `bw` × `bh` box in `frame`: the first preferred corner hiding the fewest
+/// of the points `avoid` without overlapping a `taken` box; if every corner hides something,
+/// the middles of the edges are tried as well.
+fn place(
+    frame: &Frame,
+    th: &Theme,
+    (bw, bh): (f64, f64),
+    avoid: &[(f64, f64)],
+    prefer: &[Corner],
+    taken: &[Rect],
+) -> Rect {
+    let m = 8.0 * th.s;
+    let at_corner = |corner: Corner| -> Rect {
+        let (x, y) = match corner {
+            Corner::TopRight => (frame.x1 - m - bw, frame.y0 + m),
+            Corner::TopLeft => (frame.x0 + m, frame.y0 + m),
+            Corner::BottomRight => (frame.x1 - m - bw, frame.y1 - m - bh),
+            Corner::BottomLeft => (frame.x0 + m, frame.y1 - m - bh),
+        };
+        (x, y, x + bw, y + bh)
+    };
+    let overlaps = |a: Rect, b: &Rect| a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
+    let score = |b: Rect| {
+        let hidden = avoid
+            .iter()
+            .filter(|p| {
+                p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
+            })
+            .count();
+        hidden
+            + if taken.iter().any(|t| overlaps(b, t)) {
+                1_000_000
+            } else {
+                0
+            }
+    };
+    let prefer = if prefer.is_empty() {
+        &[Corner::TopRight][..]
+    } else {
+        prefer
+    };
+    let mut best = at_corner(prefer[0]);
+    let mut best_score = usize::MAX;
+    let mut consider = |b: Rect| {
+        let sc = score(b);
+        if sc < best_score {
+            best_score = sc;
+            best = b;
+        }
+        best_score
+    };
+    let mut last = usize::MAX;
+    for &corner in prefer {
+        last = consider(at_corner(corner));
+    }
+    if last > 0 {
+        let cx = (frame.x0 + frame.x1 - bw) / 2.0;
+        let cy = (frame.y0 + frame.y1 - bh) / 2.0;
+        for (x, y) in [
+            (cx, frame.y0 + m),
+            (cx, frame.y1 - m - bh),
+            (frame.x0 + m, cy),
+            (frame.x1 - m - bw, cy),
+        ] {
+            consider((x, y, x + bw, y + bh));
+        }
+    }
+    best
+}
+
 /// Draws a legend box inside `frame` in the corner (from `prefer`) that hides the fewest of the
 /// pixel points `avoid`; returns the box drawn (x0, y0, x1, y1).
 pub(crate) fn draw_legend(
@@ -65,89 +174,13 @@ pub(crate) fn draw_legend(
     entries: &[LegendEntry],
     avoid: &[(f64, f64)],
     prefer: &[Corner],
-    taken: &[(f64, f64, f64, f64)],
-) -> Result<Option<(f64, f64, f64, f64)>> {
+    taken: &[Rect],
+) -> Result<Option<Rect>> {
     if entries.is_empty() {
         return Ok(None);
     }
-    let size = th.note;
-    let row = 1.45 * size;
-    let sw = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
-        34.0 * th.s
-    } else {
-        0.0
-    };
-    let text_w = entries
-        .iter()
-        .map(|e| Canvas::text_width(&e.text, size))
-        .fold(0.0, f64::max);
-    let padx = 8.0 * th.s;
-    let bw = padx + sw + if sw > 0.0 { 6.0 * th.s } else { 0.0 } + text_w + padx;
-    let bh = row * entries.len() as f64 + 0.5 * size;
-    let m = 8.0 * th.s;
-    let place = |corner: Corner| -> (f64, f64, f64, f64) {
-        let (x, y) = match corner {
-            Corner::TopRight => (frame.x1 - m - bw, frame.y0 + m),
-            Corner::TopLeft => (frame.x0 + m, frame.y0 + m),
-            Corner::BottomRight => (frame.x1 - m - bw, frame.y1 - m - bh),
-            Corner::BottomLeft => (frame.x0 + m, frame.y1 - m - bh),
-        };
-        (x, y, x + bw, y + bh)
-    };
-    let overlaps = |a: (f64, f64, f64, f64), b: &(f64, f64, f64, f64)| {
-        a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
-    };
-    let prefer = if prefer.is_empty() {
-        &[Corner::TopRight][..]
-    } else {
-        prefer
-    };
-    let mut best = place(prefer[0]);
-    let mut best_score = usize::MAX;
-    for &corner in prefer {
-        let b = place(corner);
-        let mut score = avoid
-            .iter()
-            .filter(|p| {
-                p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
-            })
-            .count();
-        if taken.iter().any(|t| overlaps(b, t)) {
-            score += 1_000_000;
-        }
-        if score < best_score {
-            best_score = score;
-            best = b;
-        }
-    }
-    if best_score > 0 {
-        // Every preferred corner hides something: try the middles of the edges as well.
-        let cx = (frame.x0 + frame.x1 - bw) / 2.0;
-        let cy = (frame.y0 + frame.y1 - bh) / 2.0;
-        for (x, y) in [
-            (cx, frame.y0 + m),
-            (cx, frame.y1 - m - bh),
-            (frame.x0 + m, cy),
-            (frame.x1 - m - bw, cy),
-        ] {
-            let b = (x, y, x + bw, y + bh);
-            let score = avoid
-                .iter()
-                .filter(|p| {
-                    p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
-                })
-                .count()
-                + if taken.iter().any(|t| overlaps(b, t)) {
-                    1_000_000
-                } else {
-                    0
-                };
-            if score < best_score {
-                best_score = score;
-                best = b;
-            }
-        }
-    }
+    let bs = BoxSize::measure(th, entries);
+    let best = place(frame, th, (bs.w, bs.h), avoid, prefer, taken);
     let (x0, y0, x1, y1) = best;
     c.fill_rect(x0, y0, x1, y1, Color::WHITE, 0.9);
     c.stroke(
@@ -156,33 +189,12 @@ pub(crate) fn draw_legend(
         Color(190, 190, 190),
         &[],
     );
+    let size = th.note;
+    let sw = bs.swatch;
     for (k, e) in entries.iter().enumerate() {
-        let cy = y0 + 0.25 * size + row * (k as f64 + 0.5);
-        let mut tx = x0 + padx;
-        match e.swatch {
-            Swatch::None => {}
-            Swatch::Line { color, style } => {
-                c.stroke(
-                    &[(tx, cy), (tx + sw, cy)],
-                    th.line,
-                    color,
-                    &style.pattern(th.line),
-                );
-            }
-            Swatch::Marker { shape, color } => {
-                draw_marker(c, (tx + sw / 2.0, cy), shape, 5.5 * th.s, color, th.line);
-            }
-            Swatch::Patch { color, alpha } => {
-                c.fill_rect(
-                    tx,
-                    cy - 0.35 * size,
-                    tx + sw,
-                    cy + 0.35 * size,
-                    color,
-                    alpha,
-                );
-            }
-        }
+        let cy = y0 + 0.25 * size + bs.row * (k as f64 + 0.5);
+        let mut tx = x0 + bs.padx;
+        draw_swatch(c, th, &e.swatch, (tx, cy), sw);
         if sw > 0.0 {
             tx += sw + 6.0 * th.s;
         }
@@ -195,6 +207,35 @@ pub(crate) fn draw_legend(
         )?;
     }
     Ok(Some(best))
+}
+
+/// Draws a row's swatch of width `sw` starting at `(x, cy)` (vertically centred on cy).
+fn draw_swatch(c: &mut Canvas, th: &Theme, swatch: &Swatch, (tx, cy): (f64, f64), sw: f64) {
+    let size = th.note;
+    match *swatch {
+        Swatch::None => {}
+        Swatch::Line { color, style } => {
+            c.stroke(
+                &[(tx, cy), (tx + sw, cy)],
+                th.line,
+                color,
+                &style.pattern(th.line),
+            );
+        }
+        Swatch::Marker { shape, color } => {
+            draw_marker(c, (tx + sw / 2.0, cy), shape, 5.5 * th.s, color, th.line);
+        }
+        Swatch::Patch { color, alpha } => {
+            c.fill_rect(
+                tx,
+                cy - 0.35 * size,
+                tx + sw,
+                cy + 0.35 * size,
+                color,
+                alpha,
+            );
+        }
+    }
 }
 
 /// Points every `step` px along a pixel polyline (for keeping legends off the curves).

@@ -27,15 +27,18 @@
 
 mod axes;
 mod bode;
+mod bode_margins;
 mod frame;
 mod layout;
 mod legend;
+mod markup;
 mod nyquist;
 mod output;
 mod pzmap;
 mod raster;
 mod step;
 mod style;
+mod text;
 mod xy;
 
 use std::path::Path;

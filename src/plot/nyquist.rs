@@ -3,10 +3,12 @@
 
 use std::path::Path;
 
+use super::frame::Frame;
 use super::layout::{bounds, draw_title, equal_axes, layout_single};
 use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
-use super::raster::{Canvas, HAlign, VAlign};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
+use super::text::{HAlign, VAlign};
 use super::{Color, PlotOptions, render};
 use crate::analysis::NyquistContour;
 use crate::error::{LtiError, Result};
@@ -143,19 +145,13 @@ pub fn nyquist_png(
     })
 }
 
-fn draw(
-    c: &mut Canvas,
-    th: &Theme,
-    series: &[NyquistSeries],
-    opts: &PlotOptions,
-    title: Option<&str>,
-) -> Result<()> {
-    let color_of = |k: usize| series[k].color.unwrap_or_else(|| series_color(k));
-    let radius = series
-        .iter()
-        .filter_map(|s| s.contour.display_radius)
-        .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
-    let all_runs: Vec<Vec<Run>> = series.iter().map(|s| runs(s.contour, radius)).collect();
+/// The colour of series `k`: its own, or the palette's.
+fn color_of(series: &[NyquistSeries], k: usize) -> Color {
+    series[k].color.unwrap_or_else(|| series_color(k))
+}
+
+/// Equal-aspect axes around every displayed point, −1 and the origin.
+fn layout(c: &Canvas, th: &Theme, all_runs: &[Vec<Run>], has_title: bool) -> Frame {
     let pts = || {
         all_runs
             .iter()
@@ -166,10 +162,14 @@ fn draw(
     let (xlo, xhi) = bounds(pts().map(|p| p.0)).unwrap_or((-1.0, 1.0));
     let (ylo, yhi) = bounds(pts().map(|p| p.1)).unwrap_or((-1.0, 1.0));
     let pad = 0.08 * (xhi - xlo).max(yhi - ylo).max(1e-9);
-    let frame = layout_single(c, th, title.is_some(), true, true, |w, h| {
+    layout_single(c, th, has_title, true, true, |w, h| {
         equal_axes((xlo - pad, xhi + pad), (ylo - pad, yhi + pad), w, h, th)
-    });
-    if opts.grid {
+    })
+}
+
+/// Grid, the axes through the origin, the unit circle and the display-radius circle.
+fn draw_background(c: &mut Canvas, th: &Theme, frame: &Frame, grid: bool, radius: Option<f64>) {
+    if grid {
         frame.draw_grid(c, th);
     }
     let thin = (th.line * 0.6).max(1.0);
@@ -191,11 +191,20 @@ fn draw(
     if let Some(r) = radius {
         frame.plot_line(c, circle(r), thin, Color(200, 200, 200), LineStyle::Solid);
     }
+}
 
+/// The curves (ω > 0 solid, ω < 0 dashed, beyond the display radius dotted) with direction
+/// arrows; returns the pixel points to keep legends off.
+fn draw_curves(
+    c: &mut Canvas,
+    th: &Theme,
+    frame: &Frame,
+    all_runs: &[Vec<Run>],
+    colors: &[Color],
+) -> Vec<(f64, f64)> {
     let mut avoid = Vec::new();
     let arrow = 12.0 * th.s.max(0.8);
-    for (k, rs) in all_runs.iter().enumerate() {
-        let col = color_of(k);
+    for (rs, &col) in all_runs.iter().zip(colors) {
         let mut pos = Vec::new();
         let mut neg = Vec::new();
         let mut far = Vec::new();
@@ -222,7 +231,11 @@ fn draw(
             arrows_along(c, f, 1, arrow, col);
         }
     }
-    // The critical point.
+    avoid
+}
+
+/// The critical point −1, marked and labelled.
+fn draw_critical_point(c: &mut Canvas, th: &Theme, frame: &Frame) -> Result<()> {
     frame.plot_marker(
         c,
         (-1.0, 0.0),
@@ -241,16 +254,12 @@ fn draw(
             (HAlign::Right, VAlign::Top),
         )?;
     }
+    Ok(())
+}
 
-    frame.draw_axes(c, th, true, true)?;
-    frame.draw_axis_titles(
-        c,
-        th,
-        Some("Real axis Re G(jω)"),
-        Some("Imaginary axis Im G(jω)"),
-        th.pad,
-    )?;
-
+/// The legend: line styles (one plant) or plants, the verdict N, P, Z of each, and the
+/// display-radius note.
+fn legend_rows(series: &[NyquistSeries], radius: Option<f64>) -> Vec<LegendEntry> {
     let several = series.len() > 1;
     let mut legend = Vec::new();
     for (k, s) in series.iter().enumerate() {
@@ -261,7 +270,7 @@ fn draw(
         if several {
             legend.push(LegendEntry::line(
                 format!("{name} (ω > 0)"),
-                color_of(k),
+                color_of(series, k),
                 LineStyle::Solid,
             ));
         }
@@ -283,13 +292,14 @@ fn draw(
             ),
             _ => format!("{prefix}the curve passes through −1: N undefined"),
         };
-        legend.push(LegendEntry::text(verdict, color_of(k)));
+        legend.push(LegendEntry::text(verdict, color_of(series, k)));
     }
     if !several {
-        legend.insert(0, LegendEntry::line("ω > 0", color_of(0), LineStyle::Solid));
+        let col = color_of(series, 0);
+        legend.insert(0, LegendEntry::line("ω > 0", col, LineStyle::Solid));
         legend.insert(
             1,
-            LegendEntry::line("ω < 0 (mirror)", color_of(0), LineStyle::Dashed),
+            LegendEntry::line("ω < 0 (mirror)", col, LineStyle::Dashed),
         );
     }
     if let Some(r) = radius {
@@ -299,11 +309,39 @@ fn draw(
             LineStyle::Dotted,
         ));
     }
+    legend
+}
+
+fn draw(
+    c: &mut Canvas,
+    th: &Theme,
+    series: &[NyquistSeries],
+    opts: &PlotOptions,
+    title: Option<&str>,
+) -> Result<()> {
+    let radius = series
+        .iter()
+        .filter_map(|s| s.contour.display_radius)
+        .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
+    let all_runs: Vec<Vec<Run>> = series.iter().map(|s| runs(s.contour, radius)).collect();
+    let frame = layout(c, th, &all_runs, title.is_some());
+    draw_background(c, th, &frame, opts.grid, radius);
+    let colors: Vec<Color> = (0..series.len()).map(|k| color_of(series, k)).collect();
+    let avoid = draw_curves(c, th, &frame, &all_runs, &colors);
+    draw_critical_point(c, th, &frame)?;
+    frame.draw_axes(c, th, true, true)?;
+    frame.draw_axis_titles(
+        c,
+        th,
+        Some("Real axis Re G(jω)"),
+        Some("Imaginary axis Im G(jω)"),
+        th.pad,
+    )?;
     draw_legend(
         c,
         &frame,
         th,
-        &legend,
+        &legend_rows(series, radius),
         &avoid,
         &[
             Corner::TopRight,
