@@ -7,12 +7,13 @@ use super::axes::Axis;
 use super::bode_margins::mark_margins;
 use super::frame::Frame;
 use super::layout::{
-    bottom_margin, bounds, draw_title, left_margin, right_margin, tick_targets, top_margin,
+    bottom_margin, bounds, check_span, draw_title, left_margin, right_margin, tick_targets,
+    top_margin,
 };
 use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
 use super::raster::Canvas;
 use super::style::{LineStyle, Theme, series_color};
-use super::{Color, PlotOptions, render};
+use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::{BodeAsymptotes, FrequencyResponse, Margins};
 use crate::error::{LtiError, Result};
 
@@ -99,6 +100,7 @@ fn check(series: &[BodeSeries]) -> Result<()> {
         ));
     }
     for (k, s) in series.iter().enumerate() {
+        check_label(k, s.label)?;
         let r = s.response;
         let n = r.w.len();
         if r.magnitude_db.len() != n || r.phase_deg.len() != n {
@@ -137,8 +139,9 @@ fn check(series: &[BodeSeries]) -> Result<()> {
 /// to the −180° reference, with the values listed. Asymptotes are drawn dashed. Points that
 /// are not finite (−∞ dB at a zero on the axis) break the curve.
 ///
-/// Errors: no series, mismatched lengths, fewer than two finite points, bad options, an
-/// unwritable path ([`LtiError::Plot`] / [`LtiError::Io`]); no file is left behind.
+/// Errors: no series, mismatched lengths, fewer than two finite points, bad options, a title
+/// or label longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an unwritable
+/// path ([`LtiError::Plot`] / [`LtiError::Io`]); no file is left behind.
 ///
 /// ```no_run
 /// use ltikit::analysis::FrequencyResponse;
@@ -196,7 +199,7 @@ impl Ranges {
 }
 
 /// Data ranges, including the margin bars and the asymptotes inside the ω range.
-fn data_ranges(series: &[BodeSeries]) -> Ranges {
+fn data_ranges(series: &[BodeSeries]) -> Result<Ranges> {
     let finite_w = |s: &BodeSeries| {
         s.response
             .w
@@ -243,11 +246,13 @@ fn data_ranges(series: &[BodeSeries]) -> Ranges {
     mlo -= pad;
     mhi += pad;
     let phase = bounds(phases.iter().copied()).unwrap_or((-1.0, 1.0));
-    Ranges {
+    check_span("magnitudes (dB)", (mlo, mhi))?;
+    check_span("phases (degrees)", phase)?;
+    Ok(Ranges {
         w,
         mag: (mlo, mhi),
         phase,
-    }
+    })
 }
 
 /// The magnitude panel over the phase panel, sharing the ω axis.
@@ -346,7 +351,7 @@ fn positive_w<'a>(w: &'a [f64], ys: &'a [f64]) -> impl Iterator<Item = (f64, f64
 }
 
 /// Pixel points that legends should not hide.
-type Avoid = Vec<(f64, f64)>;
+pub(super) type Avoid = Vec<(f64, f64)>;
 
 /// The magnitude and phase curves; returns the pixel points to keep legends off (magnitude,
 /// phase).
@@ -439,13 +444,13 @@ fn draw(
     opts: &PlotOptions,
     title: Option<&str>,
 ) -> Result<()> {
-    let ranges = data_ranges(series);
+    let ranges = data_ranges(series)?;
     let panels = layout_panels(c, th, title.is_some(), &ranges);
     draw_background(c, th, &panels, opts.grid);
     draw_asymptotes(c, th, series, &panels);
-    let avoid = draw_curves(c, th, series, &panels);
+    let mut avoid = draw_curves(c, th, series, &panels);
     let colors: Vec<Color> = (0..series.len()).map(|k| color_of(series, k)).collect();
-    let info = mark_margins(c, th, series, &colors, &panels, &ranges)?;
+    let info = mark_margins(c, th, series, &colors, &panels, &ranges, &mut avoid)?;
     draw_axes(c, th, &panels)?;
     draw_legends(c, th, series, &panels, &avoid, &info)?;
     if let Some(t) = title {

@@ -267,7 +267,8 @@ impl Frame {
         Ok(())
     }
 
-    /// Axis titles: x below the tick labels, y rotated left of them.
+    /// Axis titles: x below the tick labels, y rotated left of them; each is cut with an
+    /// ellipsis where longer than its side of the frame.
     pub fn draw_axis_titles(
         &self,
         c: &mut Canvas,
@@ -279,17 +280,17 @@ impl Frame {
         if let Some(t) = x_title {
             let h = tick_label_height(&self.x, th);
             let y = self.y1 + 5.0 * th.s + h + 8.0 * th.s;
-            c.text(
-                t,
+            let t = Measured::new(t, th.label).shortened(self.x1 - self.x0);
+            c.draw_measured(
+                &t,
                 ((self.x0 + self.x1) / 2.0, y),
-                th.label,
                 Theme::AXIS,
                 (HAlign::Center, VAlign::Top),
             )?;
         }
         if let Some(t) = y_title {
             let x = left_edge + cap_height(th.label) / 2.0 + 0.1 * th.label;
-            let t = Measured::new(t, th.label);
+            let t = Measured::new(t, th.label).shortened(self.y1 - self.y0);
             c.text_up(&t, x, (self.y0 + self.y1) / 2.0, Theme::AXIS)?;
         }
         Ok(())

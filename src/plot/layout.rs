@@ -6,7 +6,7 @@ use super::frame::Frame;
 use super::raster::Canvas;
 use super::style::Theme;
 use super::text::{HAlign, Measured, VAlign, cap_height, descent};
-use crate::error::Result;
+use crate::error::{LtiError, Result};
 use crate::plot::Color;
 
 /// Height of a row of x tick labels (with room for superscripts).
@@ -144,6 +144,23 @@ pub(crate) fn equal_axes(
         Axis::with_step(cx - u * w / 2.0, cx + u * w / 2.0, step),
         Axis::with_step(cy - u * h / 2.0, cy + u * h / 2.0, step),
     )
+}
+
+/// Checks that a padded data range (lo, hi) of `what` can be drawn: pixel positions are
+/// computed from differences of data values, and tick limits are rounded out by up to a step,
+/// so the span and the limits plus twice the span must stay finite. Data that spans most of
+/// the f64 range (e.g. from −1e308 to 1e308) is refused with a clear message instead of being
+/// drawn as garbage.
+pub(crate) fn check_span(what: &str, (lo, hi): (f64, f64)) -> Result<()> {
+    let span = hi - lo;
+    let fits = |v: f64| (v.abs() + 2.0 * span).is_finite();
+    if span.is_finite() && fits(lo) && fits(hi) {
+        Ok(())
+    } else {
+        Err(LtiError::Plot(format!(
+            "{what} from {lo:e} to {hi:e} span a range too wide to draw in f64 (plot scaled values)"
+        )))
+    }
 }
 
 /// Bounds (lo, hi) of the finite values, or `None`.

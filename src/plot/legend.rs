@@ -3,7 +3,7 @@
 use super::frame::Frame;
 use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
-use super::text::{HAlign, VAlign};
+use super::text::{HAlign, Measured, VAlign};
 use crate::error::Result;
 use crate::plot::Color;
 
@@ -58,40 +58,70 @@ pub(crate) enum Corner {
 }
 
 /// A box (x0, y0, x1, y1) in pixels.
-type Rect = (f64, f64, f64, f64);
+pub(crate) type Rect = (f64, f64, f64, f64);
 
-/// The measured box of a legend: width, height, swatch width, horizontal padding, row height.
-struct BoxSize {
+/// A legend fitted to its frame: the rows shown (text measured, and shortened with an
+/// ellipsis where wider than the frame), and the box size.
+struct Fitted {
+    rows: Vec<(Swatch, Measured, Color)>,
+    /// Box width and height.
     w: f64,
     h: f64,
+    /// Swatch width (0 when no row has one), horizontal padding, row height.
     swatch: f64,
     padx: f64,
     row: f64,
 }
 
-impl BoxSize {
-    fn measure(th: &Theme, entries: &[LegendEntry]) -> BoxSize {
+impl Fitted {
+    /// Measures the rows once and fits them into `frame` (inside its 8 px margins): rows too
+    /// wide are cut, and when there are more rows than fit, the last row shown says how many
+    /// are left out. `None` when not even two rows fit (and there is more than one).
+    fn new(frame: &Frame, th: &Theme, entries: &[LegendEntry]) -> Option<Fitted> {
         let size = th.note;
         let row = 1.45 * size;
+        let m = 8.0 * th.s;
         let swatch = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
             34.0 * th.s
         } else {
             0.0
         };
-        let text_w = entries
-            .iter()
-            .map(|e| Canvas::text_width(&e.text, size))
-            .fold(0.0, f64::max);
         let padx = 8.0 * th.s;
-        let w = padx + swatch + if swatch > 0.0 { 6.0 * th.s } else { 0.0 } + text_w + padx;
-        let h = row * entries.len() as f64 + 0.5 * size;
-        BoxSize {
+        let gap = if swatch > 0.0 { 6.0 * th.s } else { 0.0 };
+        let max_text = frame.x1 - frame.x0 - 2.0 * m - (padx + swatch + gap + padx);
+        let max_rows = ((frame.y1 - frame.y0 - 2.0 * m - 0.5 * size) / row).floor();
+        let max_rows = if max_rows.is_finite() && max_rows > 0.0 {
+            max_rows as usize
+        } else {
+            0
+        };
+        let shown = if entries.len() <= max_rows {
+            entries.len()
+        } else if max_rows >= 2 {
+            max_rows - 1
+        } else {
+            return None;
+        };
+        let fit = |text: &str| Measured::new(text, size).shortened(max_text);
+        let mut rows: Vec<(Swatch, Measured, Color)> = entries[..shown]
+            .iter()
+            .map(|e| (e.swatch.clone(), fit(&e.text), e.color))
+            .collect();
+        if shown < entries.len() {
+            let more = format!("… and {} more", entries.len() - shown);
+            rows.push((Swatch::None, fit(&more), Theme::NOTE));
+        }
+        let text_w = rows.iter().map(|r| r.1.width()).fold(0.0, f64::max);
+        let w = padx + swatch + gap + text_w + padx;
+        let h = row * rows.len() as f64 + 0.5 * size;
+        Some(Fitted {
+            rows,
             w,
             h,
             swatch,
             padx,
             row,
-        }
+        })
     }
 }
 
@@ -166,7 +196,9 @@ fn place(
 }
 
 /// Draws a legend box inside `frame` in the corner (from `prefer`) that hides the fewest of the
-/// pixel points `avoid`; returns the box drawn (x0, y0, x1, y1).
+/// pixel points `avoid`; returns the box drawn (x0, y0, x1, y1). The box always fits the frame:
+/// rows wider than the frame are cut with an ellipsis, rows beyond its height are summarised
+/// as "… and n more" (no box at all when the frame cannot hold two rows).
 pub(crate) fn draw_legend(
     c: &mut Canvas,
     frame: &Frame,
@@ -179,8 +211,10 @@ pub(crate) fn draw_legend(
     if entries.is_empty() {
         return Ok(None);
     }
-    let bs = BoxSize::measure(th, entries);
-    let best = place(frame, th, (bs.w, bs.h), avoid, prefer, taken);
+    let Some(fit) = Fitted::new(frame, th, entries) else {
+        return Ok(None);
+    };
+    let best = place(frame, th, (fit.w, fit.h), avoid, prefer, taken);
     let (x0, y0, x1, y1) = best;
     c.fill_rect(x0, y0, x1, y1, Color::WHITE, 0.9);
     c.stroke(
@@ -190,21 +224,15 @@ pub(crate) fn draw_legend(
         &[],
     );
     let size = th.note;
-    let sw = bs.swatch;
-    for (k, e) in entries.iter().enumerate() {
-        let cy = y0 + 0.25 * size + bs.row * (k as f64 + 0.5);
-        let mut tx = x0 + bs.padx;
-        draw_swatch(c, th, &e.swatch, (tx, cy), sw);
+    let sw = fit.swatch;
+    for (k, (swatch, text, color)) in fit.rows.iter().enumerate() {
+        let cy = y0 + 0.25 * size + fit.row * (k as f64 + 0.5);
+        let mut tx = x0 + fit.padx;
+        draw_swatch(c, th, swatch, (tx, cy), sw);
         if sw > 0.0 {
             tx += sw + 6.0 * th.s;
         }
-        c.text(
-            &e.text,
-            (tx, cy),
-            size,
-            e.color,
-            (HAlign::Left, VAlign::Middle),
-        )?;
+        c.draw_measured(text, (tx, cy), *color, (HAlign::Left, VAlign::Middle))?;
     }
     Ok(Some(best))
 }
@@ -236,6 +264,22 @@ fn draw_swatch(c: &mut Canvas, th: &Theme, swatch: &Swatch, (tx, cy): (f64, f64)
             );
         }
     }
+}
+
+/// Corners, edge midpoints and centre of a box: what a legend must not cover of an annotation.
+pub(crate) fn box_points(r: Rect) -> [(f64, f64); 9] {
+    let (xm, ym) = ((r.0 + r.2) / 2.0, (r.1 + r.3) / 2.0);
+    [
+        (r.0, r.1),
+        (xm, r.1),
+        (r.2, r.1),
+        (r.0, ym),
+        (xm, ym),
+        (r.2, ym),
+        (r.0, r.3),
+        (xm, r.3),
+        (r.2, r.3),
+    ]
 }
 
 /// Points every `step` px along a pixel polyline (for keeping legends off the curves).

@@ -60,6 +60,38 @@ pub const MIN_SIDE: u32 = 100;
 pub const MAX_SIDE: u32 = 16_384;
 /// Largest accepted image area (px²).
 pub const MAX_PIXELS: u64 = 36_000_000;
+/// Longest accepted title, label, legend text or note, in characters (Unicode scalar values,
+/// markup included).
+///
+/// Text that does not fit is shrunk or cut with an ellipsis, in time linear in its length; this
+/// limit only refuses text that no accepted image could show: the widest image
+/// ([`MAX_SIDE`] px) at the smallest font shows about 12 000 characters on one line. Labels
+/// generated from plants of the highest order ([`crate::MAX_ORDER`]) stay below 10 000 characters.
+///
+/// ```
+/// use ltikit::plot::{MAX_TEXT_CHARS, PlotOptions};
+/// let ok = PlotOptions { title: Some("x".repeat(MAX_TEXT_CHARS)), ..Default::default() };
+/// assert!(ok.validate().is_ok());
+/// let long = PlotOptions { title: Some("x".repeat(MAX_TEXT_CHARS + 1)), ..Default::default() };
+/// let e = long.validate().unwrap_err();
+/// assert!(e.to_string().contains("MAX_TEXT_CHARS"), "{e}");
+/// ```
+pub const MAX_TEXT_CHARS: usize = 16_384;
+
+/// Checks that `text` (`what`, e.g. "the title") has at most [`MAX_TEXT_CHARS`] characters.
+pub(crate) fn check_text(what: &str, text: &str) -> Result<()> {
+    // A string of at most MAX_TEXT_CHARS bytes has at most as many characters: no count.
+    if text.len() <= MAX_TEXT_CHARS {
+        return Ok(());
+    }
+    let n = text.chars().count();
+    if n > MAX_TEXT_CHARS {
+        return Err(LtiError::Plot(format!(
+            "{what} has {n} characters, more than the limit of {MAX_TEXT_CHARS} (MAX_TEXT_CHARS)"
+        )));
+    }
+    Ok(())
+}
 
 /// Options common to every plot.
 ///
@@ -98,8 +130,8 @@ impl Default for PlotOptions {
 }
 
 impl PlotOptions {
-    /// Checks the size (each side in [`MIN_SIDE`]…[`MAX_SIDE`], at most [`MAX_PIXELS`]) and the
-    /// scales (finite, 0.25…8).
+    /// Checks the size (each side in [`MIN_SIDE`]…[`MAX_SIDE`], at most [`MAX_PIXELS`]), the
+    /// scales (finite, 0.25…8) and the title (at most [`MAX_TEXT_CHARS`] characters).
     pub fn validate(&self) -> Result<()> {
         let (w, h) = self.size;
         if w == 0 || h == 0 {
@@ -122,6 +154,9 @@ impl PlotOptions {
             if !v.is_finite() || !(0.25..=8.0).contains(&v) {
                 return Err(LtiError::Plot(format!("{name} {v} is outside 0.25…8")));
             }
+        }
+        if let Some(t) = &self.title {
+            check_text("the title", t)?;
         }
         Ok(())
     }
@@ -158,6 +193,14 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     };
     o.validate()?;
     Ok((w, h))
+}
+
+/// Checks the label of series `k` (0-based) against [`MAX_TEXT_CHARS`].
+pub(crate) fn check_label(k: usize, label: Option<&str>) -> Result<()> {
+    match label {
+        Some(l) => check_text(&format!("the label of series {}", k + 1), l),
+        None => Ok(()),
+    }
 }
 
 /// Renders with `draw` and writes the PNG atomically.

@@ -4,12 +4,12 @@
 use std::path::Path;
 
 use super::frame::Frame;
-use super::layout::{bounds, draw_title, equal_axes, layout_single};
-use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
+use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single};
+use super::legend::{Corner, LegendEntry, box_points, draw_legend, sample_run};
 use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, render};
+use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::NyquistContour;
 use crate::error::{LtiError, Result};
 use crate::poly::fmt_sig;
@@ -105,8 +105,9 @@ fn runs(contour: &NyquistContour, radius: Option<f64>) -> Vec<Run> {
 /// arcs at infinity keep their direction. The encirclement count N, the open-loop RHP poles P
 /// and Z = N + P are listed.
 ///
-/// Errors: no series, a series without finite points, bad options, an unwritable path; no file
-/// is left behind.
+/// Errors: no series, a series without finite points, bad options, a title or label longer
+/// than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an unwritable path; no file is
+/// left behind.
 ///
 /// ```no_run
 /// use ltikit::TransferFunction;
@@ -124,6 +125,7 @@ pub fn nyquist_png(
         return Err(LtiError::Plot("Nyquist plot: no contour given".into()));
     }
     for (k, s) in series.iter().enumerate() {
+        check_label(k, s.label)?;
         if !s
             .contour
             .points
@@ -151,7 +153,7 @@ fn color_of(series: &[NyquistSeries], k: usize) -> Color {
 }
 
 /// Equal-aspect axes around every displayed point, −1 and the origin.
-fn layout(c: &Canvas, th: &Theme, all_runs: &[Vec<Run>], has_title: bool) -> Frame {
+fn layout(c: &Canvas, th: &Theme, all_runs: &[Vec<Run>], has_title: bool) -> Result<Frame> {
     let pts = || {
         all_runs
             .iter()
@@ -162,9 +164,12 @@ fn layout(c: &Canvas, th: &Theme, all_runs: &[Vec<Run>], has_title: bool) -> Fra
     let (xlo, xhi) = bounds(pts().map(|p| p.0)).unwrap_or((-1.0, 1.0));
     let (ylo, yhi) = bounds(pts().map(|p| p.1)).unwrap_or((-1.0, 1.0));
     let pad = 0.08 * (xhi - xlo).max(yhi - ylo).max(1e-9);
-    layout_single(c, th, has_title, true, true, |w, h| {
-        equal_axes((xlo - pad, xhi + pad), (ylo - pad, yhi + pad), w, h, th)
-    })
+    let (xr, yr) = ((xlo - pad, xhi + pad), (ylo - pad, yhi + pad));
+    check_span("real parts", xr)?;
+    check_span("imaginary parts", yr)?;
+    Ok(layout_single(c, th, has_title, true, true, |w, h| {
+        equal_axes(xr, yr, w, h, th)
+    }))
 }
 
 /// Grid, the axes through the origin, the unit circle and the display-radius circle.
@@ -234,8 +239,13 @@ fn draw_curves(
     avoid
 }
 
-/// The critical point −1, marked and labelled.
-fn draw_critical_point(c: &mut Canvas, th: &Theme, frame: &Frame) -> Result<()> {
+/// The critical point −1, marked and labelled; adds the mark and its label to `avoid`.
+fn draw_critical_point(
+    c: &mut Canvas,
+    th: &Theme,
+    frame: &Frame,
+    avoid: &mut Vec<(f64, f64)>,
+) -> Result<()> {
     frame.plot_marker(
         c,
         (-1.0, 0.0),
@@ -246,13 +256,15 @@ fn draw_critical_point(c: &mut Canvas, th: &Theme, frame: &Frame) -> Result<()> 
     );
     if frame.contains((-1.0, 0.0)) {
         let p = frame.px((-1.0, 0.0));
-        c.text_on_box(
+        avoid.push(p);
+        let b = c.text_on_box(
             "−1",
             (p.0 - 6.0 * th.s, p.1 + 8.0 * th.s),
             th.note,
             Color(200, 0, 0),
             (HAlign::Right, VAlign::Top),
         )?;
+        avoid.extend(box_points(b));
     }
     Ok(())
 }
@@ -324,11 +336,11 @@ fn draw(
         .filter_map(|s| s.contour.display_radius)
         .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
     let all_runs: Vec<Vec<Run>> = series.iter().map(|s| runs(s.contour, radius)).collect();
-    let frame = layout(c, th, &all_runs, title.is_some());
+    let frame = layout(c, th, &all_runs, title.is_some())?;
     draw_background(c, th, &frame, opts.grid, radius);
     let colors: Vec<Color> = (0..series.len()).map(|k| color_of(series, k)).collect();
-    let avoid = draw_curves(c, th, &frame, &all_runs, &colors);
-    draw_critical_point(c, th, &frame)?;
+    let mut avoid = draw_curves(c, th, &frame, &all_runs, &colors);
+    draw_critical_point(c, th, &frame, &mut avoid)?;
     frame.draw_axes(c, th, true, true)?;
     frame.draw_axis_titles(
         c,

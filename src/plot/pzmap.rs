@@ -5,12 +5,12 @@ use std::path::Path;
 use num_complex::Complex64;
 
 use super::frame::Frame;
-use super::layout::{bounds, draw_title, equal_axes, layout_single};
+use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single};
 use super::legend::{Corner, LegendEntry, Swatch, draw_legend};
 use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, render};
+use super::{Color, PlotOptions, check_text, render};
 use crate::analysis::PoleZero;
 use crate::error::Result;
 use crate::poly::{Root, fmt_sig};
@@ -70,7 +70,9 @@ const STABLE_SHADE: Color = Color(44, 160, 44);
 /// pixel on both axes, and optionally lines of constant ζ (0.1, 0.3, 0.5, 0.7, 0.9) and
 /// half-circles of constant ωₙ.
 ///
-/// Errors: bad options or an unwritable path; no file is left behind. A map with no finite
+/// Errors: bad options, a title or label longer than
+/// [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, or an unwritable path; no file is
+/// left behind. A map with no finite
 /// poles or zeros (a constant G) is drawn with a note.
 ///
 /// ```no_run
@@ -81,6 +83,9 @@ const STABLE_SHADE: Color = Color(44, 160, 44);
 /// pzmap_png("/tmp/pz.png", &PzMap::new(&pz).damping_guides(true), &PlotOptions::default()).unwrap();
 /// ```
 pub fn pzmap_png(path: impl AsRef<Path>, map: &PzMap, opts: &PlotOptions) -> Result<()> {
+    if let Some(l) = map.label {
+        check_text("the label", l)?;
+    }
     let title = opts.title_or(|| match map.label {
         Some(l) => format!("Pole-zero map of G(s) = {l}"),
         None => "Pole-zero map".into(),
@@ -95,7 +100,7 @@ fn finite(r: &Root) -> bool {
 }
 
 /// Equal-aspect axes around every finite root and the origin, with room around them.
-fn layout(c: &Canvas, th: &Theme, pz: &PoleZero, has_title: bool) -> Frame {
+fn layout(c: &Canvas, th: &Theme, pz: &PoleZero, has_title: bool) -> Result<Frame> {
     let all = finite_roots(pz);
     let (xlo, xhi) = bounds(all.iter().map(|z| z.re).chain([0.0])).unwrap_or((0.0, 0.0));
     let (ylo, yhi) = bounds(all.iter().map(|z| z.im).chain([0.0])).unwrap_or((0.0, 0.0));
@@ -104,9 +109,11 @@ fn layout(c: &Canvas, th: &Theme, pz: &PoleZero, has_title: bool) -> Frame {
     let pad = 0.18 * span;
     let xr = (xlo - pad, xhi + pad);
     let yr = (ylo - pad, yhi + pad);
-    layout_single(c, th, has_title, true, true, |w, h| {
+    check_span("real parts", xr)?;
+    check_span("imaginary parts", yr)?;
+    Ok(layout_single(c, th, has_title, true, true, |w, h| {
         equal_axes(xr, yr, w, h, th)
-    })
+    }))
 }
 
 /// Every finite pole, zero and cancelled root.
@@ -306,7 +313,7 @@ fn draw(
     title: Option<&str>,
 ) -> Result<()> {
     let pz = map.pz;
-    let frame = layout(c, th, pz, title.is_some());
+    let frame = layout(c, th, pz, title.is_some())?;
     draw_background(c, th, &frame, opts.grid);
     if map.damping_guides {
         draw_zeta_rays(c, th, &frame)?;

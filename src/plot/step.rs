@@ -4,12 +4,12 @@ use std::path::Path;
 
 use super::axes::Axis;
 use super::frame::Frame;
-use super::layout::{bounds, draw_title, layout_single, tick_targets};
-use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
+use super::layout::{bounds, check_span, draw_title, layout_single, tick_targets};
+use super::legend::{Corner, LegendEntry, Rect, box_points, draw_legend, sample_run};
 use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, render};
+use super::{Color, PlotOptions, check_label, check_text, render};
 use crate::analysis::{StepInfo, TimeResponse};
 use crate::error::{LtiError, Result};
 use crate::poly::fmt_sig;
@@ -120,7 +120,8 @@ fn y_at(r: &TimeResponse, t: f64) -> Option<f64> {
     })
 }
 
-/// An annotation right of pixel point `p` (left of it when it would leave the frame).
+/// An annotation right of pixel point `p` (left of it when it would leave the frame); returns
+/// its box.
 fn label(
     c: &mut Canvas,
     frame: &Frame,
@@ -128,7 +129,7 @@ fn label(
     text: &str,
     p: (f64, f64),
     col: Color,
-) -> Result<()> {
+) -> Result<Rect> {
     let gap = 7.0 * th.s;
     let w = Canvas::text_width(text, th.note);
     let (x, h) = if p.0 + gap + w < frame.x1 - 2.0 {
@@ -144,6 +145,10 @@ fn check(series: &[StepSeries]) -> Result<()> {
         return Err(LtiError::Plot("response plot: no response given".into()));
     }
     for (k, s) in series.iter().enumerate() {
+        check_label(k, s.label)?;
+        if let InputKind::Other(name) = &s.input {
+            check_text(&format!("the input name of series {}", k + 1), name)?;
+        }
         let r = s.response;
         if r.t.len() != r.y.len() {
             return Err(LtiError::Plot(format!(
@@ -174,7 +179,8 @@ fn check(series: &[StepSeries]) -> Result<()> {
 /// the note "unstable: response diverges"; its curve is drawn over the window given (the
 /// y-axis follows the data).
 ///
-/// Errors: no series, mismatched lengths, fewer than two finite samples, bad options, an
+/// Errors: no series, mismatched lengths, fewer than two finite samples, bad options, a title,
+/// label or input name longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an
 /// unwritable path; no file is left behind.
 ///
 /// ```no_run
@@ -232,7 +238,7 @@ fn step_info<'a>(s: &StepSeries<'a>) -> Option<&'a StepInfo> {
 
 /// The time range (from 0 at the latest) and the padded y range: the data, 0, the final values
 /// and settling bands, the peaks.
-fn data_ranges(series: &[StepSeries]) -> ((f64, f64), (f64, f64)) {
+fn data_ranges(series: &[StepSeries]) -> Result<((f64, f64), (f64, f64))> {
     let (t0, t1) =
         bounds(series.iter().flat_map(|s| s.response.t.iter().copied())).unwrap_or((0.0, 1.0));
     let t0 = t0.min(0.0);
@@ -247,11 +253,11 @@ fn data_ranges(series: &[StepSeries]) -> ((f64, f64), (f64, f64)) {
         }
     }
     let (ylo, yhi) = bounds(ys).unwrap_or((-1.0, 1.0));
-    let pad = 0.04 * (yhi - ylo).max(1e-300);
-    (
-        (t0, t1),
-        (if ylo < 0.0 { ylo - pad } else { ylo }, yhi + pad),
-    )
+    let pad = 0.04 * (yhi - ylo).max(f64::MIN_POSITIVE);
+    let y = (if ylo < 0.0 { ylo - pad } else { ylo }, yhi + pad);
+    check_span("times", (t0, t1))?;
+    check_span("values", y)?;
+    Ok(((t0, t1), y))
 }
 
 /// Grid, the y = 0 line, and under the curves the settling bands and final values.
@@ -292,9 +298,12 @@ struct Marks<'a> {
     inline: bool,
 }
 
+/// Pixel points that legends should not hide.
+type Avoid = Vec<(f64, f64)>;
+
 impl Marks<'_> {
     /// Rise: 10 % and 90 % points with drop lines to the time axis, and the t_r arrow.
-    fn rise(&self, c: &mut Canvas, i: &StepInfo) -> Result<()> {
+    fn rise(&self, c: &mut Canvas, i: &StepInfo, avoid: &mut Avoid) -> Result<()> {
         let (frame, th, col) = (self.frame, self.th, self.col);
         let yss = i.steady_state;
         for (t, y) in [(i.rise_start, 0.1 * yss), (i.rise_end, 0.9 * yss)] {
@@ -316,13 +325,19 @@ impl Marks<'_> {
                 super::style::draw_arrow_head(c, p, (-1.0, 0.0), len, col);
                 super::style::draw_arrow_head(c, q, (1.0, 0.0), len, col);
             }
-            label(c, frame, th, "t_{r}", q, col)?;
+            avoid.extend(box_points(label(c, frame, th, "t_{r}", q, col)?));
         }
         Ok(())
     }
 
     /// Peak and overshoot.
-    fn peak(&self, c: &mut Canvas, r: &TimeResponse, i: &StepInfo) -> Result<()> {
+    fn peak(
+        &self,
+        c: &mut Canvas,
+        r: &TimeResponse,
+        i: &StepInfo,
+        avoid: &mut Avoid,
+    ) -> Result<()> {
         let (frame, th, col) = (self.frame, self.th, self.col);
         if i.overshoot_percent <= 0.0 || i.overshoot_percent.is_nan() {
             return Ok(());
@@ -348,13 +363,20 @@ impl Marks<'_> {
         if self.inline && frame.contains((i.peak_time, yp)) {
             let p = frame.px((i.peak_time, yp));
             let text = format!("overshoot {} %", fmt_sig(i.overshoot_percent, 3));
-            label(c, frame, th, &text, (p.0, p.1 - 12.0 * th.s), col)?;
+            let bx = label(c, frame, th, &text, (p.0, p.1 - 12.0 * th.s), col)?;
+            avoid.extend(box_points(bx));
         }
         Ok(())
     }
 
     /// Settling time: a drop line from y(t_s) to the time axis.
-    fn settling(&self, c: &mut Canvas, r: &TimeResponse, i: &StepInfo) -> Result<()> {
+    fn settling(
+        &self,
+        c: &mut Canvas,
+        r: &TimeResponse,
+        i: &StepInfo,
+        avoid: &mut Avoid,
+    ) -> Result<()> {
         let (frame, th, col) = (self.frame, self.th, self.col);
         let base_y = frame.y.lo.max(0.0f64.min(frame.y.hi));
         let Some(ys) = y_at(r, i.settling_time) else {
@@ -371,19 +393,16 @@ impl Marks<'_> {
         frame.plot_marker(c, (ts, ys), MarkerShape::Disc, self.ms, col, th.line);
         if self.inline && frame.contains((ts, base_y)) {
             let p = frame.px((ts, base_y));
-            label(c, frame, th, "t_{s}", (p.0, p.1 - 12.0 * th.s), col)?;
+            let bx = label(c, frame, th, "t_{s}", (p.0, p.1 - 12.0 * th.s), col)?;
+            avoid.extend(box_points(bx));
         }
         Ok(())
     }
 }
 
-/// The curves with the step-metric marks; returns the pixel points to keep legends off.
-fn draw_curves(
-    c: &mut Canvas,
-    th: &Theme,
-    frame: &Frame,
-    series: &[StepSeries],
-) -> Result<Vec<(f64, f64)>> {
+/// The curves with the step-metric marks; returns the pixel points to keep legends off (the
+/// curves and the inline labels).
+fn draw_curves(c: &mut Canvas, th: &Theme, frame: &Frame, series: &[StepSeries]) -> Result<Avoid> {
     let mut avoid = Vec::new();
     for (k, s) in series.iter().enumerate() {
         let col = color_of(series, k);
@@ -402,9 +421,9 @@ fn draw_curves(
                 thin: (th.line * 0.6).max(1.0),
                 inline: series.len() == 1,
             };
-            marks.rise(c, i)?;
-            marks.peak(c, r, i)?;
-            marks.settling(c, r, i)?;
+            marks.rise(c, i, &mut avoid)?;
+            marks.peak(c, r, i, &mut avoid)?;
+            marks.settling(c, r, i, &mut avoid)?;
         }
     }
     Ok(avoid)
@@ -491,7 +510,7 @@ fn draw(
     opts: &PlotOptions,
     title: Option<&str>,
 ) -> Result<()> {
-    let ((t0, t1), (ylo, yhi)) = data_ranges(series);
+    let ((t0, t1), (ylo, yhi)) = data_ranges(series)?;
     let frame = layout_single(c, th, title.is_some(), true, true, |w, h| {
         let (nx, ny) = tick_targets(w, h, th);
         (

@@ -363,7 +363,8 @@ impl Canvas {
         Ok(())
     }
 
-    /// [`Canvas::text`] over a translucent white box, for annotations on top of curves.
+    /// [`Canvas::text`] over a translucent white box, for annotations on top of curves;
+    /// returns the box (x0, y0, x1, y1).
     pub fn text_on_box(
         &mut self,
         text: &str,
@@ -371,7 +372,7 @@ impl Canvas {
         size: f64,
         c: Color,
         align: (HAlign, VAlign),
-    ) -> Result<()> {
+    ) -> Result<(f64, f64, f64, f64)> {
         let t = Measured::new(text, size);
         let width = t.width();
         let (x0, baseline) = Self::anchor(at, width, size, align);
@@ -381,15 +382,15 @@ impl Canvas {
         } else {
             0.0
         };
-        self.fill_rect(
+        let bx = (
             x0 - m,
             baseline - CAP * size - raise - m,
             x0 + width + m,
             baseline + DESC * size + 0.5 * m,
-            Color::WHITE,
-            0.85,
         );
-        self.draw_measured(&t, at, c, align)
+        self.fill_rect(bx.0, bx.1, bx.2, bx.3, Color::WHITE, 0.85);
+        self.draw_measured(&t, at, c, align)?;
+        Ok(bx)
     }
 
     /// Draws measured text reading upwards, centred vertically at y, its caps centred on x.

@@ -6,12 +6,12 @@ use std::path::Path;
 
 use super::axes::Axis;
 use super::frame::Frame;
-use super::layout::{bounds, draw_title, equal_axes, layout_single, tick_targets};
-use super::legend::{Corner, LegendEntry, Swatch, draw_legend, sample_run};
+use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single, tick_targets};
+use super::legend::{Corner, LegendEntry, Swatch, box_points, draw_legend, sample_run};
 use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, render};
+use super::{Color, PlotOptions, check_label, check_text, render};
 use crate::error::{LtiError, Result};
 
 /// One curve: points in drawing order, with its style.
@@ -188,10 +188,30 @@ fn check_range(r: Option<(f64, f64)>, what: &str) -> Result<()> {
     Ok(())
 }
 
+/// Checks every text of the plot against [`super::MAX_TEXT_CHARS`].
+fn check_texts(plot: &XyPlot) -> Result<()> {
+    check_text("the default title", &plot.title)?;
+    check_text("the x-axis title", &plot.x_label)?;
+    check_text("the y-axis title", &plot.y_label)?;
+    for (k, c) in plot.curves.iter().enumerate() {
+        check_label(k, c.label.as_deref())?;
+    }
+    for (k, m) in plot.markers.iter().enumerate() {
+        if let Some(l) = &m.label {
+            check_text(&format!("the label of marker {}", k + 1), l)?;
+        }
+    }
+    for (k, n) in plot.notes.iter().enumerate() {
+        check_text(&format!("note {}", k + 1), n)?;
+    }
+    Ok(())
+}
+
 /// Writes a generic x–y plot (see [`XyPlot`]).
 ///
-/// Errors: no curve or marker with a finite point, a bad fixed range, bad options, an
-/// unwritable path.
+/// Errors: no curve or marker with a finite point, a bad fixed range, bad options, a title,
+/// axis title, label or note longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS)
+/// characters, an unwritable path.
 pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Result<()> {
     xy_png_with(path.as_ref(), plot, &[], opts)
 }
@@ -205,6 +225,7 @@ fn xy_png_with(
 ) -> Result<()> {
     check_range(plot.x_range, "x")?;
     check_range(plot.y_range, "y")?;
+    check_texts(plot)?;
     let all = || {
         plot.curves
             .iter()
@@ -217,9 +238,13 @@ fn xy_png_with(
     let (Some(xb), Some(yb)) = (xb, yb) else {
         return Err(LtiError::Plot("no finite data points to plot".into()));
     };
+    let xr = padded(xb, plot.x_range.is_some());
+    let yr = padded(yb, plot.y_range.is_some());
+    check_span("x values", xr)?;
+    check_span("y values", yr)?;
     let title = opts.title_or(|| plot.title.clone());
     render(path, opts, |c, th| {
-        let frame = layout(c, th, plot, (xb, yb), title.is_some());
+        let frame = layout(c, th, plot, (xr, yr), title.is_some());
         if opts.grid {
             frame.draw_grid(c, th);
         }
@@ -267,25 +292,25 @@ fn non_empty(s: &str) -> Option<&str> {
     Some(s).filter(|s| !s.is_empty())
 }
 
-/// The frame for data bounds `(xb, yb)`: automatic ranges get 3 % of room on each side, fixed
-/// ones are kept; equal units per pixel when asked.
+/// The drawn range for data bounds `r`: automatic ranges get 3 % of room on each side, fixed
+/// ones are kept.
+fn padded(r: (f64, f64), fixed: bool) -> (f64, f64) {
+    if fixed {
+        r
+    } else {
+        let d = (r.1 - r.0).abs().max(f64::MIN_POSITIVE) * 0.03;
+        (r.0 - d, r.1 + d)
+    }
+}
+
+/// The frame for the drawn ranges `(xr, yr)`, with equal units per pixel when asked.
 fn layout(
     c: &Canvas,
     th: &Theme,
     plot: &XyPlot,
-    (xb, yb): ((f64, f64), (f64, f64)),
+    (xr, yr): ((f64, f64), (f64, f64)),
     has_title: bool,
 ) -> Frame {
-    let pad = |r: (f64, f64), fixed: bool| {
-        if fixed {
-            r
-        } else {
-            let d = (r.1 - r.0).abs().max(1e-300) * 0.03;
-            (r.0 - d, r.1 + d)
-        }
-    };
-    let xr = pad(xb, plot.x_range.is_some());
-    let yr = pad(yb, plot.y_range.is_some());
     layout_single(
         c,
         th,
@@ -370,13 +395,14 @@ fn draw_markers(
             } else {
                 (p.0 - 9.0 * th.s, HAlign::Right)
             };
-            c.text_on_box(
+            let b = c.text_on_box(
                 l,
                 (x, p.1 - 7.0 * th.s),
                 th.note,
                 color,
                 (h, VAlign::Bottom),
             )?;
+            avoid.extend(box_points(b));
         }
     }
     Ok(())
