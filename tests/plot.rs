@@ -1119,3 +1119,29 @@ fn extreme_values_are_drawn_or_refused_cleanly() {
     .unwrap();
     check_png(&path, (1000, 700));
 }
+
+#[test]
+fn labels_of_the_highest_order_plants_fit_the_text_limit() {
+    // The CLI labels a plant with its transfer function: with MAX_ORDER numerator and
+    // denominator terms of the widest coefficient format (sign, 6 digits, 3-digit exponent),
+    // the label and the default title built from it stay within MAX_TEXT_CHARS.
+    let n = ltikit::MAX_ORDER;
+    let coef = |k: usize| {
+        if k % 2 == 0 {
+            -1.234567e-123
+        } else {
+            9.876543e-201
+        }
+    };
+    let num: Vec<f64> = (0..n).map(coef).collect();
+    let den: Vec<f64> = (0..=n).map(coef).collect();
+    let g = TransferFunction::from_descending(&num, &den).unwrap();
+    let label = g.to_string();
+    let title = format!("Bode diagram of G(s) = {label}");
+    assert!(label.chars().count() > 5_000, "{}", label.len());
+    assert!(
+        title.chars().count() < MAX_TEXT_CHARS,
+        "{}",
+        title.chars().count()
+    );
+}
