@@ -8,10 +8,13 @@
 //! - no display, no fontconfig, no system package: the font (Noto Sans) is compiled in and
 //!   rasterised with `ab_glyph`; lines, markers and fills are drawn with anti-aliasing into an
 //!   RGB buffer and clipped to the plot frame;
+//! - text that does not fit is shrunk (the title, down to 60 %) or cut with an ellipsis
+//!   (titles, axis titles, legend rows; legends with more rows than fit end with "… and n
+//!   more"), in time linear in its length; text longer than [`MAX_TEXT_CHARS`] is an error;
 //! - the file is written atomically (a temporary file in the same directory, then a rename),
 //!   so an error never leaves a partial file behind;
-//! - errors are [`LtiError::Plot`] (bad options, no data) or [`LtiError::Io`] (unwritable
-//!   path).
+//! - errors are [`LtiError::Plot`] (bad options, no data, text too long, data spanning more
+//!   than f64 can subtract) or [`LtiError::Io`] (unwritable path).
 //!
 //! Conventions: frequencies in rad/s on a log axis labelled in decades, magnitudes in dB,
 //! phases in degrees with ticks at multiples of 45° or 90°, times in seconds. Text accepts a
