@@ -159,6 +159,23 @@ pub enum LtiError {
     /// A plot could not be drawn.
     #[error("plot: {0}")]
     Plot(String),
+    /// Exact input is too large or too ill-separated for the exact path (degree, coefficient
+    /// size, or roots closer than its refinement separates); the caller falls back to the
+    /// numerical path.
+    #[error("beyond the exact budget: {reason}")]
+    BeyondExactBudget {
+        /// Which limit was hit, with the numbers.
+        reason: String,
+    },
+    /// A number given as text is not an exact number ltikit accepts (malformed, a fraction
+    /// with a zero denominator, too many digits, an exponent beyond the bound, NaN/inf text).
+    #[error("invalid number '{token}': {reason}")]
+    BadNumber {
+        /// The offending token as typed, abbreviated to about 80 characters.
+        token: String,
+        /// Why it is rejected.
+        reason: String,
+    },
 }
 
 impl LtiError {

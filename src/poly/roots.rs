@@ -116,7 +116,7 @@ pub fn sort_roots(r: &mut [Root]) {
 }
 
 /// Candidate roots (with repetition): closed forms for degree ≤ 2, companion eigenvalues above.
-fn candidates(q: &Poly) -> Result<Vec<Complex64>> {
+pub(crate) fn candidates(q: &Poly) -> Result<Vec<Complex64>> {
     let c = q.coeffs();
     let n = q.degree();
     match n {
