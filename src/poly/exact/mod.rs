@@ -36,6 +36,7 @@
 mod cdd;
 mod certify;
 mod modular;
+mod mp;
 mod number;
 mod qpoly;
 mod refine;

@@ -20,8 +20,9 @@
 //!    Newton steps); the others are paired with their conjugates, the lower member replaced by
 //!    the exact conjugate of the upper one. The disks are recomputed for these final values.
 //!
-//! When the disks do not come out disjoint (roots closer than double-double can separate,
-//! ~10⁻²⁸ relative) the result is `None`: beyond the exact budget.
+//! When the disks do not come out disjoint (roots closer than double-double can separate, or
+//! a factor too ill-conditioned, like Wilkinson's), [`super::mp`] refines at 192…960 bits with
+//! exact evaluation; beyond that the result is `None`: beyond the exact budget.
 
 use num_complex::Complex64;
 
@@ -185,8 +186,11 @@ pub(crate) fn simple_roots(b: &ZPoly) -> Option<Vec<DiskRoot>> {
     let mut z = starting_points(&poly)?;
     // 3. Aberth iteration.
     aberth(&poly, &mut z);
-    // 4–5. Symmetrise, certify.
-    let roots = certify(&poly, z)?;
+    // 4–5. Symmetrise, certify; at higher precision when double-double cannot separate.
+    let roots = match certify(&poly, z.clone()) {
+        Some(r) => r,
+        None => super::mp::refine(&scaled, &z)?,
+    };
     // Back to s.
     let out: Vec<DiskRoot> = roots
         .into_iter()
