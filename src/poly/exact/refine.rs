@@ -185,9 +185,9 @@ pub(crate) fn simple_roots(b: &ZPoly) -> Option<Vec<DiskRoot>> {
     // 2. Starting points.
     let mut z = starting_points(&poly)?;
     // 3. Aberth iteration.
-    aberth(&poly, &mut z);
+    let steps = aberth(&poly, &mut z);
     // 4–5. Symmetrise, certify; at higher precision when double-double cannot separate.
-    let roots = match certify(&poly, z.clone()) {
+    let roots = match certify(&poly, z.clone(), &steps) {
         Some(r) => r,
         None => super::mp::refine(&scaled, &z)?,
     };
@@ -255,9 +255,10 @@ fn starting_points(p: &DdPoly) -> Option<Vec<Cdd>> {
     Some(pts.into_iter().map(Cdd::from_c64).collect())
 }
 
-/// Gauss–Seidel Aberth–Ehrlich sweeps until every correction is below ~2⁻¹⁰⁰ relative or
-/// stops decreasing.
-fn aberth(p: &DdPoly, z: &mut [Cdd]) {
+/// Gauss–Seidel Aberth–Ehrlich sweeps until every correction is below 10⁻²⁸ relative (the
+/// doubles reported need 10⁻¹⁷; the disks certify whatever is reached) or
+/// stops decreasing. Returns the size of each root's last correction.
+fn aberth(p: &DdPoly, z: &mut [Cdd]) -> Vec<f64> {
     let d = z.len();
     let mut done = vec![false; d];
     let mut last = vec![f64::INFINITY; d];
@@ -289,7 +290,7 @@ fn aberth(p: &DdPoly, z: &mut [Cdd]) {
             };
             z[k] = z[k] - w;
             let size = w.abs() / z[k].abs().max(1e-300);
-            if size <= 1e-31 || (size >= last[k] * 0.5 && size <= 1e-26) {
+            if size <= 1e-28 || (size >= last[k] * 0.5 && size <= 1e-24) {
                 done[k] = true;
             } else {
                 all = false;
@@ -300,19 +301,20 @@ fn aberth(p: &DdPoly, z: &mut [Cdd]) {
             break;
         }
     }
+    last.iter().zip(z.iter()).map(|(l, zk)| l * zk.abs()).collect()
 }
 
-/// Puts near-real approximations on the real axis, pairs the others with exact conjugates,
+/// Puts near-real approximations on the real axis (those within a few last corrections of
+/// it: only a guess, the disks below decide), pairs the others with exact conjugates,
 /// computes the inclusion radii and checks that the disks are disjoint.
-fn certify(p: &DdPoly, z: Vec<Cdd>) -> Option<Vec<DiskRoot>> {
+fn certify(p: &DdPoly, z: Vec<Cdd>, steps: &[f64]) -> Option<Vec<DiskRoot>> {
     let d = z.len();
-    let first = radii(p, &z)?;
     let mut real = Vec::new();
     let mut upper = Vec::new();
     let mut lower = Vec::new();
-    for (zk, rk) in z.into_iter().zip(first) {
+    for (zk, &step) in z.into_iter().zip(steps) {
         let im = zk.im.to_f64();
-        if im.abs() <= 2.0 * rk {
+        if im.abs() <= (4.0 * d as f64 * step).max(1e-28 * zk.abs()) {
             real.push(Cdd::from_dd(zk.re));
         } else if im > 0.0 {
             upper.push(zk);
@@ -354,19 +356,12 @@ fn certify(p: &DdPoly, z: Vec<Cdd>) -> Option<Vec<DiskRoot>> {
     Some(roots)
 }
 
-/// Two real double-double Newton steps (guarded: kept only while |p| decreases).
-fn real_newton(p: &DdPoly, mut x: Cdd) -> Cdd {
-    for _ in 0..3 {
-        let Some((n, v0, _)) = p.newton(x) else {
-            break;
-        };
-        let cand = Cdd::from_dd(x.re - n.re);
-        match p.newton(cand) {
-            Some((_, v1, _)) if v1 <= v0 => x = cand,
-            _ => break,
-        }
+/// One real double-double Newton step after the projection onto the real axis.
+fn real_newton(p: &DdPoly, x: Cdd) -> Cdd {
+    match p.newton(x) {
+        Some((n, _, _)) if n.re.hi.is_finite() => Cdd::from_dd(x.re - n.re),
+        _ => x,
     }
-    x
 }
 
 /// Braess–Hadeler radii d·|Wₖ| (rigorous upper bounds), `None` when not finite.
