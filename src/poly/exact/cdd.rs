@@ -158,6 +158,7 @@ impl std::ops::Mul for Cdd {
 
 impl std::ops::Div for Cdd {
     type Output = Cdd;
+    #[allow(clippy::suspicious_arithmetic_impl)] // a / b = a · b⁻¹
     fn div(self, o: Cdd) -> Cdd {
         self * o.inv()
     }

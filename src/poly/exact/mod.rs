@@ -11,9 +11,9 @@
 //!
 //! # Methods
 //! - **gcd**: modular (Brown): gcds modulo 31-bit primes, Chinese remaindering, certified by
-//!   trial division in ℤ[s]. One prime proves coprimality, the common case.
+//!   trial division in ℤ\[s\]. One prime proves coprimality, the common case.
 //! - **Square-free factorisation**: Yun's algorithm on the primitive integer polynomial, all
-//!   divisions exact in ℤ[s]. Numerator and denominator factors are merged into a pairwise
+//!   divisions exact in ℤ\[s\]. Numerator and denominator factors are merged into a pairwise
 //!   coprime basis, so every distinct root is computed once and cancels exactly.
 //! - **Half planes**: for each square-free factor b = E(s²) + s·O(s²): the roots symmetric about
 //!   the origin are those of g(s²), g = gcd(E, O) (the Routh "zero row"), counted by a Sturm
@@ -30,7 +30,7 @@
 //! Degree ≤ [`MAX_EXACT_DEGREE`], coefficients of the primitive integer polynomial ≤
 //! [`MAX_EXACT_BITS`] bits, gcd coefficients within the modular prime table (~3900 bits) and
 //! roots separable in double-double (relative separation above ~10⁻²⁸). Beyond it the functions
-//! return [`LtiError::BeyondExactBudget`](crate::LtiError::BeyondExactBudget): use the
+//! return [`LtiError::BeyondExactBudget`]: use the
 //! numerical path.
 
 mod cdd;

@@ -1,4 +1,4 @@
-//! Modular greatest common divisors in ℤ[s] (Brown's algorithm): gcds modulo word-size primes,
+//! Modular greatest common divisors in ℤ\[s\] (Brown's algorithm): gcds modulo word-size primes,
 //! Chinese remaindering, and a trial division that certifies the result.
 //!
 //! Why not Euclid over ℚ: the intermediate coefficients of the remainder sequence of two

@@ -312,7 +312,7 @@ fn symmetrise_and_certify(c: &[IBig], pts: &mut [G], p: usize) -> Option<Vec<Dis
                 im: &fin[i].im - &fin[j].im,
             };
             let dist = g_to_c64(&diff, p as i64).norm() * (1.0 - 1e-12);
-            if !(dist > (a.r + b.r) * (1.0 + 1e-12)) {
+            if dist.is_nan() || dist <= (a.r + b.r) * (1.0 + 1e-12) {
                 return None;
             }
         }

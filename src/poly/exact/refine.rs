@@ -301,7 +301,10 @@ fn aberth(p: &DdPoly, z: &mut [Cdd]) -> Vec<f64> {
             break;
         }
     }
-    last.iter().zip(z.iter()).map(|(l, zk)| l * zk.abs()).collect()
+    last.iter()
+        .zip(z.iter())
+        .map(|(l, zk)| l * zk.abs())
+        .collect()
 }
 
 /// Puts near-real approximations on the real axis (those within a few last corrections of

@@ -191,7 +191,7 @@ impl ZPoly {
         r
     }
 
-    /// The exact quotient self / d in ℤ[s], or `None` when d does not divide self there.
+    /// The exact quotient self / d in ℤ\[s\], or `None` when d does not divide self there.
     pub fn div_exact(&self, d: &ZPoly) -> Option<ZPoly> {
         if d.is_zero() {
             return None;
