@@ -46,7 +46,7 @@ pub enum LtiError {
     OrderTooHigh {
         /// Requested order.
         order: usize,
-        /// Supported maximum ([`crate::MAX_ORDER`]).
+        /// Supported maximum (the polynomial limit `MAX_ORDER`, or the factored limit).
         max: usize,
     },
     /// The coefficients span a range that overflows once the polynomial is made monic.
@@ -167,21 +167,54 @@ pub enum LtiError {
         /// Which limit was hit, with the numbers.
         reason: String,
     },
-    /// A number given as text is not an exact number ltikit accepts (malformed, a fraction
-    /// with a zero denominator, too many digits, an exponent beyond the bound, NaN/inf text).
-    #[error("invalid number '{token}': {reason}")]
+    /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
+    #[error("{what}: '{token}' {reason}")]
     BadNumber {
-        /// The offending token as typed, abbreviated to about 80 characters.
+        /// Where it was read ("--den", "num of line 3", …).
+        what: String,
+        /// The offending text, abbreviated to [`TOKEN_SHOWN`] characters.
         token: String,
-        /// Why it is rejected.
+        /// Why ("is not a number", …).
         reason: String,
     },
+}
+
+/// The number of characters of an offending input token shown in an error message.
+pub const TOKEN_SHOWN: usize = 80;
+
+/// `text` cut to [`TOKEN_SHOWN`] characters (with "…" and the full length when cut), so an
+/// error never echoes a huge input.
+///
+/// ```
+/// use ltikit::error::abbreviate;
+/// assert_eq!(abbreviate("1e5x"), "1e5x");
+/// let long = "9".repeat(1000);
+/// let a = abbreviate(&long);
+/// assert!(a.starts_with("9999") && a.ends_with("(1000 characters)"));
+/// assert!(a.chars().count() < 110);
+/// ```
+pub fn abbreviate(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= TOKEN_SHOWN {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(TOKEN_SHOWN).collect();
+    format!("{head}… ({n} characters)")
 }
 
 impl LtiError {
     /// Shorthand for [`LtiError::InvalidInput`].
     pub fn invalid(msg: impl Into<String>) -> Self {
         LtiError::InvalidInput(msg.into())
+    }
+
+    /// Shorthand for [`LtiError::BadNumber`] (the token is abbreviated).
+    pub fn bad_number(what: impl Into<String>, token: &str, reason: impl Into<String>) -> Self {
+        LtiError::BadNumber {
+            what: what.into(),
+            token: abbreviate(token),
+            reason: reason.into(),
+        }
     }
 }
 

@@ -72,7 +72,11 @@ fn analyze_contract() {
             "overshoot_percent",
             "peak",
             "peak_time",
-            "steady_state"
+            "steady_state",
+            "transient_time",
+            "settling_min",
+            "settling_max",
+            "undershoot_percent"
         ]
     );
     // Overshoot e^(−πζ/√(1−ζ²)) for ζ = 0.2; peak time π/ω_d.

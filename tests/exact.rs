@@ -384,7 +384,7 @@ fn malformed_tokens_are_errors_naming_the_token() {
     ] {
         let err = ExactPoly::parse_descending(&["1", tok, "3"]).unwrap_err();
         match &err {
-            LtiError::BadNumber { token, reason } => {
+            LtiError::BadNumber { token, reason, .. } => {
                 assert_eq!(token, tok);
                 assert!(reason.contains(why), "{tok}: {reason}");
             }

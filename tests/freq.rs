@@ -10,15 +10,8 @@ use ltikit::numeric::dd::Dd;
 use num_complex::Complex64;
 use proptest::prelude::*;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
-        .collect()
-}
+mod common;
+use common::{logspace, tf};
 
 /// Wraps radians into (−π, π].
 fn wrap(x: f64) -> f64 {
@@ -336,7 +329,7 @@ fn frequency_grid_draws_a_lightly_damped_peak_at_its_height() {
     for &wn in &[1.0, 7.3] {
         let z = 0.01;
         let g = tf(&[wn * wn], &[1.0, 2.0 * z * wn, wn * wn]);
-        let w = auto_frequency_grid(&g, 100).unwrap();
+        let w = auto_frequency_grid(&g.factored().unwrap(), 100).unwrap();
         assert!(w.windows(2).all(|p| p[0] < p[1]), "sorted and unique");
         let r = g.freq_response(&w).unwrap();
         let mr_db = -20.0 * (2.0 * z * (1.0 - z * z).sqrt()).log10();
@@ -373,25 +366,25 @@ fn frequency_grid_draws_a_lightly_damped_peak_at_its_height() {
 fn frequency_grid_range() {
     // corners 0.1 and 10 → 1e-3 … 1e3
     let g = tf(&[1.0], &[1.0, 10.1, 1.0]);
-    let w = auto_frequency_grid(&g, 61).unwrap();
+    let w = auto_frequency_grid(&g.factored().unwrap(), 61).unwrap();
     assert!((w[0] - 1e-3).abs() < 1e-18 && (w.last().unwrap() - 1e3).abs() < 1e-9);
     assert_eq!(w.len(), 61);
     // corner 3 → 10^floor(log10 0.03) = 0.01 … 10^ceil(log10 300) = 1000
     let g = tf(&[1.0], &[1.0, 3.0]);
-    let w = auto_frequency_grid(&g, 50).unwrap();
+    let w = auto_frequency_grid(&g.factored().unwrap(), 50).unwrap();
     assert!((w[0] - 1e-2).abs() < 1e-17 && (w.last().unwrap() - 1e3).abs() < 1e-9);
     // no corner: 1/s → 0.01 … 100
     let g = tf(&[1.0], &[1.0, 0.0]);
-    let w = auto_frequency_grid(&g, 5).unwrap();
+    let w = auto_frequency_grid(&g.factored().unwrap(), 5).unwrap();
     assert_eq!(w.len(), 5);
     assert!((w[0] - 0.01).abs() < 1e-17 && (w[4] - 100.0).abs() < 1e-12);
     // an undamped pair is approached but never hit (the curve stays finite)
     let g = tf(&[1.0], &[1.0, 0.0, 4.0]);
-    let w = auto_frequency_grid(&g, 100).unwrap();
+    let w = auto_frequency_grid(&g.factored().unwrap(), 100).unwrap();
     let r = g.freq_response(&w).unwrap();
     assert!(r.magnitude.iter().all(|m| m.is_finite()));
     assert!(w.iter().any(|&x| (x - 2.0).abs() < 1e-5));
-    assert!(auto_frequency_grid(&g, 1).is_err());
+    assert!(auto_frequency_grid(&g.factored().unwrap(), 1).is_err());
 }
 
 #[test]
@@ -405,7 +398,7 @@ fn time_span_covers_settling_and_bounds_growth() {
         (vec![5.0], vec![1.0, 1e-3 * 2.0, 1.0 + 1e-6]), // ζ = 1e-3
     ] {
         let g = tf(&num, &den);
-        let span = auto_time_span(&g).unwrap();
+        let span = auto_time_span(&g.factored().unwrap()).unwrap();
         let slow = g
             .poles()
             .unwrap()
@@ -423,7 +416,7 @@ fn time_span_covers_settling_and_bounds_growth() {
     }
     // undamped: at least five periods
     let g = tf(&[4.0], &[1.0, 0.0, 4.0]);
-    let span = auto_time_span(&g).unwrap();
+    let span = auto_time_span(&g.factored().unwrap()).unwrap();
     assert!(span.t_end >= 5.0 * std::f64::consts::PI && span.t_end < 20.0 * std::f64::consts::PI);
     // unstable: growth by a bounded factor, even with a very slow stable pole present
     // (python-control #384 drew a 3e15 s window)
@@ -433,20 +426,51 @@ fn time_span_covers_settling_and_bounds_growth() {
         (vec![1.0, -0.2, 4.01], 0.1),           // 0.1 ± 2j
     ] {
         let g = tf(&[1.0], &den);
-        let span = auto_time_span(&g).unwrap();
+        let span = auto_time_span(&g.factored().unwrap()).unwrap();
         let growth = (sigma * span.t_end).exp();
         assert!((1e3..=1e3f64.powf(2.5)).contains(&growth), "{g}: ×{growth}");
         assert!(span.reason.contains("unstable"), "{}", span.reason);
     }
     // integrators: the window is set by the other modes, or a default
     let g = tf(&[1.0], &[1.0, 2.0, 0.0]);
-    assert_eq!(auto_time_span(&g).unwrap().t_end, 5.0); // 1.5·ln50/2 = 2.93
+    assert_eq!(auto_time_span(&g.factored().unwrap()).unwrap().t_end, 5.0); // 1.5·ln50/2 = 2.93
     let g = tf(&[1.0], &[1.0, 0.0]);
-    assert_eq!(auto_time_span(&g).unwrap().t_end, 10.0);
+    assert_eq!(auto_time_span(&g.factored().unwrap()).unwrap().t_end, 10.0);
     let g = tf(&[1.0, 0.5], &[1.0, 0.0, 0.0]);
-    assert_eq!(auto_time_span(&g).unwrap().t_end, 10.0); // 5/0.5
-    let t = auto_time_grid(&g, 101).unwrap();
+    assert_eq!(auto_time_span(&g.factored().unwrap()).unwrap().t_end, 10.0); // 5/0.5
+    let t = auto_time_grid(&g.factored().unwrap(), 101).unwrap();
     assert_eq!(t.len(), 101);
     assert!(t[0] == 0.0 && (t[100] - 10.0).abs() < 1e-15);
     assert!(t.windows(2).all(|p| (p[1] - p[0] - 0.1).abs() < 1e-12));
+}
+
+#[test]
+fn a_cancelled_factor_costs_no_accuracy() {
+    // (s + 2)² over a degree-7 denominator with the (numerically double) factor (s + 2)² and
+    // five clustered small roots (found by testing against other projects' suites). The
+    // exact |N/D| of these f64 coefficients at ω = 3.16e-4 is 17878954.752661815 (mpmath, 50
+    // digits, the coefficients taken as their exact binary values); the dc gain is exactly
+    // 4/2.2364516754719997e-07 = 17885474.762855344. Evaluating the reduced G rebuilt from
+    // the computed common factor lost 1.3e-6 here.
+    let g = tf(
+        &[1.0, 4.0, 4.0],
+        &[
+            1.0,
+            4.191699999999999,
+            4.78116611,
+            0.824786794293,
+            0.0595628707474098,
+            0.0021255273849310865,
+            3.62779468067472e-05,
+            2.2364516754719997e-07,
+        ],
+    );
+    let f = g.factored().unwrap();
+    assert_eq!(f.pole_zero().cancelled.len(), 1);
+    let m = f.freq_response(&[0.000316]).unwrap().magnitude[0];
+    let want = 17878954.752661815;
+    assert!(((m - want) / want).abs() < 1e-13, "{m} vs {want}");
+    let dc = f.dc_gain().unwrap();
+    let want = 17885474.762855344;
+    assert!(((dc - want) / want).abs() < 1e-15, "{dc} vs {want}");
 }

@@ -6,13 +6,8 @@
 use ltikit::TransferFunction;
 use num_complex::Complex64;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
-}
+mod common;
+use common::{real_root, rel, tf};
 
 /// The positive real roots of x³ + a x² + b x + c (Cardano's formula; trigonometric form
 /// when all three roots are real).
@@ -278,4 +273,37 @@ fn shallow_resonance_of_an_order_10_plant() {
     assert!((mr - best).abs() < 1e-10, "Mr {mr} vs grid {best}");
     assert!((wr - best_w).abs() < 1e-4, "wr {wr} vs grid {best_w}");
     assert!(mr > 1.0 + 2e-6);
+}
+
+#[test]
+fn negative_dc_gain_is_a_crossing_at_zero_frequency() {
+    // (s + 1)/((s − 1)(s + 2)(s + 3)(s + 4)): the closed loop with gain K has the
+    // characteristic polynomial s⁴ + 8s³ + 17s² + (K − 2)s + (K − 24). Routh–Hurwitz: stable
+    // exactly for 24 < K < 90; at K = 24 a root crosses at s = 0 (G(0) = −1/24), at K = 90 the
+    // auxiliary row 6s² + 66 puts a pair at ±j√11. Both gain margins are crossings.
+    let g = tf(&[1.0, 1.0], &[1.0, 8.0, 17.0, -2.0, -24.0]);
+    for f in [
+        g.factored().unwrap(),
+        ltikit::analysis::Factored::from_zpk(
+            &[real_root(-1.0)],
+            &[
+                real_root(1.0),
+                real_root(-2.0),
+                real_root(-3.0),
+                real_root(-4.0),
+            ],
+            1.0,
+        )
+        .unwrap(),
+    ] {
+        let m = f.margins().unwrap();
+        assert_eq!(m.phase_crossings.len(), 2, "{m:?}");
+        let (a, b) = (m.phase_crossings[0], m.phase_crossings[1]);
+        assert_eq!(a.w, 0.0);
+        assert!(rel(a.gain_margin, 24.0) < 1e-13, "{a:?}");
+        assert!(rel(b.w, 11f64.sqrt()) < 1e-12, "{b:?}");
+        assert!(rel(b.gain_margin, 90.0) < 1e-12, "{b:?}");
+        // the headline is the one closest to 0 dB: 24
+        assert_eq!(m.phase_crossover, Some(0.0));
+    }
 }

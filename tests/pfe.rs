@@ -6,13 +6,8 @@ use ltikit::analysis::{PartialFractions, partial_fractions};
 use ltikit::{Poly, TransferFunction};
 use num_complex::Complex64;
 
-fn c(re: f64, im: f64) -> Complex64 {
-    Complex64::new(re, im)
-}
-
-fn poly(c: &[f64]) -> Poly {
-    Poly::from_descending(c).unwrap()
-}
+mod common;
+use common::{c, poly};
 
 /// Over test points at distance ≥ `gap` from every pole: the largest |Σ terms − N/D| relative
 /// to |N/D|, and relative to the size of the terms Σ|rₖ|/|s − pₖ|^k + |direct(s)| (the

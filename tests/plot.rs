@@ -258,7 +258,15 @@ fn metrics(f: impl Fn(f64) -> f64, t_end: f64) -> StepInfo {
     StepInfo {
         rise_time: b - a,
         settling_time: settle,
+        transient_time: settle,
+        settling_min: ts
+            .iter()
+            .filter(|&&t| t >= b)
+            .map(|&t| f(t))
+            .fold(f64::INFINITY, f64::min),
+        settling_max: peak,
         overshoot_percent: ((peak - 1.0) * 100.0).max(0.0),
+        undershoot_percent: 0.0,
         peak,
         peak_time,
         steady_state: 1.0,

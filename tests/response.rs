@@ -2,17 +2,11 @@
 //!
 //! Run with `--nocapture` to see the worst error per case.
 
-use ltikit::TransferFunction;
 use ltikit::analysis::{ClosedFormTerm, Input};
 use ltikit::lti::build_plant;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-fn grid(t_end: f64, n: usize) -> Vec<f64> {
-    (0..=n).map(|k| t_end * k as f64 / n as f64).collect()
-}
+mod common;
+use common::{grid, tf};
 
 /// ÿ + 2ζẏ + y = 0 (ωₙ = 1) from y(0) = y0, ẏ(0) = v0.
 /// ζ = 0: seed eq. 3.34; 0 < ζ < 1: eq. 3.33 (whose "+φ" is a typo: the phase is −φ,
@@ -146,7 +140,7 @@ fn near_coincident_poles() {
             ("step", Input::Step, vec![]),
             ("initial-condition", Input::None, vec![0.7, -1.3]),
         ] {
-            let s = g.response_samples(&input, &ics, &t).unwrap();
+            let s = g.response(&input, &ics, &t).unwrap().samples;
             let want: Vec<f64> = t
                 .iter()
                 .map(|&x| {
@@ -270,7 +264,7 @@ fn every_input_into_a_first_order_lag() {
         ),
     ];
     for (input, y, yss) in cases {
-        let s = g.response_samples(&input, &[], &t).unwrap();
+        let s = g.response(&input, &[], &t).unwrap().samples;
         for (k, &x) in t.iter().enumerate() {
             let (want, want_ss) = (y(x), yss(x));
             let tol = 1e-13 * (1.0 + want.abs());
@@ -287,8 +281,9 @@ fn impulse_into_biproper_excludes_the_delta_from_values() {
     // (2s + 3)/(s + 1) = 2 + 1/(s + 1): y = 2δ(t) + e^(−t)
     let g = tf(&[2.0, 3.0], &[1.0, 1.0]);
     let s = g
-        .response_samples(&Input::Impulse, &[], &[0.0, 1.0, 2.0])
-        .unwrap();
+        .response(&Input::Impulse, &[], &[0.0, 1.0, 2.0])
+        .unwrap()
+        .samples;
     for (x, y) in s.t.iter().zip(&s.y) {
         assert!((y - (-x).exp()).abs() < 1e-15);
     }
@@ -300,12 +295,13 @@ fn hidden_unstable_mode_with_initial_conditions() {
     // (s − 1)/((s − 1)(s + 2)): ICs excite e^t, the input does not.
     let g = tf(&[1.0, -1.0], &[1.0, 1.0, -2.0]);
     let t = grid(5.0, 50);
-    let s = g.response_samples(&Input::Step, &[1.0, 0.0], &t).unwrap();
+    let s = g.response(&Input::Step, &[1.0, 0.0], &t).unwrap().samples;
     assert!(s.closed_form_error < 1e-12 * s.max_abs_y);
     // Without ICs: 1/(s + 2) step, bounded, no e^t even by rounding.
     let s = g
-        .response_samples(&Input::Step, &[], &grid(40.0, 40))
-        .unwrap();
+        .response(&Input::Step, &[], &grid(40.0, 40))
+        .unwrap()
+        .samples;
     for (x, y) in s.t.iter().zip(&s.y) {
         assert!((y - 0.5 * (1.0 - (-2.0 * x).exp())).abs() < 1e-15);
     }
@@ -321,7 +317,7 @@ fn higher_order_agreement_closed_form_vs_exact() {
         (Input::Sin(0.7), vec![0.3, -0.2, 1.0, 0.5]),
         (Input::Ramp, vec![1.0]),
     ] {
-        let s = g.response_samples(&input, &ics, &t).unwrap();
+        let s = g.response(&input, &ics, &t).unwrap().samples;
         println!(
             "MATLAB example, {input}: closed form vs exact {:.1e} (max|y| {:.2})",
             s.closed_form_error, s.max_abs_y
@@ -339,7 +335,7 @@ fn bad_input_is_an_error_not_a_panic() {
             Err(ltikit::LtiError::InvalidTime { .. })
         ));
         assert!(g.impulse_response(&t).is_err());
-        assert!(g.response_samples(&Input::Step, &[], &t).is_err());
+        assert!(g.response(&Input::Step, &[], &t).is_err());
     }
     let improper = tf(&[1.0, 0.0, 0.0], &[1.0, 1.0]);
     for r in [

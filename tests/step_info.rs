@@ -4,30 +4,10 @@
 
 use std::f64::consts::PI;
 
-use ltikit::TransferFunction;
 use ltikit::analysis::StepInfo;
 
-fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
-    TransferFunction::from_descending(n, d).unwrap()
-}
-
-/// Plain bisection for f(x) = 0 on [a, b] with f(a)·f(b) ≤ 0 (independent of the library).
-fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
-    let fa = f(a);
-    assert!(fa * f(b) <= 0.0, "no sign change on [{a}, {b}]");
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        if (f(m) > 0.0) == (fa > 0.0) {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
-    0.5 * (a + b)
-}
+mod common;
+use common::{bisect, tf};
 
 #[test]
 fn matlab_stepinfo_example_exact_values() {
@@ -50,6 +30,21 @@ fn matlab_stepinfo_example_exact_values() {
             got - want
         );
         assert!((got - want).abs() < 6e-7, "{what}: {got} vs {want}");
+    }
+    // MATLAB's further fields, exact from the same closed form in 40-digit mpmath (residues of
+    // Y = G/s, critical points after the 90 % time 4.428878892 by bisection on y′):
+    // SettlingMin 2.068793521580 at t = 6.49043 (MATLAB: 2.0689), SettlingMax = the peak
+    // 2.687824729255 (MATLAB: 2.6873); the error is largest at t = 0 (|0 − 2.5|, overshoot
+    // < 100 %), so TransientTime = SettlingTime (as MATLAB reports, 27.9762 both); no undershoot.
+    let more = [
+        ("settling min", s.settling_min, 2.068793521580),
+        ("settling max", s.settling_max, 2.687824729255),
+        ("transient time", s.transient_time, s.settling_time),
+        ("undershoot", s.undershoot_percent, 0.0),
+    ];
+    for (what, got, want) in more {
+        println!("MATLAB example {what}: {got:.12} (reference {want})");
+        assert!((got - want).abs() < 1e-9, "{what}: {got} vs {want}");
     }
     assert_eq!(s.steady_state, 2.5);
     // Self-consistency against the exact (matrix-exponential) simulation, which shares no code
@@ -106,7 +101,13 @@ fn analytic_step_info(zeta: f64) -> StepInfo {
         StepInfo {
             rise_time: rise_end - rise_start,
             settling_time: settling,
+            // the largest error is 1 at t = 0 (overshoot < 100 %): the same band
+            transient_time: settling,
+            // after the rise: the first trough at 2π/ω_d, unless 90 % is lower
+            settling_min: (1.0 - (-2.0 * zeta * tp).exp()).min(0.9),
+            settling_max: 1.0 + os,
             overshoot_percent: 100.0 * os,
+            undershoot_percent: 0.0,
             peak: 1.0 + os,
             peak_time: tp,
             steady_state: 1.0,
@@ -116,10 +117,16 @@ fn analytic_step_info(zeta: f64) -> StepInfo {
     } else {
         let rise_start = bisect(|t| y(t) - 0.1, 0.0, 100.0);
         let rise_end = bisect(|t| y(t) - 0.9, 0.0, 100.0);
+        let settling = bisect(|t| y(t) - 0.98, 0.0, 100.0);
         StepInfo {
             rise_time: rise_end - rise_start,
-            settling_time: bisect(|t| y(t) - 0.98, 0.0, 100.0),
+            settling_time: settling,
+            transient_time: settling,
+            // monotone: 90 % at the end of the rise, 1 only approached
+            settling_min: 0.9,
+            settling_max: 1.0,
             overshoot_percent: 0.0,
+            undershoot_percent: 0.0,
             peak: 1.0,
             peak_time: f64::INFINITY,
             steady_state: 1.0,
@@ -143,6 +150,14 @@ fn second_order_against_analytic() {
             ("overshoot", got.overshoot_percent, want.overshoot_percent),
             ("peak", got.peak, want.peak),
             ("rise start", got.rise_start, want.rise_start),
+            ("transient time", got.transient_time, want.transient_time),
+            ("settling min", got.settling_min, want.settling_min),
+            ("settling max", got.settling_max, want.settling_max),
+            (
+                "undershoot",
+                got.undershoot_percent,
+                want.undershoot_percent,
+            ),
         ];
         let mut worst: f64 = 0.0;
         for (what, g, w) in pairs {
@@ -271,4 +286,38 @@ fn near_coincident_poles_stay_within_1e9() {
         );
         assert!(errs.iter().all(|e| e.abs() < 1e-9), "{errs:?}");
     }
+}
+
+#[test]
+fn undershoot_and_options() {
+    // (1 − 4s)/(s + 1)²: Y = G/s = 1/s − 1/(s + 1) − 5/(s + 1)², y = 1 − (1 + 5t)e^(−t);
+    // y′ = (5t − 4)e^(−t) vanishes at t = 0.8, where y = 1 − 5e^(−0.8) = −1.2466…: the
+    // response first goes the wrong way, undershoot 100·(5e^(−0.8) − 1) %.
+    let s = tf(&[-4.0, 1.0], &[1.0, 2.0, 1.0])
+        .step_info()
+        .unwrap()
+        .unwrap();
+    let want = 100.0 * (5.0 * (-0.8f64).exp() - 1.0);
+    assert!(
+        (s.undershoot_percent - want).abs() < 1e-10,
+        "{}",
+        s.undershoot_percent
+    );
+    // the largest error is at that dip, |−1.2466 − 1| > 1: the transient time uses
+    // 2 % of it and is shorter than the settling time
+    assert!(s.transient_time < s.settling_time, "{s:?}");
+    // options: a 5 % band settles earlier, 5–95 % rise is longer
+    let g = tf(&[1.0], &[1.0, 1.0]).factored().unwrap();
+    let o = ltikit::analysis::StepInfoOptions {
+        settling_threshold: 0.05,
+        rise_limits: (0.05, 0.95),
+    };
+    let s = g.step_info_for(&o).unwrap().unwrap();
+    assert!((s.settling_time - 20f64.ln()).abs() < 1e-13);
+    assert!((s.rise_time - 19f64.ln()).abs() < 1e-13); // ln(0.95/0.05)
+    let bad = ltikit::analysis::StepInfoOptions {
+        settling_threshold: 1.5,
+        ..Default::default()
+    };
+    assert!(g.step_info_for(&bad).is_err());
 }

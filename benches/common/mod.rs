@@ -146,10 +146,11 @@ pub fn horner_full(num: &[f64], den: &[f64], w: &[f64]) -> (Vec<f64>, Vec<f64>, 
 /// (500 points plus extras), the frequency response, the margins, the asymptotes, and the
 /// 1000 × 700 PNG written to `path`.
 pub fn bode_png_of(g: &TransferFunction, path: &std::path::Path) -> ltikit::Result<()> {
-    let w = auto_frequency_grid(g, 500)?;
-    let fr: FrequencyResponse = g.freq_response(&w)?;
-    let m = g.margins()?;
-    let asym = g.bode_asymptotes(w[0], w[w.len() - 1])?;
+    let f = g.factored()?;
+    let w = auto_frequency_grid(&f, 500)?;
+    let fr: FrequencyResponse = f.freq_response(&w)?;
+    let m = f.margins()?;
+    let asym = f.bode_asymptotes(w[0], w[w.len() - 1])?;
     let series = [BodeSeries::new(&fr)
         .label("order-8 plant")
         .margins(&m)

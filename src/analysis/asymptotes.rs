@@ -22,6 +22,7 @@
 
 use serde::Serialize;
 
+use crate::analysis::factored::Factored;
 use crate::analysis::stability::{HalfPlane, half_plane};
 use crate::error::{LtiError, Result, check_finite};
 use crate::lti::TransferFunction;
@@ -106,8 +107,33 @@ pub fn bode_asymptotes(
             "the frequency range [{w_min}, {w_max}] must satisfy 0 < w_min < w_max"
         )));
     }
-    let mut origin = 0i32; // zeros − poles at s = 0
-    let mut negative = gain < 0.0;
+    let (factors, origin, negative) = asymptote_factors(zeros, poles, gain < 0.0)?;
+    let phase0 = 90.0 * f64::from(origin) - if negative { 180.0 } else { 0.0 };
+    let (lo, hi) = (w_min.log10(), w_max.log10());
+    let mut corners: Vec<CornerFrequency> = factors
+        .iter()
+        .map(|f| CornerFrequency {
+            w: f.w,
+            slope_change: f.order,
+            zeta: f.zeta,
+        })
+        .collect();
+    corners.sort_by(|a, b| a.w.total_cmp(&b.w));
+    Ok(BodeAsymptotes {
+        magnitude_db: magnitude_polyline(&factors, gain, origin, lo, hi),
+        phase_deg: phase_polyline(&factors, phase0, lo, hi),
+        corners,
+    })
+}
+
+/// The straight-line factors of the non-zero roots, the order at s = 0 (zeros − poles) and
+/// whether the low-frequency gain is negative.
+fn asymptote_factors(
+    zeros: &[Root],
+    poles: &[Root],
+    mut negative: bool,
+) -> Result<(Vec<Factor>, i32, bool)> {
+    let mut origin = 0i32;
     let mut factors = Vec::new();
     for (roots, sign) in [(zeros, 1i32), (poles, -1i32)] {
         for r in roots {
@@ -144,20 +170,51 @@ pub fn bode_asymptotes(
             });
         }
     }
-    let phase0 = 90.0 * f64::from(origin) - if negative { 180.0 } else { 0.0 };
+    Ok((factors, origin, negative))
+}
 
+/// Sorted, unique log-frequencies: the ends and the given breakpoints inside (lo, hi).
+fn breakpoints(xs: impl Iterator<Item = f64>, lo: f64, hi: f64) -> Vec<f64> {
+    let mut out: Vec<f64> = xs.filter(|&x| x > lo && x < hi).collect();
+    out.push(lo);
+    out.push(hi);
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}
+
+/// The magnitude asymptote (ω, dB) at the ends and the corners inside [10^lo, 10^hi].
+fn magnitude_polyline(
+    factors: &[Factor],
+    gain: f64,
+    origin: i32,
+    lo: f64,
+    hi: f64,
+) -> Vec<(f64, f64)> {
     let mag_db = |w: f64| {
         let lw = w.log10();
         let mut l = gain.abs().log10() + f64::from(origin) * lw;
-        for f in &factors {
+        for f in factors {
             l += f64::from(f.order) * lw.max(f.w.log10());
         }
         20.0 * l
     };
+    breakpoints(factors.iter().map(|f| f.w.log10()), lo, hi)
+        .iter()
+        .map(|&x| {
+            let w = 10f64.powf(x);
+            (w, mag_db(w))
+        })
+        .collect()
+}
+
+/// The phase asymptote (ω, degrees): ramps over each factor's decade (or ζ-wide band), steps
+/// at imaginary-axis roots (both limits listed).
+fn phase_polyline(factors: &[Factor], phase0: f64, lo: f64, hi: f64) -> Vec<(f64, f64)> {
     // Phase at log-frequency x; `right` chooses the right-hand limit at a step.
     let phase = |x: f64, right: bool| {
         let mut p = phase0;
-        for f in &factors {
+        for f in factors {
             let frac = if f.b > f.a {
                 ((x - f.a) / (f.b - f.a)).clamp(0.0, 1.0)
             } else if x > f.a || (right && x >= f.a) {
@@ -169,36 +226,7 @@ pub fn bode_asymptotes(
         }
         p
     };
-
-    let (lo, hi) = (w_min.log10(), w_max.log10());
-    let inside = |x: f64| x > lo && x < hi;
-
-    let mut mag_x: Vec<f64> = factors
-        .iter()
-        .map(|f| f.w.log10())
-        .filter(|&x| inside(x))
-        .collect();
-    mag_x.push(lo);
-    mag_x.push(hi);
-    mag_x.sort_by(f64::total_cmp);
-    mag_x.dedup();
-    let magnitude_db = mag_x
-        .iter()
-        .map(|&x| {
-            let w = 10f64.powf(x);
-            (w, mag_db(w))
-        })
-        .collect();
-
-    let mut ph_x: Vec<f64> = factors
-        .iter()
-        .flat_map(|f| [f.a, f.b])
-        .filter(|&x| inside(x))
-        .collect();
-    ph_x.push(lo);
-    ph_x.push(hi);
-    ph_x.sort_by(f64::total_cmp);
-    ph_x.dedup();
+    let ph_x = breakpoints(factors.iter().flat_map(|f| [f.a, f.b]), lo, hi);
     let mut phase_deg = Vec::with_capacity(2 * ph_x.len());
     for (i, &x) in ph_x.iter().enumerate() {
         let w = 10f64.powf(x);
@@ -210,26 +238,12 @@ pub fn bode_asymptotes(
             phase_deg.push((w, r));
         }
     }
-
-    let mut corners: Vec<CornerFrequency> = factors
-        .iter()
-        .map(|f| CornerFrequency {
-            w: f.w,
-            slope_change: f.order,
-            zeta: f.zeta,
-        })
-        .collect();
-    corners.sort_by(|a, b| a.w.total_cmp(&b.w));
-    Ok(BodeAsymptotes {
-        magnitude_db,
-        phase_deg,
-        corners,
-    })
+    phase_deg
 }
 
 impl TransferFunction {
     /// Straight-line Bode asymptotes over [w_min, w_max] (see [`bode_asymptotes`]), from the
-    /// poles and zeros as given and the gain b_m/a_n.
+    /// reduced poles and zeros and the gain b_m/a_n ([`Factored::bode_asymptotes`]).
     ///
     /// ```
     /// use ltikit::TransferFunction;
@@ -240,10 +254,21 @@ impl TransferFunction {
     /// assert!(a.phase_deg.iter().all(|p| (p.1 + 270.0).abs() < 1e-12));
     /// ```
     pub fn bode_asymptotes(&self, w_min: f64, w_max: f64) -> Result<BodeAsymptotes> {
-        if self.num().is_zero() {
-            return bode_asymptotes(&[], &[], 0.0, w_min, w_max);
-        }
-        bode_asymptotes(&self.zeros()?, &self.poles()?, self.gain(), w_min, w_max)
+        self.factored()?.bode_asymptotes(w_min, w_max)
+    }
+}
+
+impl Factored {
+    /// Straight-line Bode asymptotes of G in lowest terms over [w_min, w_max]
+    /// ([`bode_asymptotes`]).
+    pub fn bode_asymptotes(&self, w_min: f64, w_max: f64) -> Result<BodeAsymptotes> {
+        bode_asymptotes(
+            self.reduced_zeros(),
+            self.reduced_poles(),
+            self.gain(),
+            w_min,
+            w_max,
+        )
     }
 }
 

@@ -10,11 +10,10 @@
 
 use serde::Serialize;
 
-use super::freq::BodeForm;
-use super::stability::{HalfPlane, half_plane};
+use super::factored::Factored;
 use crate::error::{LtiError, Result};
-use crate::lti::TransferFunction;
 use crate::poly::fmt_root;
+use crate::poly::{HalfPlane, half_plane};
 
 /// How far the time axis of a response plot should reach, and why.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -25,12 +24,23 @@ pub struct TimeSpan {
     pub reason: String,
 }
 
-fn check_points(points: usize) -> Result<()> {
-    if points < 2 {
+/// Most points an automatic grid (or any sampled response) may have: 10⁷ (80 MB of
+/// frequencies; the outputs are streamed).
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// Checks 2 ≤ `points` ≤ [`MAX_POINTS`] before anything is allocated.
+///
+/// ```
+/// use ltikit::analysis::grid::check_points;
+/// assert!(check_points(2).is_ok() && check_points(1).is_err());
+/// assert!(check_points(usize::MAX).is_err());
+/// ```
+pub fn check_points(points: usize) -> Result<()> {
+    if !(2..=MAX_POINTS).contains(&points) {
         return Err(LtiError::InvalidParameter {
             name: "points".into(),
             value: points as f64,
-            reason: "at least 2 points are needed".into(),
+            reason: format!("need 2 ≤ points ≤ {MAX_POINTS}"),
         });
     }
     Ok(())
@@ -49,17 +59,16 @@ fn check_points(points: usize) -> Result<()> {
 /// use ltikit::analysis::auto_frequency_grid;
 /// // 1/(s² + 0.02 s + 1): ζ = 0.01, peak 1/(2ζ√(1−ζ²)) at ωr = √(1 − 2ζ²).
 /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.02, 1.0]).unwrap();
-/// let w = auto_frequency_grid(&g, 200).unwrap();
+/// let w = auto_frequency_grid(&g.factored().unwrap(), 200).unwrap();
 /// assert_eq!((w[0], *w.last().unwrap()), (0.01, 100.0));
 /// let r = g.freq_response(&w).unwrap();
 /// let peak = r.magnitude.iter().copied().fold(0.0, f64::max);
 /// let mr = 1.0 / (2.0 * 0.01 * (1.0f64 - 1e-4).sqrt());
 /// assert!((20.0 * (peak / mr).log10()).abs() < 1e-9);
 /// ```
-pub fn auto_frequency_grid(tf: &TransferFunction, points: usize) -> Result<Vec<f64>> {
+pub fn auto_frequency_grid(f: &Factored, points: usize) -> Result<Vec<f64>> {
     check_points(points)?;
-    let pz = tf.pole_zero()?;
-    let form = BodeForm::with_pole_zero(tf, &pz);
+    let form = f.bode();
     let (a, b) = form.decade_range();
     let (lo, hi) = (10f64.powf(a), 10f64.powf(b));
     let mut w: Vec<f64> = (0..points)
@@ -89,7 +98,7 @@ pub fn auto_frequency_grid(tf: &TransferFunction, points: usize) -> Result<Vec<f
             }
         }
     }
-    w.extend(super::margins::local_maxima(&pz.reduced, &form)?);
+    w.extend(super::margins::local_maxima(f)?);
     w.retain(|&x| x.is_finite() && x >= lo && x <= hi);
     w.sort_by(f64::total_cmp);
     w.dedup();
@@ -115,13 +124,13 @@ pub fn auto_frequency_grid(tf: &TransferFunction, points: usize) -> Result<Vec<f
 /// use ltikit::analysis::auto_time_span;
 /// // 1/(s+1): settling ln 50 ≈ 3.91 s, × 1.5 ≈ 5.87, shown up to 10 s.
 /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
-/// assert_eq!(auto_time_span(&g).unwrap().t_end, 10.0);
+/// assert_eq!(auto_time_span(&g.factored().unwrap()).unwrap().t_end, 10.0);
 /// // an unstable pole at s = 2: e^(2t) = 1000 at t = 3.45 s, shown up to 5 s.
 /// let g = TransferFunction::from_descending(&[1.0], &[1.0, -2.0]).unwrap();
-/// assert_eq!(auto_time_span(&g).unwrap().t_end, 5.0);
+/// assert_eq!(auto_time_span(&g.factored().unwrap()).unwrap().t_end, 5.0);
 /// ```
-pub fn auto_time_span(tf: &TransferFunction) -> Result<TimeSpan> {
-    let pz = tf.pole_zero()?;
+pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
+    let pz = f.pole_zero();
     let mut settle: Option<(f64, String)> = None;
     let mut period: Option<(f64, String)> = None;
     let mut growth: Option<(f64, String)> = None;
@@ -232,12 +241,12 @@ pub fn auto_time_span(tf: &TransferFunction) -> Result<TimeSpan> {
 /// use ltikit::TransferFunction;
 /// use ltikit::analysis::auto_time_grid;
 /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
-/// let t = auto_time_grid(&g, 11).unwrap();
+/// let t = auto_time_grid(&g.factored().unwrap(), 11).unwrap();
 /// assert_eq!((t[0], t[1], t[10]), (0.0, 1.0, 10.0));
 /// ```
-pub fn auto_time_grid(tf: &TransferFunction, points: usize) -> Result<Vec<f64>> {
+pub fn auto_time_grid(f: &Factored, points: usize) -> Result<Vec<f64>> {
     check_points(points)?;
-    let t_end = auto_time_span(tf)?.t_end;
+    let t_end = auto_time_span(f)?.t_end;
     let n = (points - 1) as f64;
     Ok((0..points).map(|i| t_end * (i as f64 / n)).collect())
 }
@@ -261,6 +270,7 @@ fn nice_ceil(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lti::TransferFunction;
 
     #[test]
     fn nice_numbers() {
@@ -273,7 +283,10 @@ mod tests {
 
     #[test]
     fn too_few_points() {
-        let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+        let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0])
+            .unwrap()
+            .factored()
+            .unwrap();
         assert!(auto_frequency_grid(&g, 1).is_err());
         assert!(auto_time_grid(&g, 0).is_err());
     }

@@ -58,7 +58,7 @@ impl Input {
 
     /// The poles of U(s), exact (0, a, ±jω), each with its multiplicity; the pair ±jω is
     /// listed upper member first.
-    pub(crate) fn poles(&self) -> Vec<(Complex64, usize)> {
+    pub fn poles(&self) -> Vec<(Complex64, usize)> {
         let c = Complex64::new;
         match *self {
             Input::Impulse | Input::None => vec![],

@@ -20,61 +20,123 @@
 //! # Accuracy
 //! Where poles nearly coincide (ζ = 1 ± 1e-9, residues ~1e4 that cancel) the closed form is
 //! still evaluable but its values carry the rounding of those residues; the exact values come
-//! from [`TransferFunction::time_response`], and [`TransferFunction::response_samples`] reports
+//! from [`TransferFunction::time_response`], and [`TransferFunction::response`] reports
 //! both and how well they agree.
 
 use num_complex::Complex64;
-use serde::Serialize;
 
 use crate::analysis::closed_form::ClosedForm;
+use crate::analysis::factored::{Factored, ScaledProduct};
 use crate::analysis::input::{Input, ic_polynomial};
 use crate::analysis::pfe::{
-    PartialFractions, PfTerm, partial_fractions_with_poles, principal_parts,
+    PartialFractions, PfTerm, direct_factored, partial_fractions_with_poles, principal_parts,
+    principal_parts_factored,
 };
-use crate::analysis::pz::PoleZero;
-use crate::analysis::stability::{HalfPlane, half_plane};
-use crate::error::Result;
-use crate::lti::TransferFunction;
-use crate::numeric::tol::CANCEL_REL_TOL;
-use crate::poly::{Poly, Root};
+use crate::error::{LtiError, Result};
+use crate::lti::{StateSpace, TransferFunction};
+use crate::poly::{HalfPlane, Poly, Root, same_root};
 
 /// A closed-form response and its transient and steady-state parts.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Response {
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ClosedParts {
     /// y(t) = transient + steady state.
     pub closed_form: ClosedForm,
     /// Terms of system poles (and initial conditions, and any δ term).
     pub transient: ClosedForm,
     /// Terms of input poles (including resonant ones).
     pub steady_state: ClosedForm,
+    /// lim t→∞ y(t) when it exists and is finite.
+    pub final_value: Option<f64>,
 }
 
-/// A response sampled at given times: exact values and the closed form side by side.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ResponseSamples {
-    /// The times, in the caller's order.
-    pub t: Vec<f64>,
-    /// Exact y(t) (matrix-exponential stepping, [`TransferFunction::time_response`]); δ terms
-    /// excluded.
-    pub y: Vec<f64>,
-    /// y(t) − steady state(t).
-    pub transient: Vec<f64>,
-    /// The steady-state closed form at t.
-    pub steady_state: Vec<f64>,
-    /// The full closed form at t.
-    pub closed_form: Vec<f64>,
-    /// max |closed form − y| over the times (0 for no times): the built-in cross-check.
-    pub closed_form_error: f64,
-    /// max |y| over the times.
-    pub max_abs_y: f64,
+/// The numerator of a rational piece of Y(s), as coefficients or as factors.
+#[derive(Debug, Clone)]
+pub(crate) enum PartForm {
+    /// num/den with both polynomials (the roots of den are the part's poles).
+    Coeffs { num: Poly, den: Poly },
+    /// gain·Π(s − z)/Π(s − p) over the part's poles (monic denominator).
+    Factors { gain: f64, zeros: Vec<Root> },
 }
 
-/// One rational piece num/den of Y(s) with the roots of den (multiplicities, conjugates exact).
+/// One rational piece of Y(s) with the roots of its denominator (multiplicities,
+/// conjugates exact).
 #[derive(Debug, Clone)]
 pub(crate) struct Part {
-    pub num: Poly,
-    pub den: Poly,
+    pub form: PartForm,
     pub poles: Vec<Root>,
+}
+
+impl Part {
+    fn is_zero(&self) -> bool {
+        match &self.form {
+            PartForm::Coeffs { num, .. } => num.is_zero(),
+            PartForm::Factors { gain, .. } => *gain == 0.0,
+        }
+    }
+
+    /// Partial fractions of the part.
+    pub(crate) fn partial_fractions(&self) -> Result<PartialFractions> {
+        match &self.form {
+            PartForm::Coeffs { num, den } => partial_fractions_with_poles(num, den, &self.poles),
+            PartForm::Factors { gain, zeros } => Ok(PartialFractions {
+                terms: principal_parts_factored(*gain, zeros, &self.poles)?,
+                direct: direct_factored(*gain, zeros, &self.poles),
+            }),
+        }
+    }
+
+    /// The principal parts only (the direct part of an initial-condition piece is zero).
+    fn principal_parts(&self) -> Result<Vec<PfTerm>> {
+        match &self.form {
+            PartForm::Coeffs { num, den } => principal_parts(num, den.leading(), &self.poles),
+            PartForm::Factors { gain, zeros } => {
+                principal_parts_factored(*gain, zeros, &self.poles)
+            }
+        }
+    }
+
+    /// The residue at a simple pole at s = 0: lim s→0 s·N/D.
+    fn residue_at_origin(&self) -> f64 {
+        match &self.form {
+            // D = s·D₁ exactly: the limit of s·N/D at 0 is N(0)/D₁(0).
+            PartForm::Coeffs { num, den } => num.coeff(0) / den.coeff(1),
+            PartForm::Factors { gain, zeros } => {
+                let mut acc = ScaledProduct::new(Complex64::new(*gain, 0.0));
+                for z in zeros {
+                    acc.mul_pow(-z.value, z.multiplicity);
+                }
+                for p in self.poles.iter().filter(|p| !p.is_origin()) {
+                    acc.div_pow(-p.value, p.multiplicity);
+                }
+                acc.value().re
+            }
+        }
+    }
+
+    /// A realisation (A, B, C) of the strictly proper part (the impulse response without its
+    /// δ terms); `None` when that part is zero.
+    pub(crate) fn realization(&self) -> Result<Option<StateSpace>> {
+        if self.is_zero() || self.poles.is_empty() {
+            return Ok(None);
+        }
+        match &self.form {
+            PartForm::Coeffs { num, den } => {
+                let r = if num.degree() >= den.degree() {
+                    num.div_rem(den)?.1
+                } else {
+                    num.clone()
+                };
+                if r.is_zero() {
+                    return Ok(None);
+                }
+                let g = TransferFunction::new(r, den.clone())?;
+                Ok(Some(StateSpace::from_tf(&g)?))
+            }
+            PartForm::Factors { gain, zeros } => {
+                Ok(Some(StateSpace::from_zpk(zeros, &self.poles, *gain)?))
+            }
+        }
+    }
 }
 
 /// Y(s) = forced + initial-condition part, and which poles are the input's.
@@ -86,10 +148,6 @@ pub(crate) struct Decomposition {
     pub ic: Option<Part>,
     /// Remaining input poles (exact values, both members of a pair).
     pub input_poles: Vec<Complex64>,
-}
-
-fn same_root(a: Complex64, b: Complex64) -> bool {
-    a == b || (a - b).norm() <= CANCEL_REL_TOL * a.norm().max(b.norm())
 }
 
 /// `p` with its last `k` coefficients set to exactly 0 (its k-fold root at s = 0 is exact).
@@ -108,37 +166,32 @@ fn exact_zero_roots(p: &Poly, k: usize) -> Poly {
 fn zero_multiplicity(roots: &[Root]) -> usize {
     roots
         .iter()
-        .filter(|r| r.value.re == 0.0 && r.value.im == 0.0)
+        .filter(|r| r.is_origin())
         .map(|r| r.multiplicity)
         .sum()
 }
 
-/// Splits Y(s) into its forced and initial-condition parts (see the module docs).
-pub(crate) fn decompose(g: &TransferFunction, input: &Input, ics: &[f64]) -> Result<Decomposition> {
-    input.validate()?;
-    g.require_proper(&format!("the {input} response"), false)?;
-    let p_ic = ic_polynomial(g.den(), ics)?;
-    decompose_with(g, &g.pole_zero()?, input, p_ic)
+/// How the input meets the plant: which zeros of G cancel input poles, which input poles
+/// remain, and whether the zero of cos:W at s = 0 cancels an integrator of G.
+struct Meeting {
+    zeros_left: Vec<Root>,
+    cancelled_zeros: Vec<Complex64>,
+    input_poles: Vec<(Complex64, usize)>,
+    integrator_cancelled: bool,
+    /// Poles of G·U: the reduced poles with the input poles merged in.
+    poles: Vec<Root>,
 }
 
-/// As [`decompose`] with the pole/zero analysis of `g` already at hand and the initial-condition
-/// polynomial formed (`input` validated, `g` proper): saves the root finding when the caller
-/// (step metrics, `analyze`) has it.
-pub(crate) fn decompose_with(
-    g: &TransferFunction,
-    pz: &PoleZero,
-    input: &Input,
-    p_ic: Poly,
-) -> Result<Decomposition> {
+fn meet(f: &Factored, input: &Input) -> Meeting {
     // Input poles against the zeros of G.
-    let mut zeros = pz.reduced_zeros.clone();
+    let mut zeros = f.reduced_zeros().to_vec();
     let mut cancelled_zeros: Vec<Complex64> = Vec::new();
     let mut input_poles: Vec<(Complex64, usize)> = Vec::new();
     for (v, m) in input.poles() {
         let mut m = m;
         if let Some(z) = zeros
             .iter_mut()
-            .find(|z| z.multiplicity > 0 && same_root(z.value, v))
+            .find(|z| z.multiplicity > 0 && z.same_as(v))
         {
             let k = m.min(z.multiplicity);
             z.multiplicity -= k;
@@ -149,35 +202,17 @@ pub(crate) fn decompose_with(
             input_poles.push((v, m));
         }
     }
-
+    zeros.retain(|z| z.multiplicity > 0);
     // The zero of cos:W at s = 0 against an integrator of G.
-    // Polynomials: zero roots made exact (the reduced form comes from a division).
-    let mut sys = pz.reduced_poles.clone();
-    let mut den_r = exact_zero_roots(pz.reduced.den(), zero_multiplicity(&sys));
-    let (mut num_u, _) = input.laplace();
+    let mut sys = f.reduced_poles().to_vec();
+    let mut integrator_cancelled = false;
     if matches!(input, Input::Cos(_))
-        && let Some(p) = sys
-            .iter_mut()
-            .find(|p| p.value.re == 0.0 && p.value.im == 0.0 && p.multiplicity > 0)
+        && let Some(p) = sys.iter_mut().find(|p| p.is_origin() && p.multiplicity > 0)
     {
-        // D_r = s·D₁ exactly: drop the factor s against the zero of U(s) = s/(s² + ω²).
         p.multiplicity -= 1;
-        num_u = Poly::constant(1.0);
-        let c = den_r.coeffs();
-        den_r = Poly::trimmed(c[..c.len() - 1].to_vec());
+        integrator_cancelled = true;
     }
     sys.retain(|p| p.multiplicity > 0);
-    let num_r = exact_zero_roots(pz.reduced.num(), zero_multiplicity(&pz.reduced_zeros));
-    let mut num_f = &num_r * &num_u;
-    if !cancelled_zeros.is_empty() {
-        num_f = num_f.div_rem(&Poly::from_roots(&cancelled_zeros)?)?.0;
-    }
-    let flat_inputs: Vec<Complex64> = input_poles
-        .iter()
-        .flat_map(|&(v, m)| std::iter::repeat_n(v, m))
-        .collect();
-    let den_f = &den_r * &Poly::from_roots(&flat_inputs)?;
-
     // Pole table of the forced part: system poles, input poles merged in.
     let mut poles = sys;
     for &(v, m) in &input_poles {
@@ -186,35 +221,57 @@ pub(crate) fn decompose_with(
                 p.value = v;
                 p.multiplicity += m;
             }
-            None => poles.push(Root {
-                value: v,
-                multiplicity: m,
-            }),
+            None => poles.push(Root::new(v, m)),
         }
     }
     crate::poly::roots::sort_roots(&mut poles);
-
-    let ic = (!p_ic.is_zero()).then(|| Part {
-        num: p_ic,
-        den: g.den().clone(),
-        poles: pz.poles.clone(),
-    });
-    Ok(Decomposition {
-        forced: Part {
-            num: num_f,
-            den: den_f,
-            poles,
-        },
-        ic,
-        input_poles: input_poles.iter().map(|&(v, _)| v).collect(),
-    })
+    Meeting {
+        zeros_left: zeros,
+        cancelled_zeros,
+        input_poles,
+        integrator_cancelled,
+        poles,
+    }
 }
 
 impl Decomposition {
+    /// Splits Y(s) into its forced and initial-condition parts (see the module docs).
+    pub(crate) fn new(f: &Factored, input: &Input, ics: &[f64]) -> Result<Decomposition> {
+        input.validate()?;
+        f.require_proper(&format!("the {input} response"), false)?;
+        let meeting = meet(f, input);
+        let (forced, ic) = match f.source().coefficients() {
+            Some(c) => {
+                let forced = forced_coeffs(f, &c.reduced, input, &meeting)?;
+                let p_ic = ic_polynomial(c.tf.den(), ics)?;
+                let ic = (!p_ic.is_zero()).then(|| Part {
+                    form: PartForm::Coeffs {
+                        num: p_ic,
+                        den: c.tf.den().clone(),
+                    },
+                    poles: f.poles().to_vec(),
+                });
+                (forced, ic)
+            }
+            None => {
+                if !ics.is_empty() {
+                    return Err(LtiError::invalid(
+                        "initial conditions y(0), y'(0), … are those of an ODE: this plant is given by its zeros and poles, not by ODE coefficients",
+                    ));
+                }
+                (forced_factors(f, input, &meeting), None)
+            }
+        };
+        Ok(Decomposition {
+            forced,
+            ic,
+            input_poles: meeting.input_poles.iter().map(|&(v, _)| v).collect(),
+        })
+    }
+
     /// The partial fractions of Y(s): forced and initial-condition terms merged by pole.
     pub(crate) fn partial_fractions(&self) -> Result<PartialFractions> {
-        let f = &self.forced;
-        let forced = partial_fractions_with_poles(&f.num, &f.den, &f.poles)?;
+        let forced = self.forced.partial_fractions()?;
         let mut groups: Vec<(Complex64, Vec<Complex64>)> = Vec::new();
         let mut add = |t: &PfTerm, exact_only: bool| {
             let k = groups.iter().position(|(p, _)| *p == t.pole).or_else(|| {
@@ -238,7 +295,7 @@ impl Decomposition {
             add(t, true);
         }
         if let Some(ic) = &self.ic {
-            for t in principal_parts(&ic.num, ic.den.leading(), &ic.poles)? {
+            for t in ic.principal_parts()? {
                 add(&t, false);
             }
         }
@@ -266,14 +323,15 @@ impl Decomposition {
     }
 
     /// The closed form and its transient/steady-state split.
-    pub(crate) fn response(&self) -> Result<Response> {
+    pub(crate) fn closed_form(&self) -> Result<ClosedParts> {
         let pf = self.partial_fractions()?;
         let closed_form = ClosedForm::from_partial_fractions(&pf);
         let is_input = |p: Complex64| self.input_poles.iter().any(|&v| v == p || v == p.conj());
-        Ok(Response {
+        Ok(ClosedParts {
             transient: closed_form.filtered(|p| !is_input(p), true),
             steady_state: closed_form.filtered(is_input, false),
             closed_form,
+            final_value: self.final_value(),
         })
     }
 
@@ -281,24 +339,21 @@ impl Decomposition {
     /// except a simple pole at s = 0 (whose residue is the limit).
     pub(crate) fn final_value(&self) -> Option<f64> {
         let mut total = 0.0;
-        let parts = std::iter::once(&self.forced).chain(self.ic.as_ref());
-        for part in parts {
-            if part.num.is_zero() {
+        for part in std::iter::once(&self.forced).chain(self.ic.as_ref()) {
+            if part.is_zero() {
                 continue;
             }
             for p in &part.poles {
-                let at_zero = p.value.re == 0.0 && p.value.im == 0.0;
-                let ok = if at_zero {
+                let ok = if p.is_origin() {
                     p.multiplicity == 1
                 } else {
-                    half_plane(p.value) == HalfPlane::Left
+                    p.half_plane() == HalfPlane::Left
                 };
                 if !ok {
                     return None;
                 }
-                if at_zero {
-                    // D = s·D₁ exactly: the limit of s·N/D at 0 is N(0)/D₁(0).
-                    total += part.num.coeff(0) / part.den.coeff(1);
+                if p.is_origin() {
+                    total += part.residue_at_origin();
                 }
             }
         }
@@ -306,73 +361,64 @@ impl Decomposition {
     }
 }
 
-impl TransferFunction {
-    /// The closed-form response y(t) to `input` with ODE initial conditions
-    /// `ics` = [y(0), y′(0), …] (fewer than the order: the rest are 0), by partial fractions of
-    /// Y(s) = G(s)U(s) + P_ic(s)/D(s) (see the [module docs](self) for cancellations and the
-    /// transient/steady-state split).
-    ///
-    /// Errors: an improper G ([`crate::LtiError::Improper`], for every input), more initial
-    /// conditions than the order, NaN/∞ values, an invalid input parameter.
-    ///
-    /// ```
-    /// use ltikit::TransferFunction;
-    /// use ltikit::analysis::Input;
-    /// // Tank (seed eqs. 3.6–3.18): h' + 0.5 h = u, h(0) = 1, step input:
-    /// // h(t) = e^(−t/2) + 2 (1 − e^(−t/2)): transient −e^(−t/2), steady state 2.
-    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.5]).unwrap();
-    /// let r = g.inverse_laplace(&Input::Step, &[1.0]).unwrap();
-    /// assert_eq!(r.closed_form.to_string(), "y(t) = 2 - e^(-0.5 t)");
-    /// assert_eq!(r.steady_state.expression(), "2");
-    /// assert_eq!(r.transient.expression(), "-e^(-0.5 t)");
-    /// ```
-    pub fn inverse_laplace(&self, input: &Input, ics: &[f64]) -> Result<Response> {
-        decompose(self, input, ics)?.response()
+/// The forced part G·U from the reduced coefficients.
+fn forced_coeffs(
+    f: &Factored,
+    reduced: &TransferFunction,
+    input: &Input,
+    m: &Meeting,
+) -> Result<Part> {
+    // Polynomials: zero roots made exact (the reduced form comes from a division).
+    let mut den_r = exact_zero_roots(reduced.den(), zero_multiplicity(f.reduced_poles()));
+    let (mut num_u, _) = input.laplace();
+    if m.integrator_cancelled {
+        // D_r = s·D₁ exactly: drop the factor s against the zero of U(s) = s/(s² + ω²).
+        num_u = Poly::constant(1.0);
+        let c = den_r.coeffs();
+        den_r = Poly::trimmed(c[..c.len() - 1].to_vec());
     }
+    let num_r = exact_zero_roots(reduced.num(), zero_multiplicity(f.reduced_zeros()));
+    let mut num_f = &num_r * &num_u;
+    if !m.cancelled_zeros.is_empty() {
+        num_f = num_f.div_rem(&Poly::from_roots(&m.cancelled_zeros)?)?.0;
+    }
+    let flat_inputs: Vec<Complex64> = m
+        .input_poles
+        .iter()
+        .flat_map(|&(v, k)| std::iter::repeat_n(v, k))
+        .collect();
+    let den_f = &den_r * &Poly::from_roots(&flat_inputs)?;
+    Ok(Part {
+        form: PartForm::Coeffs {
+            num: num_f,
+            den: den_f,
+        },
+        poles: m.poles.clone(),
+    })
+}
 
-    /// The response at the times `t`: exact values by matrix-exponential stepping, the closed
-    /// form at the same times, the transient/steady-state values, and the largest disagreement
-    /// between closed form and exact values.
-    ///
-    /// Errors: those of [`TransferFunction::inverse_laplace`] and
-    /// [`TransferFunction::time_response`].
-    ///
-    /// ```
-    /// use ltikit::TransferFunction;
-    /// use ltikit::analysis::Input;
-    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0, 1.0]).unwrap();
-    /// let s = g.response_samples(&Input::Step, &[], &[0.0, 1.0, 5.0]).unwrap();
-    /// assert!(s.closed_form_error < 1e-14);
-    /// assert!((s.steady_state[2] - 1.0).abs() < 1e-15);
-    /// ```
-    pub fn response_samples(
-        &self,
-        input: &Input,
-        ics: &[f64],
-        t: &[f64],
-    ) -> Result<ResponseSamples> {
-        crate::analysis::time::check_times(t)?;
-        let dec = decompose(self, input, ics)?;
-        let response = dec.response()?;
-        let y = crate::analysis::time::simulate(&dec, t)?;
-        let closed: Vec<f64> = t.iter().map(|&x| response.closed_form.eval(x)).collect();
-        let steady: Vec<f64> = t.iter().map(|&x| response.steady_state.eval(x)).collect();
-        let transient = y.iter().zip(&steady).map(|(a, b)| a - b).collect();
-        let closed_form_error = closed
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        let max_abs_y = y.iter().map(|v| v.abs()).fold(0.0, f64::max);
-        Ok(ResponseSamples {
-            t: t.to_vec(),
-            y,
-            transient,
-            steady_state: steady,
-            closed_form: closed,
-            closed_form_error,
-            max_abs_y,
-        })
+/// The forced part G·U from the factors.
+fn forced_factors(f: &Factored, input: &Input, m: &Meeting) -> Part {
+    let (gain_u, zero_at_origin) = match input {
+        Input::Sin(w) => (*w, false),
+        Input::Cos(_) => (1.0, !m.integrator_cancelled),
+        Input::None => (0.0, false),
+        _ => (1.0, false),
+    };
+    let mut zeros = m.zeros_left.clone();
+    if zero_at_origin {
+        match zeros.iter_mut().find(|z| z.is_origin()) {
+            Some(z) => z.multiplicity += 1,
+            None => zeros.push(Root::new(Complex64::new(0.0, 0.0), 1)),
+        }
+        crate::poly::roots::sort_roots(&mut zeros);
+    }
+    Part {
+        form: PartForm::Factors {
+            gain: f.gain() * gain_u,
+            zeros,
+        },
+        poles: m.poles.clone(),
     }
 }
 
@@ -383,6 +429,13 @@ mod tests {
 
     fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
         TransferFunction::from_descending(n, d).unwrap()
+    }
+
+    fn forced_den(d: &Decomposition) -> &Poly {
+        match &d.forced.form {
+            PartForm::Coeffs { den, .. } => den,
+            PartForm::Factors { .. } => panic!("coefficient part expected"),
+        }
     }
 
     #[test]
@@ -403,10 +456,10 @@ mod tests {
     fn input_pole_cancelled_by_a_zero() {
         // exp:3 into (s − 3)/(s + 1)²: the unstable input mode is cancelled.
         let g = tf(&[1.0, -3.0], &[1.0, 2.0, 1.0]);
-        let dec = decompose(&g, &Input::Exp(3.0), &[]).unwrap();
-        assert_eq!(dec.forced.den.degree(), 2);
+        let dec = Decomposition::new(&g.factored().unwrap(), &Input::Exp(3.0), &[]).unwrap();
+        assert_eq!(forced_den(&dec).degree(), 2);
         assert!(dec.input_poles.is_empty());
-        let r = dec.response().unwrap();
+        let r = dec.closed_form().unwrap();
         // Y = 1/(s + 1)²
         assert!(r.steady_state.is_zero());
         assert!((r.closed_form.eval(2.0) - 2.0 * (-2f64).exp()).abs() < 1e-15);
@@ -420,16 +473,18 @@ mod tests {
         let r = g.inverse_laplace(&Input::Cos(1.0), &[]).unwrap();
         assert_eq!(r.closed_form.terms().len(), 1);
         assert!((r.closed_form.eval(1.0) - 1f64.sin()).abs() < 1e-15);
-        let dec = decompose(&g, &Input::Cos(1.0), &[]).unwrap();
-        assert_eq!(dec.forced.den.coeffs(), &[1.0, 0.0, 1.0]);
+        let dec = Decomposition::new(&g.factored().unwrap(), &Input::Cos(1.0), &[]).unwrap();
+        assert_eq!(forced_den(&dec).coeffs(), &[1.0, 0.0, 1.0]);
         // 1/(s²(s + 2)) with cos 3t: one integrator left.
         let g = tf(&[1.0], &[1.0, 2.0, 0.0, 0.0]);
-        let s = g
-            .response_samples(&Input::Cos(3.0), &[], &[0.5, 2.0, 7.0])
-            .unwrap();
-        assert!(s.closed_form_error < 1e-14, "{}", s.closed_form_error);
-        let dec = decompose(&g, &Input::Cos(3.0), &[]).unwrap();
-        assert_eq!(dec.forced.den.degree(), 4);
+        let s = &g.response(&Input::Cos(3.0), &[], &[0.5, 2.0, 7.0]).unwrap();
+        assert!(
+            s.samples.closed_form_error < 1e-14,
+            "{}",
+            s.samples.closed_form_error
+        );
+        let dec = Decomposition::new(&g.factored().unwrap(), &Input::Cos(3.0), &[]).unwrap();
+        assert_eq!(forced_den(&dec).degree(), 4);
     }
 
     #[test]
@@ -464,11 +519,15 @@ mod tests {
                 .any(|t| t.pole().unwrap().re > 0.0)
         );
         assert_eq!(
-            decompose(&g, &Input::None, &[1.0]).unwrap().final_value(),
+            Decomposition::new(&g.factored().unwrap(), &Input::None, &[1.0])
+                .unwrap()
+                .final_value(),
             None
         );
         assert_eq!(
-            decompose(&g, &Input::Step, &[]).unwrap().final_value(),
+            Decomposition::new(&g.factored().unwrap(), &Input::Step, &[])
+                .unwrap()
+                .final_value(),
             Some(0.5)
         );
     }
@@ -501,11 +560,11 @@ mod tests {
         for g in &plants {
             for input in &inputs {
                 for ics in [vec![], vec![0.5, -1.0][..g.order().min(2)].to_vec()] {
-                    let s = g.response_samples(input, &ics, &t).unwrap();
+                    let s = g.response(input, &ics, &t).unwrap();
                     assert!(
-                        s.closed_form_error <= 1e-12 * s.max_abs_y.max(1.0),
+                        s.samples.closed_form_error <= 1e-12 * s.samples.max_abs_y.max(1.0),
                         "{g} {input} {ics:?}: {:e}",
-                        s.closed_form_error
+                        s.samples.closed_form_error
                     );
                 }
             }

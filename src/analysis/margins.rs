@@ -23,9 +23,11 @@
 //!   a gain crossing ω_gc: 180° + φ(ω_gc), wrapped into (−180°, 180°].
 //! - Headline values (as MATLAB `margin`): among several crossings, the gain margin closest to
 //!   0 dB and the phase margin closest to 0°; `None` when there is no crossing (infinite
-//!   margin). Crossings at ω = 0 (the asymptote of a double integrator) are not reported;
-//!   neither are phase "crossings" at an imaginary-axis pole, where |G| = ∞ and the phase
-//!   jumps, nor the non-isolated ones of a G that is real on the whole axis.
+//!   margin). A finite negative dc gain is a phase crossing at ω = 0 (G(0) = −|G(0)|: the
+//!   loop gain 1/|G(0)| puts a closed-loop pole at s = 0), reported with the others; the
+//!   asymptote of an integrator at ω → 0 is not a crossing, nor are phase "crossings" at an
+//!   imaginary-axis pole, where |G| = ∞ and the phase jumps, nor the non-isolated ones of a G
+//!   that is real on the whole axis.
 //! - Bandwidth: the first ω where |G| falls to exactly 10^(−3/20) of the dc gain; `None` for a
 //!   dc gain of 0 or ∞ or when |G| never falls that far.
 //! - Resonant peak: M_r = max|G(jω)|/|G(0)| over ω > 0 with ω_r where it is attained, when
@@ -35,8 +37,10 @@
 
 use serde::Serialize;
 
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use super::factored::Factored;
 use super::freq::{BodeForm, mul_pow2};
-use super::pz::PoleZero;
 use crate::error::Result;
 use crate::lti::TransferFunction;
 use crate::numeric::scalar::{Bracket, all_crossings, brent};
@@ -64,7 +68,7 @@ pub struct PhaseCrossing {
 
 /// Stability margins, bandwidth and resonant peak. `None` means "infinite" for margins (no
 /// crossing) and "not defined" for bandwidth and resonance.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct Margins {
     /// Gain margin closest to 0 dB over all phase crossings (ratio); `None` = infinite.
     pub gain_margin: Option<f64>,
@@ -105,40 +109,30 @@ impl TransferFunction {
     /// assert!(m.bandwidth.is_none()); // infinite dc gain
     /// ```
     pub fn margins(&self) -> Result<Margins> {
-        self.margins_with_pole_zero(&self.pole_zero()?)
+        self.factored()?.margins()
     }
+}
 
-    /// [`TransferFunction::margins`] reusing the pole/zero analysis `pz` of this G (from
-    /// [`TransferFunction::pole_zero`] or [`TransferFunction::analyze`]), so the roots of the
-    /// numerator and denominator are not found a second time — what a batch that reports
-    /// both the analysis and the margins of a plant wants. `pz` must be this G's.
+impl Factored {
+    /// Margins, bandwidth and resonance on this factorisation ([`TransferFunction::margins`]).
+    /// A negative finite dc gain is a phase crossing at ω = 0 (its gain margin is the lower
+    /// end of the stabilising gains).
     ///
     /// ```
     /// use ltikit::TransferFunction;
-    /// let g = TransferFunction::from_descending(&[2.0], &[1.0, 3.0, 2.0, 0.0]).unwrap();
-    /// let a = g.analyze().unwrap();
-    /// let m = g.margins_with_pole_zero(&a.pole_zero).unwrap();
-    /// assert_eq!(m, g.margins().unwrap());
+    /// // −2/(s + 1): φ(0) = −180°, closed loop s + 1 − 2K stable for K < 1/2: GM = 0.5 at ω = 0.
+    /// let f = TransferFunction::from_descending(&[-2.0], &[1.0, 1.0]).unwrap().factored().unwrap();
+    /// let m = f.margins().unwrap();
+    /// assert_eq!(m.phase_crossings[0].w, 0.0);
+    /// assert!((m.gain_margin.unwrap() - 0.5).abs() < 1e-15);
     /// ```
-    pub fn margins_with_pole_zero(&self, pz: &PoleZero) -> Result<Margins> {
-        let reduced = &pz.reduced;
-        let form = BodeForm::with_pole_zero(self, pz);
-        let mut out = Margins {
-            gain_margin: None,
-            gain_margin_db: None,
-            phase_crossover: None,
-            phase_margin_deg: None,
-            gain_crossover: None,
-            gain_crossings: Vec::new(),
-            phase_crossings: Vec::new(),
-            bandwidth: None,
-            resonant_peak: None,
-            resonant_frequency: None,
-        };
-        if reduced.num().is_zero() {
+    pub fn margins(&self) -> Result<Margins> {
+        let form = self.bode();
+        let mut out = Margins::default();
+        if self.is_zero() {
             return Ok(out);
         }
-        let ax = AxisPolys::new(reduced, &form)?;
+        let cand = Candidates::new(self, form)?;
         let singular: Vec<f64> = form
             .axis_poles()
             .iter()
@@ -147,8 +141,7 @@ impl TransferFunction {
             .collect();
 
         // gain crossings
-        let g = &ax.mag2(&ax.n) - &ax.mag2(&ax.d);
-        for w in ax.positive_roots(&g)? {
+        for w in cand.gain_crossings(form)? {
             if let Some(w) = polish(|x| form.eval(x).ln_mag(), w, &singular, 1e-10) {
                 out.gain_crossings.push(GainCrossing {
                     w,
@@ -158,9 +151,18 @@ impl TransferFunction {
         }
         dedup_by_w(&mut out.gain_crossings, |c| c.w);
 
-        // phase crossings
-        let h = &(&ax.n.odd * &ax.d.even) - &(&ax.n.even * &ax.d.odd);
-        for w in ax.positive_roots(&h)? {
+        // phase crossings: ω = 0 when G(0) is finite and negative (and G has a pole that the
+        // loop gain 1/|G(0)| moves to s = 0), then ω > 0
+        let lf = self.low_frequency();
+        if lf.int_order == 0 && lf.sign < 0.0 && !self.reduced_poles().is_empty() {
+            let e = form.eval(0.0);
+            out.phase_crossings.push(PhaseCrossing {
+                w: 0.0,
+                gain_margin: (-e.ln_mag()).exp(),
+                gain_margin_db: -e.db(),
+            });
+        }
+        for w in cand.phase_crossings(form)? {
             if singular.iter().any(|&b| (w - b).abs() <= 1e-8 * b) {
                 continue;
             }
@@ -169,9 +171,8 @@ impl TransferFunction {
                 continue;
             }
             let phi = e.phase_rad();
-            let target = std::f64::consts::PI
-                * (2.0 * ((phi - std::f64::consts::PI) / std::f64::consts::TAU).round() + 1.0);
-            if (phi - target).abs() >= std::f64::consts::FRAC_PI_2 {
+            let target = PI * (2.0 * ((phi - PI) / TAU).round() + 1.0);
+            if (phi - target).abs() >= FRAC_PI_2 {
                 continue; // G real positive here
             }
             if let Some(w) = polish(|x| form.eval(x).phase_rad() - target, w, &singular, 1e-10) {
@@ -184,36 +185,17 @@ impl TransferFunction {
             }
         }
         dedup_by_w(&mut out.phase_crossings, |c| c.w);
+        out.headline();
 
-        if let Some(c) = out.gain_crossings.iter().min_by(|a, b| {
-            a.phase_margin_deg
-                .abs()
-                .total_cmp(&b.phase_margin_deg.abs())
-        }) {
-            out.phase_margin_deg = Some(c.phase_margin_deg);
-            out.gain_crossover = Some(c.w);
-        }
-        if let Some(c) = out
-            .phase_crossings
-            .iter()
-            .min_by(|a, b| a.gain_margin_db.abs().total_cmp(&b.gain_margin_db.abs()))
-        {
-            out.gain_margin = Some(c.gain_margin);
-            out.gain_margin_db = Some(c.gain_margin_db);
-            out.phase_crossover = Some(c.w);
-        }
-
-        // |G(0)| = |K| from the lowest coefficients as given (0 or ∞ with a zero or pole at 0)
+        // |G(0)| = |K| from the source (0 or ∞ with a zero or pole at 0)
         let dc = form.eval(0.0).magnitude();
         if !(dc > 0.0 && dc.is_finite()) {
             return Ok(out);
         }
 
         // bandwidth: |G| = 10^(−3/20)·|G(0)|
-        let c2 = dc * dc * 10f64.powf(-0.3);
-        let b = &ax.mag2(&ax.n) - &ax.mag2(&ax.d).scale(c2);
         let level = dc.ln() - 0.15 * std::f64::consts::LN_10;
-        for w in ax.positive_roots(&b)? {
+        for w in cand.level_crossings(form, dc * dc * 10f64.powf(-0.3), level)? {
             if let Some(w) = polish(|x| form.eval(x).ln_mag() - level, w, &singular, 1e-10) {
                 out.bandwidth = Some(w);
                 break;
@@ -232,15 +214,15 @@ impl TransferFunction {
             return Ok(out);
         }
         let mut best: Option<(f64, f64)> = None;
-        for w in resonance_candidates(&ax, &form, &singular)? {
+        for w in resonance_candidates(&cand, form, &singular)? {
             let lm = form.eval(w).ln_mag();
             if best.is_none_or(|(_, l)| lm > l) {
                 best = Some((w, lm));
             }
         }
-        let ln_inf = match reduced.relative_degree() {
-            0 => reduced.gain().abs().ln(),
-            r if r > 0 => f64::NEG_INFINITY,
+        let ln_inf = match self.relative_degree() {
+            Some(0) => self.gain().abs().ln(),
+            Some(r) if r > 0 => f64::NEG_INFINITY,
             _ => f64::INFINITY,
         };
         if let Some((w, lm)) = best {
@@ -251,6 +233,105 @@ impl TransferFunction {
             }
         }
         Ok(out)
+    }
+}
+
+impl Margins {
+    /// The headline values (MATLAB `margin`): the gain margin closest to 0 dB and the phase
+    /// margin closest to 0° among the crossings.
+    fn headline(&mut self) {
+        if let Some(c) = self.gain_crossings.iter().min_by(|a, b| {
+            a.phase_margin_deg
+                .abs()
+                .total_cmp(&b.phase_margin_deg.abs())
+        }) {
+            self.phase_margin_deg = Some(c.phase_margin_deg);
+            self.gain_crossover = Some(c.w);
+        }
+        if let Some(c) = self
+            .phase_crossings
+            .iter()
+            .min_by(|a, b| a.gain_margin_db.abs().total_cmp(&b.gain_margin_db.abs()))
+        {
+            self.gain_margin = Some(c.gain_margin);
+            self.gain_margin_db = Some(c.gain_margin_db);
+            self.phase_crossover = Some(c.w);
+        }
+    }
+}
+
+/// Where crossing candidates come from: the polynomials in ω² of the reduced coefficients
+/// (plants given by coefficients), or sign changes on a dense grid adapted to the factors
+/// (plants without coefficients). Either way the candidates are polished on G(jω).
+enum Candidates {
+    Polys(AxisPolys),
+    Grid(Vec<f64>),
+}
+
+/// Grid points per decade for plants without coefficients.
+const GRID_PER_DECADE: usize = 200;
+
+impl Candidates {
+    fn new(f: &Factored, form: &BodeForm) -> Result<Candidates> {
+        match f.source().coefficients() {
+            Some(c) => Ok(Candidates::Polys(AxisPolys::new(&c.reduced, form)?)),
+            None => Ok(Candidates::Grid(form.sampling_grid(GRID_PER_DECADE))),
+        }
+    }
+
+    fn gain_crossings(&self, form: &BodeForm) -> Result<Vec<f64>> {
+        self.level_crossings(form, 1.0, 0.0)
+    }
+
+    /// ω where |G| = e^level (`c2` = e^(2·level) for the polynomial form).
+    fn level_crossings(&self, form: &BodeForm, c2: f64, level: f64) -> Result<Vec<f64>> {
+        match self {
+            Candidates::Polys(ax) => {
+                let p = &ax.mag2(&ax.n) - &ax.mag2(&ax.d).scale(c2);
+                ax.positive_roots(&p)
+            }
+            Candidates::Grid(xs) => {
+                let f = |x: f64| form.eval(x).ln_mag() - level;
+                let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
+                Ok(all_crossings(f, xs, &fs, 0.0))
+            }
+        }
+    }
+
+    /// ω where φ ≡ 180° (mod 360°), or G is real (polynomial form: roots of Im(N·conj D)).
+    fn phase_crossings(&self, form: &BodeForm) -> Result<Vec<f64>> {
+        match self {
+            Candidates::Polys(ax) => {
+                let h = &(&ax.n.odd * &ax.d.even) - &(&ax.n.even * &ax.d.odd);
+                ax.positive_roots(&h)
+            }
+            Candidates::Grid(xs) => {
+                // the branch index k of φ ∈ (−180° + 360°k, 180° + 360°k] changes at a crossing
+                let branch = |x: f64| ((form.eval(x).phase_rad() - PI) / TAU).ceil();
+                let mut out = Vec::new();
+                for w in xs.windows(2) {
+                    let (ka, kb) = (branch(w[0]), branch(w[1]));
+                    if !ka.is_finite() || !kb.is_finite() || (ka - kb).abs() < 0.5 {
+                        continue;
+                    }
+                    let target = PI * (2.0 * ka.max(kb) - 1.0);
+                    let f = |x: f64| form.eval(x).phase_rad() - target;
+                    let (fa, fb) = (f(w[0]), f(w[1]));
+                    if fa.signum() != fb.signum() {
+                        let br = Bracket {
+                            a: w[0],
+                            b: w[1],
+                            fa,
+                            fb,
+                        };
+                        if let Ok(x) = brent(f, br, 0.0) {
+                            out.push(x);
+                        }
+                    }
+                }
+                Ok(out)
+            }
+        }
     }
 }
 
@@ -426,19 +507,20 @@ fn polish(f: impl Fn(f64) -> f64, w: f64, walls: &[f64], tangent_tol: f64) -> Op
 }
 
 /// Every local maximum of |G(jω)| at ω > 0 (excluding imaginary-axis poles, where |G| = ∞),
-/// sorted. `reduced` is G in lowest terms and `form` its [`BodeForm`].
-pub(crate) fn local_maxima(reduced: &TransferFunction, form: &BodeForm) -> Result<Vec<f64>> {
-    if reduced.num().is_zero() {
+/// sorted.
+pub(crate) fn local_maxima(f: &Factored) -> Result<Vec<f64>> {
+    if f.is_zero() {
         return Ok(Vec::new());
     }
-    let ax = AxisPolys::new(reduced, form)?;
+    let form = f.bode();
+    let cand = Candidates::new(f, form)?;
     let walls: Vec<f64> = form
         .axis_poles()
         .iter()
         .chain(form.axis_zeros())
         .copied()
         .collect();
-    let mut out = resonance_candidates(&ax, form, &walls)?;
+    let mut out = resonance_candidates(&cand, form, &walls)?;
     dedup_by_w(&mut out, |&w| w);
     Ok(out)
 }
@@ -446,13 +528,18 @@ pub(crate) fn local_maxima(reduced: &TransferFunction, form: &BodeForm) -> Resul
 /// Local maxima of |G(jω)| at ω > 0: roots of d|G|²/du, polished on d ln|G|/dω. When that
 /// polynomial's degree exceeds [`MAX_ORDER`], sign changes of d ln|G|/dω on a dense
 /// logarithmic grid (refined at lightly damped modes) are used instead.
-fn resonance_candidates(ax: &AxisPolys, form: &BodeForm, walls: &[f64]) -> Result<Vec<f64>> {
-    let an = ax.mag2(&ax.n);
-    let ad = ax.mag2(&ax.d);
-    let r = &(&an.derivative() * &ad) - &(&an * &ad.derivative());
+fn resonance_candidates(cand: &Candidates, form: &BodeForm, walls: &[f64]) -> Result<Vec<f64>> {
     let d = |x: f64| form.d_ln_mag(x);
     let mut out = Vec::new();
-    if r.degree() <= MAX_ORDER {
+    let r = match cand {
+        Candidates::Polys(ax) => {
+            let an = ax.mag2(&ax.n);
+            let ad = ax.mag2(&ax.d);
+            Some((ax, &(&an.derivative() * &ad) - &(&an * &ad.derivative())))
+        }
+        Candidates::Grid(_) => None,
+    };
+    if let Some((ax, r)) = r.filter(|(_, r)| r.degree() <= MAX_ORDER) {
         for w in ax.positive_roots(&r)? {
             if let Some(w) = polish(d, w, walls, 0.0) {
                 out.push(w);

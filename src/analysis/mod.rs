@@ -1,8 +1,14 @@
-//! Analyses of transfer functions: poles and zeros, stability, modes, partial fractions and
-//! closed-form responses, exact time responses, step metrics, frequency response, margins.
+//! Analyses of SISO plants on their factored form: poles and zeros, stability, modes, partial
+//! fractions and closed-form responses, exact time responses, step metrics, frequency
+//! response, margins, Nyquist, asymptotes and automatic grids.
+//!
+//! A plant is factored once ([`Factored`], from [`crate::TransferFunction::factored`] or
+//! [`Factored::from_zpk`]); every analysis is a method of the factored form, and the
+//! [`crate::TransferFunction`] methods of the same names factor first.
 
 pub mod asymptotes;
 pub mod closed_form;
+pub mod factored;
 pub mod freq;
 pub mod grid;
 pub mod input;
@@ -11,7 +17,8 @@ pub mod margins;
 pub mod modes;
 pub mod nyquist;
 pub mod pfe;
-pub mod pz;
+pub mod response;
+pub mod ss;
 pub mod stability;
 pub mod step_info;
 pub mod summary;
@@ -19,16 +26,16 @@ pub mod time;
 
 pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm};
+pub use factored::{Factored, MAX_FACTORED_ORDER, PoleZero, factorizations_on_this_thread};
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
 pub use input::Input;
-pub use laplace::{Response, ResponseSamples};
 pub use margins::{GainCrossing, Margins, PhaseCrossing};
 pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use nyquist::{ContourPart, NyquistContour, NyquistPoint, nyquist_contour};
 pub use pfe::{PartialFractions, PfTerm, partial_fractions};
-pub use pz::PoleZero;
+pub use response::{Response, ResponseSamples};
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
-pub use step_info::StepInfo;
+pub use step_info::{StepInfo, StepInfoOptions};
 pub use summary::Analysis;
 pub use time::TimeResponse;

@@ -3,8 +3,8 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::analysis::stability::{HalfPlane, half_plane};
-use crate::poly::{Poly, Root};
+use crate::analysis::factored::Factored;
+use crate::poly::{HalfPlane, Poly, Root, half_plane};
 
 /// One distinct pole seen as a mode e^{pt}.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -158,6 +158,22 @@ pub fn second_order(den: &Poly, roots: &[Root]) -> Option<SecondOrder> {
         zeta: Some(zeta),
         wd,
     })
+}
+
+impl Factored {
+    /// One mode per distinct characteristic root ([`modes`]).
+    pub fn modes(&self) -> Vec<Mode> {
+        modes(self.poles())
+    }
+
+    /// ωₙ, ζ, ω_d and the damping class when the plant has order 2 ([`second_order`]).
+    pub fn second_order(&self) -> Option<SecondOrder> {
+        if self.order() != 2 {
+            return None;
+        }
+        let den = self.characteristic_poly().ok()?;
+        second_order(&den, self.poles())
+    }
 }
 
 #[cfg(test)]

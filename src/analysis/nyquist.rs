@@ -20,9 +20,10 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::analysis::stability::{HalfPlane, half_plane};
+use crate::analysis::factored::Factored;
 use crate::error::Result;
 use crate::lti::TransferFunction;
+use crate::poly::{HalfPlane, half_plane};
 
 /// Which part of the D contour a point lies on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -135,7 +136,7 @@ fn too_coarse(a: Complex64, b: Complex64) -> bool {
 }
 
 /// Samples one piece adaptively, appending to `out` (without duplicating a shared endpoint).
-fn sample_piece(g: &TransferFunction, piece: Piece, out: &mut Vec<NyquistPoint>) {
+fn sample_piece(g: &Factored, piece: Piece, out: &mut Vec<NyquistPoint>) {
     let n = piece.initial();
     let eval = |t: f64| {
         let s = piece.s(t);
@@ -179,129 +180,21 @@ fn sample_piece(g: &TransferFunction, piece: Piece, out: &mut Vec<NyquistPoint>)
 /// use ltikit::analysis::nyquist_contour;
 /// // K/(s + 1)³ with K = 10 is unstable in unity feedback (K > 8): two closed-loop RHP poles.
 /// let g = TransferFunction::from_descending(&[10.0], &[1.0, 3.0, 3.0, 1.0]).unwrap();
-/// let n = nyquist_contour(&g).unwrap();
+/// let n = nyquist_contour(&g.factored().unwrap()).unwrap();
 /// assert_eq!(n.open_loop_rhp_poles, 0);
 /// assert_eq!(n.encirclements, Some(2));
 /// assert_eq!(n.closed_loop_rhp_poles, Some(2));
 /// ```
-pub fn nyquist_contour(g: &TransferFunction) -> Result<NyquistContour> {
+pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
     g.require_proper("Nyquist plot", false)?;
-    let pz = g.pole_zero()?;
-    let red = &pz.reduced;
-    let g_inf = if red.num().degree() == red.den().degree() {
-        red.num().leading() / red.den().leading()
+    let g_inf = if g.relative_degree() == Some(0) {
+        g.gain()
     } else {
         0.0
     };
-
-    // Imaginary-axis poles (ω ≥ 0) and the other roots.
-    let mut axis: Vec<(f64, usize)> = Vec::new();
-    let mut rhp = 0usize;
-    for p in &pz.reduced_poles {
-        match half_plane(p.value) {
-            HalfPlane::Axis if p.value.im >= 0.0 => axis.push((p.value.im, p.multiplicity)),
-            HalfPlane::Right => rhp += p.multiplicity,
-            _ => {}
-        }
-    }
-    axis.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let roots: Vec<Complex64> = pz
-        .reduced_poles
-        .iter()
-        .chain(pz.reduced_zeros.iter())
-        .map(|r| r.value)
-        .collect();
-    let corners: Vec<f64> = roots
-        .iter()
-        .map(|r| r.norm())
-        .filter(|&w| w > 0.0)
-        .collect();
-    let w_lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
-    let w_hi = corners.iter().copied().fold(0.0, f64::max);
-    let (w_lo, w_hi) = if corners.is_empty() {
-        (1.0, 1.0)
-    } else {
-        (w_lo, w_hi)
-    };
-
-    // Neighbourhood scale and indentation radius of each axis pole.
-    let scale_of = |w: f64| {
-        if w == 0.0 {
-            return w_lo;
-        }
-        let here = Complex64::new(0.0, w);
-        roots
-            .iter()
-            .map(|r| (r - here).norm())
-            .filter(|&d| d > 1e-12 * w)
-            .fold(w, f64::min)
-    };
-    let scales: Vec<f64> = axis.iter().map(|&(w, _)| scale_of(w)).collect();
-    let eps: Vec<f64> = scales.iter().map(|s| INDENT_REL * s).collect();
-
-    // Pieces of the ω > 0 half (after the origin).
-    let origin_pole = axis.first().filter(|a| a.0 == 0.0).map(|a| a.1);
-    let mut pieces = Vec::new();
-    let mut start = if origin_pole.is_some() {
-        eps[0]
-    } else {
-        1e-3 * w_lo
-    };
-    let end = 1e3 * w_hi;
-    for (k, &(w, m)) in axis.iter().enumerate() {
-        if w == 0.0 {
-            continue;
-        }
-        pieces.push(Piece::Axis {
-            a: start.log10(),
-            b: (w - eps[k]).log10(),
-        });
-        pieces.push(Piece::Arc { w, eps: eps[k], m });
-        start = w + eps[k];
-    }
-    pieces.push(Piece::Axis {
-        a: start.log10(),
-        b: end.log10(),
-    });
-
-    let mut positive = Vec::new();
-    for piece in pieces {
-        let before = positive.len();
-        sample_piece(red, piece, &mut positive);
-        // Pieces share endpoints only when adjacent pieces meet exactly; they do here
-        // (ω_p ± ε on both), so drop the duplicate.
-        if before > 0 && positive.len() > before {
-            let (a, b) = (positive[before - 1].s, positive[before].s);
-            if (a - b).norm() <= 1e-12 * a.norm().max(1.0) {
-                positive.remove(before);
-            }
-        }
-    }
-
-    // The middle: the origin semicircle, or the point ω = 0.
-    let mut middle = Vec::new();
-    if let Some(m) = origin_pole {
-        sample_piece(
-            red,
-            Piece::Arc {
-                w: 0.0,
-                eps: eps[0],
-                m,
-            },
-            &mut middle,
-        );
-        // The arc's ends are ∓jε: the mirror and the positive half start there.
-        middle.remove(0);
-        middle.pop();
-    } else {
-        let s = Complex64::new(0.0, 0.0);
-        middle.push(NyquistPoint {
-            s,
-            g: red.eval(s),
-            part: ContourPart::Axis,
-        });
-    }
-
+    let geo = Geometry::of(g);
+    let positive = geo.positive_half(g);
+    let middle = geo.middle(g);
     let mut points: Vec<NyquistPoint> = positive
         .iter()
         .rev()
@@ -313,14 +206,172 @@ pub fn nyquist_contour(g: &TransferFunction) -> Result<NyquistContour> {
         .collect();
     points.extend(middle);
     points.extend(positive.iter().copied());
+    let display_radius = geo.display_radius(&points, g_inf);
+    let encirclements = winding_about_minus_one(&points, g_inf);
+    Ok(NyquistContour {
+        points,
+        g_at_infinity: g_inf,
+        axis_poles: geo.axis.iter().map(|a| a.0).collect(),
+        indent_radius: geo.eps,
+        display_radius,
+        open_loop_rhp_poles: geo.rhp,
+        encirclements,
+        closed_loop_rhp_poles: encirclements.map(|n| n + geo.rhp as i64),
+    })
+}
 
-    // Display radius: |G| on the axis away from the imaginary-axis poles.
-    let display_radius = if axis.is_empty() {
-        None
-    } else {
+/// Where the contour must go around poles: the imaginary-axis poles (ω ≥ 0, sorted, with
+/// multiplicity), their neighbourhood scales and indentation radii, the right-half-plane pole
+/// count and the span of the corner frequencies.
+struct Geometry {
+    axis: Vec<(f64, usize)>,
+    scales: Vec<f64>,
+    eps: Vec<f64>,
+    rhp: usize,
+    w_lo: f64,
+    w_hi: f64,
+}
+
+impl Geometry {
+    fn of(g: &Factored) -> Geometry {
+        let pz = g.pole_zero();
+        let mut axis: Vec<(f64, usize)> = Vec::new();
+        let mut rhp = 0usize;
+        for p in &pz.reduced_poles {
+            match half_plane(p.value) {
+                HalfPlane::Axis if p.value.im >= 0.0 => axis.push((p.value.im, p.multiplicity)),
+                HalfPlane::Right => rhp += p.multiplicity,
+                _ => {}
+            }
+        }
+        axis.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let roots: Vec<Complex64> = pz
+            .reduced_poles
+            .iter()
+            .chain(pz.reduced_zeros.iter())
+            .map(|r| r.value)
+            .collect();
+        let corners: Vec<f64> = roots
+            .iter()
+            .map(|r| r.norm())
+            .filter(|&w| w > 0.0)
+            .collect();
+        let (w_lo, w_hi) = if corners.is_empty() {
+            (1.0, 1.0)
+        } else {
+            (
+                corners.iter().copied().fold(f64::INFINITY, f64::min),
+                corners.iter().copied().fold(0.0, f64::max),
+            )
+        };
+        // Neighbourhood scale and indentation radius of each axis pole.
+        let scale_of = |w: f64| {
+            if w == 0.0 {
+                return w_lo;
+            }
+            let here = Complex64::new(0.0, w);
+            roots
+                .iter()
+                .map(|r| (r - here).norm())
+                .filter(|&d| d > 1e-12 * w)
+                .fold(w, f64::min)
+        };
+        let scales: Vec<f64> = axis.iter().map(|&(w, _)| scale_of(w)).collect();
+        let eps: Vec<f64> = scales.iter().map(|s| INDENT_REL * s).collect();
+        Geometry {
+            axis,
+            scales,
+            eps,
+            rhp,
+            w_lo,
+            w_hi,
+        }
+    }
+
+    /// Multiplicity of a pole at the origin.
+    fn origin_pole(&self) -> Option<usize> {
+        self.axis.first().filter(|a| a.0 == 0.0).map(|a| a.1)
+    }
+
+    /// The ω > 0 half after the origin: axis pieces between the indentations.
+    fn positive_half(&self, g: &Factored) -> Vec<NyquistPoint> {
+        let mut pieces = Vec::new();
+        let mut start = if self.origin_pole().is_some() {
+            self.eps[0]
+        } else {
+            1e-3 * self.w_lo
+        };
+        for (k, &(w, m)) in self.axis.iter().enumerate() {
+            if w == 0.0 {
+                continue;
+            }
+            pieces.push(Piece::Axis {
+                a: start.log10(),
+                b: (w - self.eps[k]).log10(),
+            });
+            pieces.push(Piece::Arc {
+                w,
+                eps: self.eps[k],
+                m,
+            });
+            start = w + self.eps[k];
+        }
+        pieces.push(Piece::Axis {
+            a: start.log10(),
+            b: (1e3 * self.w_hi).log10(),
+        });
+        let mut positive = Vec::new();
+        for piece in pieces {
+            let before = positive.len();
+            sample_piece(g, piece, &mut positive);
+            // Adjacent pieces meet exactly (ω_p ± ε on both): drop the duplicate.
+            if before > 0 && positive.len() > before {
+                let (a, b) = (positive[before - 1].s, positive[before].s);
+                if (a - b).norm() <= 1e-12 * a.norm().max(1.0) {
+                    positive.remove(before);
+                }
+            }
+        }
+        positive
+    }
+
+    /// The middle: the semicircle around a pole at the origin, or the point ω = 0.
+    fn middle(&self, g: &Factored) -> Vec<NyquistPoint> {
+        let mut middle = Vec::new();
+        if let Some(m) = self.origin_pole() {
+            sample_piece(
+                g,
+                Piece::Arc {
+                    w: 0.0,
+                    eps: self.eps[0],
+                    m,
+                },
+                &mut middle,
+            );
+            // The arc's ends are ∓jε: the mirror and the positive half start there.
+            middle.remove(0);
+            middle.pop();
+        } else {
+            let s = Complex64::new(0.0, 0.0);
+            middle.push(NyquistPoint {
+                s,
+                g: g.eval(s),
+                part: ContourPart::Axis,
+            });
+        }
+        middle
+    }
+
+    /// Display radius: 1.5 × the largest |G| on the axis away from the imaginary-axis poles
+    /// (None without such poles).
+    fn display_radius(&self, points: &[NyquistPoint], g_inf: f64) -> Option<f64> {
+        if self.axis.is_empty() {
+            return None;
+        }
         let near = |w: f64| {
-            axis.iter()
-                .zip(&scales)
+            self.axis
+                .iter()
+                .zip(&self.scales)
                 .any(|(&(wp, _), &sc)| (w - wp).abs() < 0.5 * sc)
         };
         let finite = points
@@ -330,20 +381,7 @@ pub fn nyquist_contour(g: &TransferFunction) -> Result<NyquistContour> {
             .filter(|v| v.is_finite())
             .fold(1.0f64.max(g_inf.abs()), f64::max);
         Some(1.5 * finite)
-    };
-
-    let encirclements = winding_about_minus_one(&points, g_inf);
-    let closed = encirclements.map(|n| n + rhp as i64);
-    Ok(NyquistContour {
-        points,
-        g_at_infinity: g_inf,
-        axis_poles: axis.iter().map(|a| a.0).collect(),
-        indent_radius: eps,
-        display_radius,
-        open_loop_rhp_poles: rhp,
-        encirclements,
-        closed_loop_rhp_poles: closed,
-    })
+    }
 }
 
 /// Clockwise encirclements of −1 by the closed curve (the points, closed through G(∞)).
@@ -384,6 +422,13 @@ impl TransferFunction {
     /// assert_eq!(n.closed_loop_rhp_poles, Some(0));
     /// ```
     pub fn nyquist(&self) -> Result<NyquistContour> {
+        nyquist_contour(&self.factored()?)
+    }
+}
+
+impl Factored {
+    /// The Nyquist contour ([`nyquist_contour`]).
+    pub fn nyquist(&self) -> Result<NyquistContour> {
         nyquist_contour(self)
     }
 }
@@ -423,7 +468,7 @@ mod tests {
         ];
         for (num, den) in cases {
             let g = tf(num, den);
-            let n = nyquist_contour(&g).unwrap();
+            let n = g.nyquist().unwrap();
             assert_eq!(
                 n.closed_loop_rhp_poles,
                 Some(closed_loop_rhp(&g)),
@@ -437,7 +482,7 @@ mod tests {
     #[test]
     fn indentation_goes_round_the_poles_to_the_right() {
         let g = tf(&[1.0, 0.5], &[1.0, 0.0, 4.0, 0.0]);
-        let n = nyquist_contour(&g).unwrap();
+        let n = g.nyquist().unwrap();
         assert_eq!(n.axis_poles, vec![0.0, 2.0]);
         let ind: Vec<_> = n
             .points
@@ -462,7 +507,7 @@ mod tests {
     #[test]
     fn bounded_curve_has_no_display_radius_and_ends_at_g_infinity() {
         let g = tf(&[2.0, 1.0], &[1.0, 1.0]); // (2s + 1)/(s + 1): G(0) = 1, G(∞) = 2
-        let n = nyquist_contour(&g).unwrap();
+        let n = g.nyquist().unwrap();
         assert!(n.display_radius.is_none());
         assert!((n.g_at_infinity - 2.0).abs() < 1e-15);
         assert!((n.points.last().unwrap().g - Complex64::new(2.0, 0.0)).norm() < 1e-2);
@@ -471,16 +516,16 @@ mod tests {
 
     #[test]
     fn rejects_improper_and_handles_cancellation() {
-        assert!(nyquist_contour(&tf(&[1.0, 0.0, 0.0], &[1.0, 1.0])).is_err());
+        assert!(tf(&[1.0, 0.0, 0.0], &[1.0, 1.0]).nyquist().is_err());
         // s/(s(s+1)): the origin pole cancels, no indentation.
-        let n = nyquist_contour(&tf(&[1.0, 0.0], &[1.0, 1.0, 0.0])).unwrap();
+        let n = tf(&[1.0, 0.0], &[1.0, 1.0, 0.0]).nyquist().unwrap();
         assert!(n.axis_poles.is_empty());
     }
 
     #[test]
     fn passing_through_minus_one_is_undetermined() {
         // G = −1 constant: the whole curve is the point −1.
-        let n = nyquist_contour(&tf(&[-1.0], &[1.0])).unwrap();
+        let n = tf(&[-1.0], &[1.0]).nyquist().unwrap();
         assert_eq!(n.encirclements, None);
     }
 
@@ -488,7 +533,7 @@ mod tests {
     fn origin_indentation_maps_to_the_textbook_arc() {
         // 1/(s(s + 1)): near s = 0, G ≈ 1/s = (1/ε) e^{−jθ}: radius 1/ε, sweeping from +90° to
         // −90° (clockwise) as θ goes from −90° to +90°.
-        let n = nyquist_contour(&tf(&[1.0], &[1.0, 1.0, 0.0])).unwrap();
+        let n = tf(&[1.0], &[1.0, 1.0, 0.0]).nyquist().unwrap();
         let eps = n.indent_radius[0];
         let arc: Vec<_> = n
             .points

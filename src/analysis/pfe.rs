@@ -27,6 +27,8 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
+use crate::analysis::factored::series::{normalised_series, series_mul};
+use crate::analysis::factored::{Factored, ScaledProduct};
 use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
 use crate::poly::{Poly, Root};
@@ -140,10 +142,60 @@ pub(crate) fn partial_fractions_with_poles(
 /// The principal parts of N/(lead·Π(s − p)^m) at every pole: terms grouped by pole, powers
 /// 1..=m ascending. An empty list for N = 0.
 pub(crate) fn principal_parts(num: &Poly, lead: f64, poles: &[Root]) -> Result<Vec<PfTerm>> {
-    let mut terms = Vec::new();
     if num.is_zero() {
-        return Ok(terms);
+        return Ok(Vec::new());
     }
+    principal_parts_with(poles, |i| laurent_head(num, lead, poles, i))
+}
+
+/// The principal parts of gain·Π(s − z)^k / Π(s − p)^m (a monic denominator) at every pole,
+/// from the factors alone: the Laurent head at p is S·Π(1 + h/(p − z))^k·Π(1 + h/(p − q))^(−m)
+/// with the scalar S = gain·Π(p − z)^k/Π(p − q)^m kept in scaled form, so hundreds of
+/// factors neither overflow nor underflow.
+pub(crate) fn principal_parts_factored(
+    gain: f64,
+    zeros: &[Root],
+    poles: &[Root],
+) -> Result<Vec<PfTerm>> {
+    if gain == 0.0 {
+        return Ok(Vec::new());
+    }
+    principal_parts_with(poles, |i| {
+        let p = poles[i].value;
+        let m = poles[i].multiplicity;
+        let mut scalar = ScaledProduct::new(Complex64::new(gain, 0.0));
+        let mut up = Vec::with_capacity(zeros.len());
+        let mut down = Vec::with_capacity(poles.len());
+        for z in zeros {
+            let a = p - z.value;
+            scalar.mul_pow(a, z.multiplicity);
+            up.push((a, z.multiplicity));
+        }
+        for (j, q) in poles.iter().enumerate() {
+            if j != i && q.multiplicity > 0 {
+                let a = p - q.value;
+                scalar.div_pow(a, q.multiplicity);
+                down.push((a, q.multiplicity));
+            }
+        }
+        let s = scalar.value();
+        let c: Vec<Complex64> = normalised_series(&up, &down, m)
+            .into_iter()
+            .map(|x| x * s)
+            .collect();
+        check_residues(&c, p, m)?;
+        Ok(c)
+    })
+}
+
+/// Shared bookkeeping of the principal parts: `head(i)` gives c₀ … c_{m−1}, the Taylor
+/// coefficients of (s − pᵢ)^m·G at pᵢ; conjugate pairs get exactly conjugate residues and
+/// real poles exactly real ones.
+fn principal_parts_with(
+    poles: &[Root],
+    head: impl Fn(usize) -> Result<Vec<Complex64>>,
+) -> Result<Vec<PfTerm>> {
+    let mut terms = Vec::new();
     for (i, p) in poles.iter().enumerate() {
         let m = p.multiplicity;
         if m == 0 {
@@ -157,7 +209,7 @@ pub(crate) fn principal_parts(num: &Poly, lead: f64, poles: &[Root]) -> Result<V
                 continue;
             }
         }
-        let c = laurent_head(num, lead, poles, i)?;
+        let c = head(i)?;
         let real = p.value.im == 0.0;
         for (j, cj) in c.iter().enumerate().rev() {
             let residue = if real {
@@ -173,6 +225,26 @@ pub(crate) fn principal_parts(num: &Poly, lead: f64, poles: &[Root]) -> Result<V
         }
     }
     Ok(terms)
+}
+
+/// The polynomial part of gain·Π(s − z)^k/Π(s − p)^m (descending; empty when strictly
+/// proper), from its Laurent expansion at infinity:
+/// gain·s^d·Π(1 − z/s)^k/Π(1 − p/s)^m, d = deg N − deg D.
+pub(crate) fn direct_factored(gain: f64, zeros: &[Root], poles: &[Root]) -> Vec<f64> {
+    let nz: usize = zeros.iter().map(|r| r.multiplicity).sum();
+    let np: usize = poles.iter().map(|r| r.multiplicity).sum();
+    if gain == 0.0 || nz < np {
+        return Vec::new();
+    }
+    let d = nz - np;
+    // (1 − r x) = (1 + x/a) with a = −1/r
+    let term = |r: &Root| (!r.is_origin()).then(|| (-r.value.inv(), r.multiplicity));
+    let up: Vec<(Complex64, usize)> = zeros.iter().filter_map(term).collect();
+    let down: Vec<(Complex64, usize)> = poles.iter().filter_map(term).collect();
+    normalised_series(&up, &down, d + 1)
+        .into_iter()
+        .map(|c| gain * c.re)
+        .collect()
 }
 
 /// Conjugates of the already computed terms of `upper` (power ascending), if present.
@@ -216,6 +288,12 @@ fn laurent_head(num: &Poly, lead: f64, poles: &[Root], i: usize) -> Result<Vec<C
     }
     let n = num.taylor_at(p, m);
     let c = series_mul(&n, &inv);
+    check_residues(&c, p, m)?;
+    Ok(c)
+}
+
+/// Errors when a residue is not finite (poles too close or too far apart to represent).
+fn check_residues(c: &[Complex64], p: Complex64, m: usize) -> Result<()> {
     for (j, x) in c.iter().enumerate() {
         if !(x.re.is_finite() && x.im.is_finite()) {
             return Err(LtiError::NonFinite {
@@ -229,15 +307,7 @@ fn laurent_head(num: &Poly, lead: f64, poles: &[Root], i: usize) -> Result<Vec<C
             });
         }
     }
-    Ok(c)
-}
-
-/// Product of two power series truncated to the length of `a`.
-fn series_mul(a: &[Complex64], b: &[Complex64]) -> Vec<Complex64> {
-    let m = a.len();
-    (0..m)
-        .map(|k| (0..=k).map(|j| a[j] * b[k - j]).sum())
-        .collect()
+    Ok(())
 }
 
 impl TransferFunction {
@@ -256,8 +326,40 @@ impl TransferFunction {
     /// assert!(pf.direct.is_empty());
     /// ```
     pub fn partial_fractions(&self) -> Result<PartialFractions> {
-        let pz = self.pole_zero()?;
-        partial_fractions_with_poles(pz.reduced.num(), pz.reduced.den(), &pz.reduced_poles)
+        self.factored()?.partial_fractions()
+    }
+}
+
+impl Factored {
+    /// Partial fractions of G in lowest terms, with the reduced poles of the factored form.
+    /// From coefficients the numerator's Taylor coefficients come from the reduced
+    /// coefficients; from factors everything comes from the factors.
+    ///
+    /// ```
+    /// use ltikit::analysis::Factored;
+    /// use ltikit::Root;
+    /// use num_complex::Complex64 as C;
+    /// // 1/(s + 1)^12: one term of power 12 with residue 1, exactly.
+    /// let f = Factored::from_zpk(&[], &[Root::new(C::new(-1.0, 0.0), 12)], 1.0).unwrap();
+    /// let pf = f.partial_fractions().unwrap();
+    /// assert_eq!(pf.terms.len(), 12);
+    /// assert_eq!(pf.terms[11].residue, C::new(1.0, 0.0));
+    /// assert!(pf.terms[..11].iter().all(|t| t.residue == C::new(0.0, 0.0)));
+    /// ```
+    pub fn partial_fractions(&self) -> Result<PartialFractions> {
+        match self.source().coefficients() {
+            Some(c) => {
+                partial_fractions_with_poles(c.reduced.num(), c.reduced.den(), self.reduced_poles())
+            }
+            None => Ok(PartialFractions {
+                terms: principal_parts_factored(
+                    self.gain(),
+                    self.reduced_zeros(),
+                    self.reduced_poles(),
+                )?,
+                direct: direct_factored(self.gain(), self.reduced_zeros(), self.reduced_poles()),
+            }),
+        }
     }
 }
 

@@ -9,33 +9,11 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
+use crate::analysis::factored::Factored;
 use crate::error::Result;
 use crate::lti::TransferFunction;
-use crate::numeric::tol::AXIS_REL_TOL;
+pub use crate::poly::{HalfPlane, half_plane};
 use crate::poly::{Root, fmt_root};
-
-/// Where a root lies relative to the imaginary axis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum HalfPlane {
-    /// Re p < 0.
-    Left,
-    /// On the imaginary axis (to a relative 1e-9).
-    Axis,
-    /// Re p > 0.
-    Right,
-}
-
-/// Which half plane `p` is in, with the on-axis tolerance.
-pub fn half_plane(p: Complex64) -> HalfPlane {
-    if p.re.abs() <= AXIS_REL_TOL * p.norm() {
-        HalfPlane::Axis
-    } else if p.re < 0.0 {
-        HalfPlane::Left
-    } else {
-        HalfPlane::Right
-    }
-}
 
 /// Stability class of a set of roots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -100,11 +78,16 @@ pub fn classify(roots: &[Root]) -> (StabilityClass, String) {
         .iter()
         .filter(|r| half_plane(r.value) == HalfPlane::Axis && r.value.im >= 0.0)
         .collect();
+    // distinct poles once each, as printed (±1j and ±1.000000001j both read "±1j")
     let axis_list = |rs: &[&Root]| {
-        rs.iter()
-            .map(|r| fmt_root(Complex64::new(0.0, r.value.im), 3))
-            .collect::<Vec<_>>()
-            .join(", ")
+        let mut seen: Vec<String> = Vec::new();
+        for r in rs {
+            let t = fmt_root(Complex64::new(0.0, r.value.im), 3);
+            if !seen.contains(&t) {
+                seen.push(t);
+            }
+        }
+        seen.join(", ")
     };
     let repeated: Vec<&Root> = axis
         .iter()
@@ -153,8 +136,16 @@ impl TransferFunction {
     /// assert_eq!(st.bibo_reason, "simple poles on the imaginary axis at s = ±1j: marginally stable");
     /// ```
     pub fn bibo_stability(&self) -> Result<Stability> {
-        let pz = self.pole_zero()?;
-        Ok(stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled))
+        Ok(self.factored()?.stability())
+    }
+}
+
+impl Factored {
+    /// BIBO stability of the reduced transfer function and internal stability of the
+    /// characteristic roots, with the reasons.
+    pub fn stability(&self) -> Stability {
+        let pz = self.pole_zero();
+        stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled)
     }
 }
 

@@ -27,26 +27,86 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::analysis::closed_form::{ClosedForm, ClosedFormTerm};
+use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
-use crate::analysis::laplace::decompose_with;
-use crate::analysis::pz::{PoleZero, dc_gain_of};
-use crate::analysis::stability::{HalfPlane, half_plane};
+use crate::analysis::laplace::Decomposition;
 use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
-use crate::numeric::scalar::{Bracket, brent};
-use crate::poly::Poly;
 
 mod grid;
+mod search;
 
-/// Step metrics (DESIGN §1.3). Times in seconds.
+use search::{critical_points, crossing, first_reach, horizon};
+
+/// Thresholds of the step metrics (MATLAB `stepinfo` options, with its defaults).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StepInfoOptions {
+    /// The settling band as a fraction of |y∞| (`SettlingTimeThreshold`, default 0.02); the
+    /// transient time uses the same fraction of the largest error.
+    pub settling_threshold: f64,
+    /// The rise from `rise_limits.0`·y∞ to `rise_limits.1`·y∞ (`RiseTimeLimits`, default
+    /// (0.1, 0.9)).
+    pub rise_limits: (f64, f64),
+}
+
+impl Default for StepInfoOptions {
+    fn default() -> Self {
+        StepInfoOptions {
+            settling_threshold: 0.02,
+            rise_limits: (0.1, 0.9),
+        }
+    }
+}
+
+impl StepInfoOptions {
+    /// Checks 0 < settling threshold < 1 and 0 ≤ low < high ≤ 1.
+    ///
+    /// ```
+    /// use ltikit::analysis::StepInfoOptions;
+    /// assert!(StepInfoOptions::default().validate().is_ok());
+    /// let bad = StepInfoOptions { rise_limits: (0.9, 0.1), ..Default::default() };
+    /// assert!(bad.validate().is_err());
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        let st = self.settling_threshold;
+        if !(st > 0.0 && st < 1.0) {
+            return Err(LtiError::InvalidParameter {
+                name: "settling threshold".into(),
+                value: st,
+                reason: "must lie strictly between 0 and 1 (0.02 is a 2 % band)".into(),
+            });
+        }
+        let (lo, hi) = self.rise_limits;
+        if !(lo >= 0.0 && hi <= 1.0 && lo < hi) {
+            return Err(LtiError::InvalidParameter {
+                name: "rise-time limits".into(),
+                value: if lo >= 0.0 && lo < hi { hi } else { lo },
+                reason: format!("need 0 ≤ low < high ≤ 1, got ({lo}, {hi})"),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Step metrics (DESIGN §1.3, MATLAB `stepinfo`). Times in seconds.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StepInfo {
-    /// Time from 10 % to 90 % of the final value.
+    /// Time from the low to the high rise limit (10 % to 90 % of the final value).
     pub rise_time: f64,
-    /// Last time |y − y∞| equals 2 % of |y∞| (0 when the response never leaves the band).
+    /// Last time |y − y∞| equals the settling band (2 % of |y∞|; 0 when the response never
+    /// leaves the band).
     pub settling_time: f64,
+    /// Last time |y − y∞| equals the settling fraction (2 %) of its largest value over t ≥ 0
+    /// (MATLAB's `TransientTime`; the settling time when the error is largest at t = 0).
+    pub transient_time: f64,
+    /// min y(t) once the response has risen (t ≥ the end of the rise).
+    pub settling_min: f64,
+    /// max y(t) once the response has risen (its supremum y∞ when only approached).
+    pub settling_max: f64,
     /// (max y − y∞)/|y∞|·100, at least 0 (with y and y∞ taken in the sign of y∞).
     pub overshoot_percent: f64,
+    /// How far y goes the wrong way: max(0, −min y)/|y∞|·100 (in the sign of y∞).
+    pub undershoot_percent: f64,
     /// max |y| (its supremum |y∞| for a response that approaches y∞ from below).
     pub peak: f64,
     /// First time the peak is reached; +∞ when it is only approached as t → ∞ (monotone
@@ -54,18 +114,12 @@ pub struct StepInfo {
     pub peak_time: f64,
     /// y∞ (the dc gain).
     pub steady_state: f64,
-    /// When y first reaches 10 % of y∞ (start of the rise).
+    /// When y first reaches the low rise limit (start of the rise).
     pub rise_start: f64,
-    /// When y first reaches 90 % of y∞ (end of the rise).
+    /// When y first reaches the high rise limit (end of the rise).
     pub rise_end: f64,
 }
 
-/// Grid points allowed for bracketing (a guard against absurd mode spreads).
-const MAX_GRID: usize = 4_000_000;
-/// Points per 1/|p| of the fastest live mode: spacing 0.2/|p| (≈ 31 points per period).
-const GRID_FACTOR: f64 = 0.2;
-/// A mode is dead once its envelope is below this fraction of |y∞| (and decreasing).
-const DEAD_REL: f64 = 1e-15;
 /// Overshoot smaller than this fraction of |y∞| is not searched for beyond the settling horizon.
 const PEAK_REL: f64 = 1e-12;
 
@@ -89,49 +143,66 @@ impl TransferFunction {
     /// assert!(i.step_info().unwrap().is_none());
     /// ```
     pub fn step_info(&self) -> Result<Option<StepInfo>> {
-        self.require_proper("step metrics", false)?;
-        step_info_with(self, &self.pole_zero()?)
+        self.factored()?.step_info()
     }
 }
 
-/// [`TransferFunction::step_info`] of a proper `g` whose pole/zero analysis `pz` is at hand
-/// (`analyze` has it: the roots are not found again).
-pub(crate) fn step_info_with(g: &TransferFunction, pz: &PoleZero) -> Result<Option<StepInfo>> {
-    if pz
-        .reduced_poles
-        .iter()
-        .any(|p| half_plane(p.value) != HalfPlane::Left)
-    {
-        return Ok(None);
+impl Factored {
+    /// Step metrics with MATLAB's default thresholds ([`TransferFunction::step_info`]).
+    pub fn step_info(&self) -> Result<Option<StepInfo>> {
+        self.step_info_for(&StepInfoOptions::default())
     }
-    let y_inf = match dc_gain_of(&pz.reduced) {
-        Some(k) if k != 0.0 && k.is_finite() => k,
-        _ => return Ok(None),
-    };
-    // zero initial conditions: no initial-condition polynomial
-    let y = decompose_with(g, pz, &Input::Step, Poly::zero())?
-        .response()?
-        .closed_form;
-    step_info_of(&y, y_inf).map(Some)
+
+    /// Step metrics with the given thresholds; `None` when the step response does not
+    /// settle.
+    ///
+    /// Errors: an improper G, invalid options.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// use ltikit::analysis::StepInfoOptions;
+    /// // 1/(s + 1): y = 1 − e^(−t) is within 0.5 % of 1 from t = ln 200 on.
+    /// let f = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap().factored().unwrap();
+    /// let o = StepInfoOptions { settling_threshold: 0.005, ..Default::default() };
+    /// let s = f.step_info_for(&o).unwrap().unwrap();
+    /// assert!((s.settling_time - 200f64.ln()).abs() < 1e-13);
+    /// ```
+    pub fn step_info_for(&self, opts: &StepInfoOptions) -> Result<Option<StepInfo>> {
+        opts.validate()?;
+        self.require_proper("step metrics", false)?;
+        if self.has_unstable_pole() {
+            return Ok(None);
+        }
+        let y_inf = match self.dc_gain() {
+            Some(k) if k != 0.0 && k.is_finite() => k,
+            _ => return Ok(None),
+        };
+        // zero initial conditions
+        let y = Decomposition::new(self, &Input::Step, &[])?
+            .closed_form()?
+            .closed_form;
+        step_info_of(&y, y_inf, opts).map(Some)
+    }
 }
 
 /// Step metrics of a closed-form step response `y` with final value `y_inf` ≠ 0, whose terms
 /// other than the constant all decay (Re p < 0) — e.g. a step response with initial
 /// conditions, which [`TransferFunction::step_info`] does not cover.
 ///
-/// Errors: `y_inf` zero or not finite, a term that does not decay.
+/// Errors: `y_inf` zero or not finite, a term that does not decay, invalid options.
 ///
 /// ```
 /// use ltikit::TransferFunction;
-/// use ltikit::analysis::{Input, step_info::step_info_of};
+/// use ltikit::analysis::{Input, StepInfoOptions, step_info::step_info_of};
 /// // Tank 1/(2s + 0.5) filled by a unit step from h(0) = 1: h = 2 − e^(−t/4).
 /// let g = TransferFunction::from_descending(&[1.0], &[2.0, 0.5]).unwrap();
 /// let h = g.inverse_laplace(&Input::Step, &[1.0]).unwrap().closed_form;
-/// let s = step_info_of(&h, 2.0).unwrap();
+/// let s = step_info_of(&h, 2.0, &StepInfoOptions::default()).unwrap();
 /// assert_eq!(s.rise_start, 0.0); // already at 50 %
 /// assert!((s.settling_time - 4.0 * 25f64.ln()).abs() < 1e-12); // e^(−t/4) = 0.04
 /// ```
-pub fn step_info_of(y: &ClosedForm, y_inf: f64) -> Result<StepInfo> {
+pub fn step_info_of(y: &ClosedForm, y_inf: f64, opts: &StepInfoOptions) -> Result<StepInfo> {
+    opts.validate()?;
     if y_inf == 0.0 || !y_inf.is_finite() {
         return Err(LtiError::Undefined {
             what: "step metrics".into(),
@@ -155,230 +226,176 @@ pub fn step_info_of(y: &ClosedForm, y_inf: f64) -> Result<StepInfo> {
             reason: format!("the step response has a mode at s = {p} that does not decay"),
         });
     }
-    let scale = y_inf.abs();
-    let sgn = y_inf.signum();
-    let env = |t: f64| transient.iter().map(|x| x.envelope(t)).sum::<f64>();
-    let f = |t: f64| y.eval(t);
-    let df = |t: f64| y.eval_derivative(t);
+    Metrics {
+        y,
+        transient: &transient,
+        y_inf,
+        opts,
+    }
+    .compute()
+}
 
-    // Phase 1: [0, T_settle].
-    let t_settle = horizon(&transient, &env, 0.02 * scale)?;
-    let mut bounds = vec![0.0];
-    bounds.extend(critical_points(&transient, &df, 0.0, t_settle, scale)?);
-    bounds.push(t_settle);
-    let xtol = 1e-15 * t_settle.max(1e-300);
+/// The closed form being measured.
+struct Metrics<'a> {
+    y: &'a ClosedForm,
+    transient: &'a [ClosedFormTerm],
+    y_inf: f64,
+    opts: &'a StepInfoOptions,
+}
 
-    // Rise: first reach of 10 % and 90 %.
-    let reach = |level: f64| -> Result<f64> {
-        let g = |t: f64| sgn * f(t) - level * scale;
-        first_reach(&g, &bounds, xtol)?.ok_or_else(|| LtiError::NoConvergence {
-            what: format!(
-                "search for the {}% level of the step response",
-                level * 100.0
-            ),
-            iterations: bounds.len(),
+impl Metrics<'_> {
+    fn f(&self, t: f64) -> f64 {
+        self.y.eval(t)
+    }
+
+    fn env(&self, t: f64) -> f64 {
+        self.transient.iter().map(|x| x.envelope(t)).sum::<f64>()
+    }
+
+    fn horizon(&self, eps: f64) -> Result<f64> {
+        horizon(self.transient, &|t| self.env(t), eps)
+    }
+
+    fn critical_points(&self, a: f64, b: f64) -> Result<Vec<f64>> {
+        critical_points(
+            self.transient,
+            &|t| self.y.eval_derivative(t),
+            a,
+            b,
+            self.y_inf.abs(),
+        )
+    }
+
+    fn compute(&self) -> Result<StepInfo> {
+        let scale = self.y_inf.abs();
+        let sgn = self.y_inf.signum();
+        let band = self.opts.settling_threshold * scale;
+
+        // [0, T]: y is monotone between consecutive bounds.
+        let t_settle = self.horizon(band)?;
+        let mut bounds = vec![0.0];
+        bounds.extend(self.critical_points(0.0, t_settle)?);
+        bounds.push(t_settle);
+        let xtol = 1e-15 * t_settle.max(1e-300);
+
+        // Rise: first reach of the two limits.
+        let reach = |level: f64| -> Result<f64> {
+            let g = |t: f64| sgn * self.f(t) - level * scale;
+            first_reach(&g, &bounds, xtol)?.ok_or_else(|| LtiError::NoConvergence {
+                what: format!(
+                    "search for the {}% level of the step response",
+                    level * 100.0
+                ),
+                iterations: bounds.len(),
+            })
+        };
+        let (lo, hi) = self.opts.rise_limits;
+        let rise_start = reach(lo)?;
+        let rise_end = reach(hi)?;
+        let settling_time = self.last_exit(&bounds, band, xtol)?;
+
+        // Extremes: t = 0, the critical points, the end of the rise, extended until nothing
+        // later can beat them.
+        let mut candidates: Vec<f64> = bounds[..bounds.len() - 1].to_vec();
+        candidates.push(rise_end);
+        let best_abs = candidates
+            .iter()
+            .map(|&t| self.f(t).abs())
+            .fold(0.0, f64::max);
+        let dip = (1.0 - hi) * scale;
+        let margin = (best_abs - scale)
+            .max(PEAK_REL * scale)
+            .min(dip.max(PEAK_REL * scale));
+        let t_far = self.horizon(margin)?;
+        if t_far > t_settle {
+            candidates.extend(self.critical_points(t_settle, t_far)?);
+        }
+        let ext = Extremes::of(self, &candidates, rise_end);
+
+        // Transient time: the band is the threshold times the largest error.
+        let max_err = candidates
+            .iter()
+            .map(|&t| (self.f(t) - self.y_inf).abs())
+            .fold(0.0, f64::max);
+        let transient_time = if max_err > 0.0 {
+            self.last_exit(&bounds, self.opts.settling_threshold * max_err, xtol)?
+        } else {
+            0.0
+        };
+
+        Ok(StepInfo {
+            rise_time: rise_end - rise_start,
+            settling_time,
+            transient_time,
+            settling_min: ext.settling_min,
+            settling_max: ext.settling_max,
+            overshoot_percent: ((ext.max_signed - scale) / scale * 100.0).max(0.0),
+            undershoot_percent: (-ext.min_signed / scale * 100.0).max(0.0),
+            peak: ext.peak,
+            peak_time: ext.peak_time,
+            steady_state: self.y_inf,
+            rise_start,
+            rise_end,
         })
-    };
-    let rise_start = reach(0.1)?;
-    let rise_end = reach(0.9)?;
+    }
 
-    // Settling: last crossing of y∞ ± 2 %.
-    let band = 0.02 * scale;
-    let mut settling_time = 0.0;
-    'outer: for w in bounds.windows(2).rev() {
-        let mut best: Option<f64> = None;
-        for level in [y_inf + band, y_inf - band] {
-            let g = |t: f64| f(t) - level;
-            if let Some(x) = crossing(&g, w[0], w[1], xtol)? {
-                best = Some(best.map_or(x, |b: f64| b.max(x)));
+    /// The last crossing of y∞ ± `band` (0 when y never leaves the band), searching the
+    /// monotone pieces between `bounds` from the last one back.
+    fn last_exit(&self, bounds: &[f64], band: f64, xtol: f64) -> Result<f64> {
+        for w in bounds.windows(2).rev() {
+            let mut best: Option<f64> = None;
+            for level in [self.y_inf + band, self.y_inf - band] {
+                let g = |t: f64| self.f(t) - level;
+                if let Some(x) = crossing(&g, w[0], w[1], xtol)? {
+                    best = Some(best.map_or(x, |b: f64| b.max(x)));
+                }
+            }
+            if let Some(x) = best {
+                return Ok(x);
             }
         }
-        if let Some(x) = best {
-            settling_time = x;
-            break 'outer;
-        }
+        Ok(0.0)
     }
-
-    // Peaks: t = 0 and the critical points, extended until nothing later can be higher.
-    let mut candidates: Vec<f64> = bounds[..bounds.len() - 1].to_vec();
-    let best_abs = candidates.iter().map(|&t| f(t).abs()).fold(0.0, f64::max);
-    let margin = (best_abs - scale).max(PEAK_REL * scale);
-    let t_peak = horizon(&transient, &env, margin)?;
-    if t_peak > t_settle {
-        candidates.extend(critical_points(&transient, &df, t_settle, t_peak, scale)?);
-    }
-    let mut peak = scale;
-    let mut peak_time = f64::INFINITY;
-    let mut max_signed = f64::NEG_INFINITY;
-    for &t in &candidates {
-        let v = f(t);
-        if v.abs() > peak || (peak_time.is_infinite() && v.abs() >= peak) {
-            peak = v.abs();
-            peak_time = t;
-        }
-        max_signed = max_signed.max(sgn * v);
-    }
-    let overshoot_percent = ((max_signed - scale) / scale * 100.0).max(0.0);
-
-    Ok(StepInfo {
-        rise_time: rise_end - rise_start,
-        settling_time,
-        overshoot_percent,
-        peak,
-        peak_time,
-        steady_state: y_inf,
-        rise_start,
-        rise_end,
-    })
 }
 
-/// The rate |p| and the time after which the envelope of a term decreases.
-fn mode_scales(t: &ClosedFormTerm) -> (f64, f64) {
-    let p = t.pole().unwrap_or_default();
-    let k = t.max_power() as f64;
-    (p.norm(), if p.re < 0.0 { k / -p.re } else { 0.0 })
+/// Peak and the extremes of y over the candidate times.
+struct Extremes {
+    peak: f64,
+    peak_time: f64,
+    max_signed: f64,
+    min_signed: f64,
+    settling_min: f64,
+    settling_max: f64,
 }
 
-/// A time T after which env(t) < eps for all t ≥ T (env is a sum of decaying envelopes).
-fn horizon(terms: &[ClosedFormTerm], env: &impl Fn(f64) -> f64, eps: f64) -> Result<f64> {
-    let t0 = terms.iter().map(|t| mode_scales(t).1).fold(0.0, f64::max);
-    if env(t0) < eps {
-        return Ok(t0);
-    }
-    let slowest = terms
-        .iter()
-        .filter_map(|t| t.pole())
-        .map(|p| -p.re)
-        .fold(f64::INFINITY, f64::min);
-    let mut step = 1.0 / slowest;
-    let mut lo = t0;
-    let mut hi = t0 + step;
-    let mut iterations = 0;
-    while env(hi) >= eps {
-        lo = hi;
-        step *= 2.0;
-        hi += step;
-        iterations += 1;
-        if iterations > 2000 || !hi.is_finite() {
-            return Err(LtiError::NoConvergence {
-                what: "step-response settling horizon".into(),
-                iterations,
-            });
-        }
-    }
-    // env is decreasing on [t0, ∞): bisect to 1e-6 relative (keeping env(hi) < eps).
-    while hi - lo > 1e-6 * hi {
-        let mid = 0.5 * (lo + hi);
-        if env(mid) < eps {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(hi)
-}
-
-/// Zeros of y′ on (a, b]: sign changes on an adaptive grid, refined by Brent.
-///
-/// The spacing at t is [`GRID_FACTOR`]/|p| for the fastest mode still alive at t (before its
-/// envelope peaks, or with the envelope above [`DEAD_REL`]·`scale`); a dead mode stays dead
-/// (its envelope decreases), so the fastest alive mode is tracked with one pointer. Grid values
-/// of y′ come from [`grid::GridDerivative`] (exact in sign); Brent refines on the exact `df`.
-fn critical_points(
-    terms: &[ClosedFormTerm],
-    df: &impl Fn(f64) -> f64,
-    a: f64,
-    b: f64,
-    scale: f64,
-) -> Result<Vec<f64>> {
-    let dead = DEAD_REL * scale;
-    let mut grid = grid::GridDerivative::new(terms, a);
-    let by_rate = grid.by_rate();
-    let mut fastest = 0; // index into by_rate of the fastest mode that may be alive
-    let mut out = Vec::new();
-    let mut t = a;
-    let mut ft = df(t);
-    let mut count = 0usize;
-    let xtol = 1e-15 * b.max(1e-300);
-    let min_step = 4.0 * f64::EPSILON * b;
-    while t < b {
-        while fastest < by_rate.len() && !grid.alive(by_rate[fastest], dead) {
-            fastest += 1;
-        }
-        let rate = by_rate.get(fastest).map_or(0.0, |&k| grid.rate(k));
-        let h = if rate > 0.0 {
-            (GRID_FACTOR / rate).min(b - a)
-        } else {
-            b - a
-        }
-        .max(min_step);
-        let clipped = t + h > b;
-        let u = if clipped { b } else { t + h };
-        let fu = grid.advance(u, h, clipped, df);
-        if ft != 0.0 && fu != 0.0 && ft.signum() != fu.signum() {
-            let br = Bracket {
-                a: t,
-                b: u,
-                fa: ft,
-                fb: fu,
-            };
-            out.push(brent(df, br, xtol)?);
-        } else if fu == 0.0 && u < b {
-            out.push(u);
-        }
-        t = u;
-        ft = fu;
-        count += 1;
-        if count > MAX_GRID {
-            return Err(LtiError::NoConvergence {
-                what: "step-metric bracketing grid (modes too far apart)".into(),
-                iterations: count,
-            });
-        }
-    }
-    Ok(out)
-}
-
-/// The crossing of g = 0 in [a, b] when g changes sign there (g monotone on [a, b]).
-fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64, xtol: f64) -> Result<Option<f64>> {
-    let (fa, fb) = (g(a), g(b));
-    if fa == 0.0 {
-        return Ok(Some(a));
-    }
-    if fb == 0.0 {
-        return Ok(Some(b));
-    }
-    if fa.signum() == fb.signum() {
-        return Ok(None);
-    }
-    brent(g, Bracket { a, b, fa, fb }, xtol).map(Some)
-}
-
-/// The first t with g(t) ≥ 0, g monotone between consecutive bounds.
-fn first_reach(g: &impl Fn(f64) -> f64, bounds: &[f64], xtol: f64) -> Result<Option<f64>> {
-    if g(bounds[0]) >= 0.0 {
-        return Ok(Some(bounds[0]));
-    }
-    for w in bounds.windows(2) {
-        let (fa, fb) = (g(w[0]), g(w[1]));
-        if fa < 0.0 && fb >= 0.0 {
-            if fb == 0.0 {
-                return Ok(Some(w[1]));
+impl Extremes {
+    fn of(m: &Metrics<'_>, candidates: &[f64], rise_end: f64) -> Extremes {
+        let scale = m.y_inf.abs();
+        let sgn = m.y_inf.signum();
+        let mut e = Extremes {
+            peak: scale,
+            peak_time: f64::INFINITY,
+            max_signed: f64::NEG_INFINITY,
+            min_signed: f64::INFINITY,
+            // the limit y∞ is approached after any candidate
+            settling_min: m.y_inf,
+            settling_max: m.y_inf,
+        };
+        for &t in candidates {
+            let v = m.f(t);
+            if v.abs() > e.peak || (e.peak_time.is_infinite() && v.abs() >= e.peak) {
+                e.peak = v.abs();
+                e.peak_time = t;
             }
-            return brent(
-                g,
-                Bracket {
-                    a: w[0],
-                    b: w[1],
-                    fa,
-                    fb,
-                },
-                xtol,
-            )
-            .map(Some);
+            e.max_signed = e.max_signed.max(sgn * v);
+            e.min_signed = e.min_signed.min(sgn * v);
+            if t >= rise_end {
+                e.settling_min = e.settling_min.min(v);
+                e.settling_max = e.settling_max.max(v);
+            }
         }
+        e
     }
-    Ok(None)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use crate::analysis::{Mode, PoleZero, SecondOrder, Stability, StepInfo, modes, second_order};
+use crate::analysis::{Factored, Mode, PoleZero, SecondOrder, Stability, StepInfo};
 use crate::error::Result;
 use crate::lti::TransferFunction;
 
@@ -11,8 +11,8 @@ use crate::lti::TransferFunction;
 pub struct Analysis {
     /// System order (degree of the characteristic polynomial).
     pub order: usize,
-    /// deg D − deg N (negative for an improper G).
-    pub relative_degree: i64,
+    /// deg D − deg N (negative for an improper G); `None` for G ≡ 0.
+    pub relative_degree: Option<i64>,
     /// Poles, zeros, cancellations and the reduced G.
     pub pole_zero: PoleZero,
     /// dc gain of the reduced G; `None` when infinite.
@@ -40,25 +40,26 @@ impl TransferFunction {
     /// assert!((si.overshoot_percent - 52.66).abs() < 0.01); // e^(−πζ/√(1−ζ²)), ζ = 0.2
     /// ```
     pub fn analyze(&self) -> Result<Analysis> {
-        let pz = self.pole_zero()?;
-        let dc_gain = crate::analysis::pz::dc_gain_of(&pz.reduced);
-        let stability =
-            crate::analysis::stability::stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled);
-        let modes = modes(&pz.poles);
-        let second_order = second_order(self.den(), &pz.poles);
+        self.factored()?.analyze()
+    }
+}
+
+impl Factored {
+    /// Everything `ltikit analyze` reports, on this factorisation.
+    pub fn analyze(&self) -> Result<Analysis> {
         let step_info = if self.is_proper() {
-            crate::analysis::step_info::step_info_with(self, &pz)?
+            self.step_info()?
         } else {
             None
         };
         Ok(Analysis {
             order: self.order(),
             relative_degree: self.relative_degree(),
-            pole_zero: pz,
-            dc_gain,
-            stability,
-            modes,
-            second_order,
+            pole_zero: self.pole_zero().clone(),
+            dc_gain: self.dc_gain(),
+            stability: self.stability(),
+            modes: self.modes(),
+            second_order: self.second_order(),
             step_info,
         })
     }

@@ -4,8 +4,10 @@
 //! The output is the impulse response of the rational function Y(s) (see
 //! [`crate::analysis::laplace`]: the forced part G(s)U(s) in lowest terms and the
 //! initial-condition part P_ic(s)/D(s), each realised separately). Each strictly proper part is
-//! realised in controllable canonical form ([`StateSpace::from_tf`]), balanced
-//! ([`StateSpace::balanced`]), and y(t) = C e^(At) B is marched over the sorted times with
+//! realised — in controllable canonical form ([`crate::StateSpace::from_tf`]) when the plant came with
+//! coefficients, as a cascade of real sections ([`crate::StateSpace::from_zpk`]) when it came as
+//! factors — balanced ([`crate::StateSpace::balanced`]), and y(t) = C e^(At) B is marched over the
+//! sorted times with
 //! x ← e^(AΔt) x. One e^(AΔt) serves every step of an equally spaced grid (recognised to a few
 //! ulps of t, with the marched time kept as base + k·Δt so it does not drift), so 10⁵ samples
 //! cost 10⁵ small matrix-vector products. Values come back in the caller's order.
@@ -16,12 +18,12 @@
 
 use serde::Serialize;
 
+use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
-use crate::analysis::laplace::{Decomposition, decompose};
+use crate::analysis::laplace::{Decomposition, Part};
 use crate::error::{LtiError, Result};
-use crate::lti::{StateSpace, TransferFunction};
+use crate::lti::TransferFunction;
 use crate::numeric::expm;
-use crate::poly::Poly;
 
 /// Samples of an output y(t), in the order of the times the caller gave.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -59,33 +61,22 @@ pub(crate) fn simulate(dec: &Decomposition, t: &[f64]) -> Result<Vec<f64>> {
     let mut order: Vec<usize> = (0..t.len()).collect();
     order.sort_by(|&i, &j| t[i].total_cmp(&t[j]));
     let mut y = vec![0.0; t.len()];
-    impulse_samples(&dec.forced.num, &dec.forced.den, t, &order, &mut y)?;
+    impulse_samples(&dec.forced, t, &order, &mut y)?;
     if let Some(ic) = &dec.ic {
-        impulse_samples(&ic.num, &ic.den, t, &order, &mut y)?;
+        impulse_samples(ic, t, &order, &mut y)?;
     }
     Ok(y)
 }
 
-/// Adds the impulse response of the strictly proper part of num/den at `t[order[k]]` to `out`.
-fn impulse_samples(
-    num: &Poly,
-    den: &Poly,
-    t: &[f64],
-    order: &[usize],
-    out: &mut [f64],
-) -> Result<()> {
-    if num.is_zero() || den.degree() == 0 || t.is_empty() {
+/// Adds the impulse response of the strictly proper part of `part` at `t[order[k]]` to `out`.
+fn impulse_samples(part: &Part, t: &[f64], order: &[usize], out: &mut [f64]) -> Result<()> {
+    if t.is_empty() {
         return Ok(());
     }
-    let r = if num.degree() >= den.degree() {
-        num.div_rem(den)?.1
-    } else {
-        num.clone()
+    let Some(ss) = part.realization()? else {
+        return Ok(());
     };
-    if r.is_zero() {
-        return Ok(());
-    }
-    let ss = StateSpace::from_tf(&TransferFunction::new(r, den.clone())?)?.balanced();
+    let ss = ss.balanced();
     let n = ss.order();
     let c: Vec<f64> = (0..n).map(|j| ss.c[(0, j)]).collect();
     let mut x: Vec<f64> = (0..n).map(|i| ss.b[(i, 0)]).collect();
@@ -129,7 +120,7 @@ fn impulse_samples(
     Ok(())
 }
 
-impl TransferFunction {
+impl Factored {
     /// The exact response to `input` with ODE initial conditions `ics` = [y(0), y′(0), …]
     /// (input zero for t < 0; fewer than the order: the rest are 0) at the times `t`, in the
     /// caller's order. See the [module docs](self) for the method.
@@ -143,7 +134,7 @@ impl TransferFunction {
     /// use ltikit::analysis::Input;
     /// // ÿ + 2ẏ + y = 0, y(0) = 1, ẏ(0) = 0: y = (1 + t) e^(−t) (seed eq. 3.35)
     /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 2.0, 1.0]).unwrap();
-    /// let r = g.time_response(&Input::None, &[1.0, 0.0], &[2.0, 0.0, 1.0]).unwrap();
+    /// let r = g.factored().unwrap().time_response(&Input::None, &[1.0, 0.0], &[2.0, 0.0, 1.0]).unwrap();
     /// for (t, y) in r.t.iter().zip(&r.y) {
     ///     assert!((y - (1.0 + t) * (-t).exp()).abs() < 1e-15);
     /// }
@@ -151,7 +142,7 @@ impl TransferFunction {
     /// ```
     pub fn time_response(&self, input: &Input, ics: &[f64], t: &[f64]) -> Result<TimeResponse> {
         check_times(t)?;
-        let dec = decompose(self, input, ics)?;
+        let dec = Decomposition::new(self, input, ics)?;
         let y = simulate(&dec, t)?;
         Ok(TimeResponse {
             t: t.to_vec(),
@@ -164,7 +155,7 @@ impl TransferFunction {
     ///
     /// ```
     /// use ltikit::TransferFunction;
-    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap().factored().unwrap();
     /// let r = g.step_response(&[0.0, 1.0]).unwrap();
     /// assert!((r.y[1] - (1.0 - (-1f64).exp())).abs() < 1e-15);
     /// assert_eq!(r.final_value, Some(1.0));
@@ -179,11 +170,37 @@ impl TransferFunction {
     ///
     /// ```
     /// use ltikit::TransferFunction;
-    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.0, 1.0]).unwrap();
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.0, 1.0]).unwrap().factored().unwrap();
     /// let r = g.impulse_response(&[1.0]).unwrap();
     /// assert!((r.y[0] - 1f64.sin()).abs() < 1e-15);
     /// assert_eq!(r.final_value, None); // sin t has no limit
     /// ```
+    pub fn impulse_response(&self, t: &[f64]) -> Result<TimeResponse> {
+        self.time_response(&Input::Impulse, &[], t)
+    }
+}
+
+impl TransferFunction {
+    /// The exact response at the times `t` ([`Factored::time_response`] of the factored G).
+    pub fn time_response(&self, input: &Input, ics: &[f64], t: &[f64]) -> Result<TimeResponse> {
+        check_times(t)?;
+        self.factored()?.time_response(input, ics, t)
+    }
+
+    /// Unit-step response at the times `t` (zero initial conditions).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// let r = g.step_response(&[0.0, 1.0]).unwrap();
+    /// assert!((r.y[1] - (1.0 - (-1f64).exp())).abs() < 1e-15);
+    /// ```
+    pub fn step_response(&self, t: &[f64]) -> Result<TimeResponse> {
+        self.time_response(&Input::Step, &[], t)
+    }
+
+    /// Unit-impulse response at the times `t` (zero initial conditions; a D·δ(t) term of a
+    /// biproper G is not included in the values).
     pub fn impulse_response(&self, t: &[f64]) -> Result<TimeResponse> {
         self.time_response(&Input::Impulse, &[], t)
     }

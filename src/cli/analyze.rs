@@ -7,7 +7,7 @@ use serde::Serialize;
 use super::output::{finite, pair, print, print_json};
 use super::text::roots_text;
 use super::{Plant, PlantArgs};
-use crate::analysis::Analysis;
+use crate::analysis::{Analysis, Factored, StepInfo};
 use crate::poly::{fmt_num, fmt_root, fmt_sig, roots::flatten};
 
 #[derive(Args, Debug)]
@@ -29,11 +29,12 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         return super::batch::run(src);
     }
     let plant = a.plant.single()?;
-    let analysis = plant.tf.analyze()?;
+    let f = a.plant.factored(&plant)?;
+    let analysis = f.analyze()?;
     if a.json {
         print_json(&AnalyzeJson::from(&analysis))
     } else {
-        print(&report(&plant, &analysis))
+        print(&report(&plant, &f, &analysis))
     }
 }
 
@@ -41,10 +42,10 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
 #[derive(Serialize)]
 pub struct AnalyzeJson {
     order: usize,
-    relative_degree: i64,
+    relative_degree: Option<i64>,
     poles: Vec<[f64; 2]>,
     zeros: Vec<[f64; 2]>,
-    zeros_at_infinity: usize,
+    zeros_at_infinity: Option<usize>,
     cancelled: Vec<[f64; 2]>,
     dc_gain: Option<f64>,
     bibo_stable: bool,
@@ -80,6 +81,10 @@ struct StepInfoJson {
     peak: f64,
     peak_time: f64,
     steady_state: f64,
+    transient_time: f64,
+    settling_min: f64,
+    settling_max: f64,
+    undershoot_percent: f64,
 }
 
 impl From<&Analysis> for AnalyzeJson {
@@ -126,37 +131,47 @@ impl From<&Analysis> for AnalyzeJson {
                 peak: s.peak,
                 peak_time: s.peak_time,
                 steady_state: s.steady_state,
+                transient_time: s.transient_time,
+                settling_min: s.settling_min,
+                settling_max: s.settling_max,
+                undershoot_percent: s.undershoot_percent,
             }),
         }
     }
 }
 
 /// The human-readable report.
-pub fn report(plant: &Plant, a: &Analysis) -> String {
+pub fn report(plant: &Plant, f: &Factored, a: &Analysis) -> String {
     let pz = &a.pole_zero;
     let mut s = String::new();
-    s.push_str(&format!("G(s) = {}\n", plant.tf));
+    s.push_str(&format!("{}\n", super::text::g_text(plant, f)));
     if !plant.name.contains(" / ") {
         s.push_str(&format!("  {}\n", plant.name));
     }
     if let Some(d) = &plant.description {
         s.push_str(&format!("  {d}\n"));
     }
-    s.push_str(&format!(
-        "  order {}, relative degree {}\n\n",
-        a.order, a.relative_degree
-    ));
+    match a.relative_degree {
+        Some(r) => s.push_str(&format!("  order {}, relative degree {r}\n\n", a.order)),
+        None => s.push_str(&format!(
+            "  order {}, G = 0 (no relative degree, no zeros)\n\n",
+            a.order
+        )),
+    }
     s.push_str(&format!("Poles:     {}\n", roots_text(&pz.poles)));
     s.push_str(&format!("Zeros:     {}", roots_text(&pz.zeros)));
-    if pz.zeros_at_infinity > 0 {
-        s.push_str(&format!("; {} at infinity", pz.zeros_at_infinity));
+    if let Some(k) = pz.zeros_at_infinity.filter(|&k| k > 0) {
+        s.push_str(&format!("; {k} at infinity"));
     }
     s.push('\n');
     if !pz.cancelled.is_empty() {
+        let reduced = f
+            .reduced_tf()
+            .map(|g| g.to_string())
+            .unwrap_or_else(|_| "(too large to print)".into());
         s.push_str(&format!(
-            "Cancelled: {} (common to numerator and denominator; reduced G = {})\n",
+            "Cancelled: {} (common to numerator and denominator; reduced G = {reduced})\n",
             roots_text(&pz.cancelled),
-            pz.reduced
         ));
     }
     s.push_str(&format!(
@@ -220,17 +235,34 @@ pub fn report(plant: &Plant, a: &Analysis) -> String {
         s.push_str("\n\n");
     }
     match &a.step_info {
-        Some(si) => s.push_str(&format!(
-            "Step response (exact):\n  rise time {} s (10–90 %), settling time {} s (2 %)\n  \
-             overshoot {} %, peak {} at t = {} s, final value {}\n",
-            fmt_sig(si.rise_time, 7),
-            fmt_sig(si.settling_time, 7),
-            fmt_sig(si.overshoot_percent, 7),
-            fmt_sig(si.peak, 7),
-            fmt_sig(si.peak_time, 7),
-            fmt_sig(si.steady_state, 7)
-        )),
+        Some(si) => s.push_str(&step_text(si)),
         None => s.push_str("Step response: does not settle (no step metrics)\n"),
     }
+    s
+}
+
+/// The step metrics in words.
+fn step_text(si: &StepInfo) -> String {
+    let peak_at = if si.peak_time.is_finite() {
+        format!("at t = {} s", fmt_sig(si.peak_time, 7))
+    } else {
+        "approached as t → ∞".into()
+    };
+    let mut s = format!(
+        "Step response (exact):\n  rise time {} s (10–90 %), settling time {} s (2 %)\n  \
+         overshoot {} %, peak {} {peak_at}, final value {}\n",
+        fmt_sig(si.rise_time, 7),
+        fmt_sig(si.settling_time, 7),
+        fmt_sig(si.overshoot_percent, 7),
+        fmt_sig(si.peak, 7),
+        fmt_sig(si.steady_state, 7)
+    );
+    s.push_str(&format!(
+        "  settling min {}, max {}; undershoot {} %; transient time {} s\n",
+        fmt_sig(si.settling_min, 7),
+        fmt_sig(si.settling_max, 7),
+        fmt_sig(si.undershoot_percent, 7),
+        fmt_sig(si.transient_time, 7)
+    ));
     s
 }

@@ -15,15 +15,76 @@ pub fn print(text: &str) -> Result<()> {
     }
 }
 
+/// Output written as it is computed (large `freq`, `response` and `simulate` results), so the
+/// memory stays that of one block. A closed pipe ends the output quietly: [`Stream::put`]
+/// then returns `Ok(false)` and the caller stops computing.
+pub struct Stream {
+    out: std::io::BufWriter<std::io::StdoutLock<'static>>,
+    closed: bool,
+}
+
+impl Stream {
+    /// A stream to stdout.
+    pub fn stdout() -> Stream {
+        Stream {
+            out: std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock()),
+            closed: false,
+        }
+    }
+
+    /// Writes `text`; `Ok(false)` once the reader has gone.
+    pub fn put(&mut self, text: &str) -> Result<bool> {
+        if self.closed {
+            return Ok(false);
+        }
+        match self.out.write_all(text.as_bytes()) {
+            Ok(()) => Ok(true),
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                self.closed = true;
+                Ok(false)
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// Flushes (a closed pipe is not an error).
+    pub fn finish(mut self) -> Result<()> {
+        match self.out.flush() {
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Serialises `value` as JSON (serde_json writes non-finite floats as `null`) and prints it
 /// with a trailing newline: objects indented, arrays of numbers on one line (`[re, im]`
 /// pairs, matrix rows, sample vectors).
 pub fn print_json<T: Serialize>(value: &T) -> Result<()> {
-    let v = serde_json::to_value(value)?;
+    let v = json_value(value)?;
     let mut s = String::new();
     pretty(&v, 0, &mut s);
     s.push('\n');
     print(&s)
+}
+
+/// `value` as a JSON tree with every −0.0 written as 0.0 (a sign of zero is rounding, not
+/// information, and `-0.0` in a contract surprises scripts).
+pub fn json_value<T: Serialize>(value: &T) -> Result<serde_json::Value> {
+    let mut v = serde_json::to_value(value)?;
+    positive_zeros(&mut v);
+    Ok(v)
+}
+
+fn positive_zeros(v: &mut serde_json::Value) {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) if n.as_f64().is_some_and(|x| x == 0.0 && x.is_sign_negative()) => {
+            *v = Value::from(0.0);
+        }
+        Value::Array(items) => items.iter_mut().for_each(positive_zeros),
+        Value::Object(map) => map.values_mut().for_each(positive_zeros),
+        _ => {}
+    }
 }
 
 fn is_scalar(v: &serde_json::Value) -> bool {
@@ -33,7 +94,7 @@ fn is_scalar(v: &serde_json::Value) -> bool {
     )
 }
 
-fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
+pub fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
     use serde_json::Value;
     let pad = |n: usize| "  ".repeat(n);
     match v {
@@ -80,6 +141,15 @@ fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
     }
 }
 
+/// A number as the JSON writer prints it: `null` when not finite, never `-0.0`.
+pub fn json_number(x: f64) -> String {
+    if !x.is_finite() {
+        return "null".into();
+    }
+    let x = if x == 0.0 { 0.0 } else { x };
+    serde_json::Value::from(x).to_string()
+}
+
 /// A finite number or `None` (JSON null).
 pub fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
@@ -88,4 +158,17 @@ pub fn finite(x: f64) -> Option<f64> {
 /// A complex number as the JSON pair `[re, im]`.
 pub fn pair(z: num_complex::Complex64) -> [f64; 2] {
     [z.re, z.im]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn negative_zero_is_written_as_zero() {
+        let v = json_value(&vec![-0.0f64, 1.0, -2.5]).unwrap();
+        assert_eq!(v.to_string(), "[0.0,1.0,-2.5]");
+        let v = json_value(&serde_json::json!({"a": [-0.0], "b": {"c": -0.0}})).unwrap();
+        assert_eq!(v.to_string(), r#"{"a":[0.0],"b":{"c":0.0}}"#);
+    }
 }

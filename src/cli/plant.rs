@@ -1,15 +1,14 @@
-//! The plant options shared by every command that takes a transfer function: coefficients
-//! (`--num/--den`, repeatable for several plants), plant files (`--plant`), or a textbook model
-//! (`--model NAME --param K=V`).
+//! The plant options shared by every command that takes a plant: coefficients (`--num/--den`,
+//! repeatable for several plants), plant files (`--plant`), or a textbook model
+//! (`--model NAME --param K=V`). The values are read by the one plant-specification module,
+//! [`crate::lti::plant`]; this module only checks the combination of options.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 
 use super::UsageError;
-use super::parse;
-use crate::TransferFunction;
-use crate::lti::{PlantFile, build_plant};
+use crate::lti::Plant;
 
 /// Plant selection.
 #[derive(Args, Debug, Clone, Default)]
@@ -30,17 +29,21 @@ pub struct PlantArgs {
     /// A model parameter, NAME=VALUE (repeatable), e.g. --param M=1 --param C=0.4.
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub params: Vec<String>,
-}
-
-/// A resolved plant.
-#[derive(Debug, Clone)]
-pub struct Plant {
-    /// Display name (the file's name, the model name, or the transfer function itself).
-    pub name: String,
-    /// The transfer function.
-    pub tf: TransferFunction,
-    /// Description, input and output, when known.
-    pub description: Option<String>,
+    /// State matrix A of a state-space plant, rows separated by ';': --a "0 1; -4 -0.8".
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires_all = ["b", "c"])]
+    pub a: Option<String>,
+    /// Input matrix B (n × m): --b "0; 1".
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
+    pub b: Option<String>,
+    /// Output matrix C (p × n): --c "1 0".
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
+    pub c: Option<String>,
+    /// Feedthrough D (p × m; zero when absent).
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
+    pub d: Option<String>,
+    /// The channel of a MIMO plant to analyse: INPUT,OUTPUT (1-based), e.g. --channel 1,2.
+    #[arg(long, value_name = "INPUT,OUTPUT")]
+    pub channel: Option<String>,
 }
 
 impl PlantArgs {
@@ -60,60 +63,57 @@ impl PlantArgs {
                 .into());
             }
             for (i, d) in self.den.iter().enumerate() {
-                let den = parse::numbers(d, "--den")?;
-                let num = match self.num.get(i) {
-                    Some(n) => parse::numbers(n, "--num")?,
-                    None => vec![1.0],
-                };
-                let tf = TransferFunction::from_descending(&num, &den)?;
-                out.push(Plant {
-                    name: tf.to_string(),
-                    tf,
-                    description: None,
-                });
+                out.push(Plant::from_text(self.num.get(i).map(String::as_str), d)?);
             }
+        }
+        if let (Some(a), Some(b), Some(c)) = (&self.a, &self.b, &self.c) {
+            out.push(Plant::from_matrices_text(a, b, c, self.d.as_deref())?);
         }
         for path in &self.plant {
-            let f = PlantFile::load(path)?;
-            let tf = f
-                .transfer_function()
-                .with_context(|| format!("plant file {}", path.display()))?;
-            let mut desc = f.description.clone().unwrap_or_default();
-            if let (Some(i), Some(o)) = (&f.input, &f.output) {
-                if !desc.is_empty() {
-                    desc.push(' ');
-                }
-                desc.push_str(&format!("Input: {i}; output: {o}."));
-            }
-            out.push(Plant {
-                name: f.name.clone(),
-                tf,
-                description: (!desc.is_empty()).then_some(desc),
-            });
+            out.push(Plant::from_file(path)?);
         }
         if let Some(m) = &self.model {
-            let params = parse::params(&self.params)?;
-            let (tf, used) = build_plant(m, &params)?;
-            let list = used
-                .iter()
-                .map(|(k, v)| format!("{k}={}", crate::poly::fmt_num(*v)))
-                .collect::<Vec<_>>()
-                .join(", ");
-            out.push(Plant {
-                name: format!("{m} ({list})"),
-                tf,
-                description: None,
-            });
+            let params = crate::lti::plant::parse_params(&self.params)?;
+            out.push(Plant::from_model(m, &params)?);
         } else if !self.params.is_empty() {
             return Err(UsageError("--param needs --model".into()).into());
         }
         if out.is_empty() {
             return Err(UsageError(
-                "no plant given: use --num/--den, --plant FILE.toml or --model NAME".into(),
+                "no plant given: use --num/--den, --a/--b/--c, --plant FILE.toml or --model NAME"
+                    .into(),
             )
             .into());
         }
         Ok(out)
+    }
+
+    /// The channel chosen with `--channel` (0-based input, output), if any.
+    pub fn channel(&self) -> Result<Option<(usize, usize)>> {
+        let Some(text) = &self.channel else {
+            return Ok(None);
+        };
+        let bad = || {
+            UsageError(format!(
+                "--channel '{}': expected INPUT,OUTPUT with 1-based indices, e.g. --channel 1,2",
+                crate::error::abbreviate(text)
+            ))
+        };
+        let (i, o) = text.split_once(',').ok_or_else(bad)?;
+        let i: usize = i.trim().parse().map_err(|_| bad())?;
+        let o: usize = o.trim().parse().map_err(|_| bad())?;
+        if i == 0 || o == 0 {
+            return Err(bad().into());
+        }
+        Ok(Some((i - 1, o - 1)))
+    }
+
+    /// The factored form of a plant: the chosen channel, or the plant itself when SISO.
+    pub fn factored(&self, plant: &Plant) -> Result<crate::analysis::Factored> {
+        Ok(match self.channel()? {
+            Some((i, o)) => plant.factored_channel(i, o)?,
+            None => plant.factored()?,
+        })
     }
 
     /// Exactly one plant.

@@ -4,9 +4,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
-use super::{Plant, PlantArgs};
-use crate::TransferFunction;
-use crate::analysis::{Input, TimeResponse, auto_frequency_grid, auto_time_span};
+use super::PlantArgs;
+use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
 use crate::plot::{
     BodeSeries, InputKind, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png,
     parse_size, pzmap_png, step_png,
@@ -44,7 +43,7 @@ impl PlotArgs {
 
 /// A grid over [w_min, w_max]: 600 log-spaced points plus the plant's own automatic points
 /// (which refine lightly damped resonances) inside the range.
-fn merged_grid(tf: &TransferFunction, w_min: f64, w_max: f64) -> Result<Vec<f64>> {
+fn merged_grid(tf: &Factored, w_min: f64, w_max: f64) -> Result<Vec<f64>> {
     let mut w = super::freq::logspace(w_min, w_max, 600)?;
     w.extend(
         auto_frequency_grid(tf, 400)?
@@ -56,11 +55,11 @@ fn merged_grid(tf: &TransferFunction, w_min: f64, w_max: f64) -> Result<Vec<f64>
     Ok(w)
 }
 
-/// Writes a Bode diagram of `plants` (labels, transfer functions), with their margins when
+/// Writes a Bode diagram of `plants` (labels, factored plants), with their margins when
 /// `margins`; the frequency range covers every plant's automatic range unless given.
 pub fn bode_figure(
     path: &Path,
-    plants: &[(String, TransferFunction)],
+    plants: &[(String, Factored)],
     range: Option<(f64, f64)>,
     asymptotes: bool,
     margins: bool,
@@ -112,7 +111,7 @@ pub fn bode_figure(
 /// Step, impulse or ramp responses of `plants` on one plot, with step metrics for steps.
 pub fn step_figure(
     path: &Path,
-    plants: &[(String, TransferFunction)],
+    plants: &[(String, Factored)],
     input: &Input,
     t_end: Option<f64>,
     opts: &PlotOptions,
@@ -152,7 +151,7 @@ pub fn step_figure(
         } else {
             None
         };
-        let unstable = response_diverges(g, input)?;
+        let unstable = response_diverges(g, input);
         data.push((label, r, info, unstable));
     }
     let series: Vec<StepSeries> = data
@@ -175,47 +174,46 @@ pub fn step_figure(
 /// True when the response of G to `input` grows without bound: a pole of G in lowest terms or
 /// of U(s) lies in the right half plane, or a pole on the imaginary axis is repeated (counting
 /// a system pole that coincides with an input pole, e.g. the step response of 1/s).
-pub fn response_diverges(g: &TransferFunction, input: &Input) -> Result<bool> {
-    use crate::analysis::{HalfPlane, half_plane};
-    let mut poles: Vec<crate::Root> = g.pole_zero()?.reduced_poles;
-    let (_, den) = input.laplace();
-    if den.degree() > 0 {
-        for r in den.roots()? {
-            match poles
-                .iter_mut()
-                .find(|p| (p.value - r.value).norm() <= 1e-9 * r.value.norm().max(1e-300))
-            {
-                Some(p) => p.multiplicity += r.multiplicity,
-                None => poles.push(r),
-            }
+pub fn response_diverges(g: &Factored, input: &Input) -> bool {
+    use crate::poly::HalfPlane;
+    let mut poles: Vec<crate::Root> = g.reduced_poles().to_vec();
+    for (v, m) in input.poles() {
+        match poles.iter_mut().find(|p| p.same_as(v)) {
+            Some(p) => p.multiplicity += m,
+            None => poles.push(crate::Root::new(v, m)),
         }
     }
-    Ok(poles.iter().any(|p| match half_plane(p.value) {
+    poles.iter().any(|p| match p.half_plane() {
         HalfPlane::Right => true,
         HalfPlane::Axis => p.multiplicity > 1,
         HalfPlane::Left => false,
-    }))
+    })
 }
 
 /// Pole-zero map of one plant.
 pub fn pzmap_figure(
     path: &Path,
     label: &str,
-    g: &TransferFunction,
+    g: &Factored,
     guides: bool,
     opts: &PlotOptions,
 ) -> Result<()> {
-    let pz = g.pole_zero()?;
     pzmap_png(
         path,
-        &PzMap::new(&pz).label(label).damping_guides(guides),
+        &PzMap::new(g.pole_zero())
+            .label(label)
+            .damping_guides(guides),
         opts,
     )?;
     Ok(())
 }
 
-fn labelled(plants: Vec<Plant>) -> Vec<(String, TransferFunction)> {
-    plants.into_iter().map(|p| (p.name, p.tf)).collect()
+/// The plants with their names, each factored once (the chosen channel of a MIMO plant).
+fn labelled(args: &PlantArgs) -> Result<Vec<(String, Factored)>> {
+    args.resolve()?
+        .into_iter()
+        .map(|p| Ok((p.name.clone(), args.factored(&p)?)))
+        .collect()
 }
 
 #[derive(Args, Debug)]
@@ -237,7 +235,7 @@ pub struct BodeArgs {
 
 pub fn bode(a: &BodeArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(a.plant.resolve()?);
+    let plants = labelled(&a.plant)?;
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
@@ -271,7 +269,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if matches!(input, Input::None) {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
-    let plants = labelled(a.plant.resolve()?);
+    let plants = labelled(&a.plant)?;
     step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
         .with_context(|| format!("response plot {}", a.plot.output.display()))
 }
@@ -290,8 +288,14 @@ pub struct PzmapArgs {
 pub fn pzmap(a: &PzmapArgs) -> Result<()> {
     let opts = a.plot.options()?;
     let p = a.plant.single()?;
-    pzmap_figure(&a.plot.output, &p.name, &p.tf, a.guides, &opts)
-        .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
+    pzmap_figure(
+        &a.plot.output,
+        &p.name,
+        &a.plant.factored(&p)?,
+        a.guides,
+        &opts,
+    )
+    .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
 }
 
 #[derive(Args, Debug)]
@@ -304,7 +308,7 @@ pub struct NyquistArgs {
 
 pub fn nyquist(a: &NyquistArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(a.plant.resolve()?);
+    let plants = labelled(&a.plant)?;
     let contours = plants
         .iter()
         .map(|(_, g)| g.nyquist())

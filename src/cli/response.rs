@@ -54,6 +54,7 @@ fn input_words(i: &Input) -> String {
 
 pub fn run(a: &ResponseArgs) -> Result<()> {
     let plant = a.plant.single()?;
+    let f = a.plant.factored(&plant)?;
     let input: Input = a.input.parse()?;
     let ics = match &a.ic {
         Some(s) => parse::numbers(s, "--ic")?,
@@ -62,25 +63,25 @@ pub fn run(a: &ResponseArgs) -> Result<()> {
     let t = match &a.t {
         Some(s) => parse::numbers(s, "--t")?,
         None => {
-            let span = auto_time_span(&plant.tf)?.t_end;
+            let span = auto_time_span(&f)?.t_end;
             (0..=10).map(|i| span * i as f64 / 10.0).collect()
         }
     };
     if t.is_empty() {
         bail!("--t: no times given");
     }
-    let resp = plant.tf.inverse_laplace(&input, &ics)?;
-    let samples = plant.tf.response_samples(&input, &ics, &t)?;
+    let resp = f.response(&input, &ics, &t)?;
+    let samples = &resp.samples;
     if a.json {
         return print_json(&ResponseJson {
             closed_form: resp.closed_form.formula("y(t)"),
-            t: samples.t,
-            y: samples.y,
-            transient: samples.transient,
-            steady_state: samples.steady_state,
+            t: samples.t.clone(),
+            y: samples.y.clone(),
+            transient: samples.transient.clone(),
+            steady_state: samples.steady_state.clone(),
         });
     }
-    let mut s = format!("G(s) = {}\n", plant.tf);
+    let mut s = format!("{}\n", super::text::g_text(&plant, &f));
     s.push_str(&format!("Input: {}", input_words(&input)));
     if !ics.is_empty() {
         let names: Vec<String> = (0..ics.len())

@@ -6,22 +6,24 @@ use serde::Serialize;
 
 use super::output::{print, print_json};
 use super::parse;
-use crate::nonlinear::{Input, Simulation, build_model, sample_times, simulate};
+use crate::nonlinear::{ConservedDrift, Input, Simulation, build_model, sample_times, simulate};
 use crate::numeric::rk45::Rk45Options;
 
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
-    /// Model: pendulum, mems, lorenz, vanderpol, or a linear plant (spring-mass-damper, …).
+    /// Model: pendulum, mems, lorenz, vanderpol, rigid-body, heavy-top, gyroscope,
+    /// double-pendulum, or a linear plant (spring-mass-damper, …).
     pub model: String,
     /// A model parameter, NAME=VALUE (repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub params: Vec<String>,
     /// Initial state, e.g. --x0 "0.5 0" (state order as in `ltikit linearize MODEL`).
+    /// Default: the model's own start (Lorenz [1, 0, 0], the pendulum released from 1 rad, …).
     #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
-    pub x0: String,
-    /// End time (s), > 0.
+    pub x0: Option<String>,
+    /// End time (s), > 0. Default: the model's own horizon (Lorenz 50 s, …).
     #[arg(long = "t-end", value_name = "SECONDS", allow_hyphen_values = true)]
-    pub t_end: f64,
+    pub t_end: Option<f64>,
     /// Number of output samples, uniform from 0 to the end time.
     #[arg(long, default_value_t = 1001)]
     pub points: usize,
@@ -167,12 +169,16 @@ pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<Input> {
 pub fn run(a: &SimulateArgs) -> Result<()> {
     let params = parse::params(&a.params)?;
     let sys = build_model(&a.model, &params)?;
-    let x0 = parse::numbers(&a.x0, "--x0")?;
+    let x0 = match &a.x0 {
+        Some(text) => parse::numbers(text, "--x0")?,
+        None => sys.default_initial_state(),
+    };
+    let t_end = a.t_end.unwrap_or_else(|| sys.default_horizon());
     let input = parse_input(a.input.as_deref(), &sys.operating_input())?;
     if a.points < 2 {
         bail!("--points must be at least 2");
     }
-    let times = sample_times(a.t_end, a.points)?;
+    let times = sample_times(t_end, a.points)?;
     let opts = Rk45Options {
         rtol: a.rtol,
         atol: a.atol,
@@ -182,9 +188,24 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
     let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
     picture(a, sys.as_ref(), &sim)?;
     if a.json {
-        print_json(&SimulationJson::from(&sim))
+        let mut j = SimulationJson::from(&sim);
+        j.x0 = &x0;
+        print_json(&j)
     } else {
-        print(&csv(&sim))
+        let mut text = csv(&sim);
+        if a.x0.is_none() || a.t_end.is_none() {
+            text.push_str(&format!(
+                "# x0 = {} and t_end = {} s{}\n",
+                super::text::vector_text(&x0),
+                t_end,
+                match (a.x0.is_none(), a.t_end.is_none()) {
+                    (true, true) => " are the model's defaults",
+                    (true, false) => ": x0 is the model's default",
+                    _ => ": t_end is the model's default",
+                }
+            ));
+        }
+        print(&text)
     }
 }
 
@@ -196,9 +217,12 @@ struct SimulationJson<'a> {
     t: &'a [f64],
     x: &'a [Vec<f64>],
     y: &'a [Vec<f64>],
+    x0: &'a [f64],
     steps: usize,
     rejected_steps: usize,
     stopped: Option<StopJson<'a>>,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    conserved: &'a [ConservedDrift],
 }
 
 #[derive(Serialize)]
@@ -216,12 +240,14 @@ impl<'a> From<&'a Simulation> for SimulationJson<'a> {
             t: &s.t,
             x: &s.states,
             y: &s.outputs,
+            x0: &[],
             steps: s.stats.steps,
             rejected_steps: s.stats.rejections,
             stopped: s.stop.as_ref().map(|st| StopJson {
                 t: st.t,
                 reason: &st.reason,
             }),
+            conserved: &s.conserved,
         }
     }
 }
@@ -248,6 +274,15 @@ pub fn csv(s: &Simulation) -> String {
     }
     if let Some(st) = &s.stop {
         out.push_str(&format!("# stopped at t = {}: {}\n", st.t, st.reason));
+    }
+    for c in &s.conserved {
+        out.push_str(&format!(
+            "# conserved {}: {} at t = 0, drift {:.3e} (relative {:.3e})\n",
+            c.name,
+            crate::poly::fmt_sig(c.initial, 12),
+            c.max_drift,
+            c.relative_drift
+        ));
     }
     out
 }

@@ -1,13 +1,16 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod model;
 pub mod params;
-pub mod plant_file;
+pub mod plant;
 pub mod plants;
+pub mod realize;
 pub mod ss;
 pub mod tf;
 
+pub use model::{MAX_STATES, Model, Signals};
 pub use params::{Constraint, ModelParam};
-pub use plant_file::PlantFile;
+pub use plant::{Plant, PlantFile};
 pub use plants::{PlantSpec, build_plant, plant_spec, plant_specs};
 pub use ss::StateSpace;
 pub use tf::TransferFunction;

@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use crate::error::{LtiError, Result, check_finite};
 use crate::nonlinear::equilibria::{EquilibriumSearch, equilibria};
-use crate::nonlinear::linearize::{LocalStability, analyze_equilibrium};
+use crate::nonlinear::linearize::{LocalStability, stability_at};
 use crate::nonlinear::models::Mems;
 
 /// Data of the pull-in diagram.
@@ -41,8 +41,8 @@ fn classify(mems: &Mems, v: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         if !e.physical {
             continue;
         }
-        let lin = analyze_equilibrium(&m, &e)?;
-        if lin.stability == LocalStability::AsymptoticallyStable {
+        let (stability, _) = stability_at(&m, &e.x, &e.u)?;
+        if stability == LocalStability::AsymptoticallyStable {
             stable.push(e.x[0]);
         } else {
             other.push(e.x[0]);

@@ -97,6 +97,37 @@ pub struct Simulation {
     pub stats: Rk45Stats,
     /// Set when the simulation ended before the last requested time.
     pub stop: Option<SimulationStop>,
+    /// The drift of each conserved quantity ([`SystemInfo::conserved_names`]) over the
+    /// integrator's steps — only for zero input, the condition under which they are
+    /// conserved; empty otherwise.
+    pub conserved: Vec<ConservedDrift>,
+}
+
+/// How far a conserved quantity drifted along a simulation: the integrator's error, since the
+/// exact solution keeps it constant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConservedDrift {
+    /// Its name.
+    pub name: String,
+    /// Its value at t = 0.
+    pub initial: f64,
+    /// max |Q(tₖ) − Q(0)| over the integrator's steps tₖ.
+    pub max_drift: f64,
+    /// The reference magnitude: max(|Q(0)|, the model's natural scale of Q,
+    /// [`SystemInfo::conserved_scales`]).
+    pub reference: f64,
+    /// `max_drift / reference` (`max_drift` itself when the reference is 0).
+    pub relative_drift: f64,
+}
+
+impl Input {
+    /// True when the input is zero at every time (the condition for conservation).
+    pub fn is_zero(&self) -> bool {
+        match self {
+            Input::Constant(u) => u.iter().all(|v| *v == 0.0),
+            Input::Step { before, after, .. } => before.iter().chain(after).all(|v| *v == 0.0),
+        }
+    }
 }
 
 /// Why and when a simulation ended early.
@@ -199,6 +230,21 @@ pub fn simulate(
 
     let n = sys.nx();
     let check_domain = sys.in_domain(x0);
+    if !check_domain {
+        // Outside the domain the equations may be singular: say so rather than report a NaN.
+        let mut dx = vec![0.0; n];
+        sys.eval_f(x0, input.at(0.0), &mut dx);
+        if dx.iter().any(|v| !v.is_finite()) {
+            return Err(LtiError::invalid(format!(
+                "the initial state {x0:?} is outside the model's domain{}, where its equations \
+                 are singular",
+                sys.domain_note()
+                    .map(|d| format!(" ({d})"))
+                    .unwrap_or_default()
+            )));
+        }
+    }
+    let mut tracker = DriftTracker::new(sys, x0, input);
     let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
     let mut stats = Rk45Stats::default();
@@ -220,6 +266,7 @@ pub fn simulate(
             tb,
             opts,
             |step| {
+                tracker.observe(sys, step.state_end());
                 let mut buf = vec![0.0; n];
                 let cut = (check_domain && !sys.in_domain(step.state_end()))
                     .then(|| leave_time(sys, step, &mut buf));
@@ -278,7 +325,69 @@ pub fn simulate(
         outputs,
         stats,
         stop,
+        conserved: tracker.finish(sys),
     })
+}
+
+/// The running drift of the conserved quantities (tracked only for zero input).
+struct DriftTracker {
+    names: Vec<String>,
+    initial: Vec<f64>,
+    buf: Vec<f64>,
+    drift: Vec<f64>,
+}
+
+impl DriftTracker {
+    fn new(sys: &dyn DynSystem, x0: &[f64], input: &Input) -> Self {
+        let names = if input.is_zero() {
+            sys.conserved_names()
+        } else {
+            Vec::new()
+        };
+        let mut initial = vec![0.0; names.len()];
+        if !names.is_empty() {
+            sys.eval_conserved(x0, &mut initial);
+        }
+        DriftTracker {
+            buf: initial.clone(),
+            drift: vec![0.0; names.len()],
+            names,
+            initial,
+        }
+    }
+
+    fn observe(&mut self, sys: &dyn DynSystem, x: &[f64]) {
+        if self.drift.is_empty() {
+            return;
+        }
+        sys.eval_conserved(x, &mut self.buf);
+        for ((d, c), c0) in self.drift.iter_mut().zip(&self.buf).zip(&self.initial) {
+            *d = d.max((c - c0).abs());
+        }
+    }
+
+    fn finish(self, sys: &dyn DynSystem) -> Vec<ConservedDrift> {
+        let scales = sys.conserved_scales();
+        self.names
+            .into_iter()
+            .zip(self.initial.iter().zip(&self.drift))
+            .enumerate()
+            .map(|(i, (name, (&initial, &max_drift)))| {
+                let reference = initial.abs().max(scales.get(i).copied().unwrap_or(0.0));
+                ConservedDrift {
+                    name,
+                    initial,
+                    max_drift,
+                    reference,
+                    relative_drift: if reference > 0.0 {
+                        max_drift / reference
+                    } else {
+                        max_drift
+                    },
+                }
+            })
+            .collect()
+    }
 }
 
 /// The last time in the step at which the state is still in the domain (bisection on the

@@ -7,16 +7,10 @@ pub const EPS: f64 = f64::EPSILON;
 /// |Re p| ≤ `AXIS_REL_TOL` · max(|p|, 1e-300). s² + 1 computed as −4e-16 ± 1j is on the axis.
 pub const AXIS_REL_TOL: f64 = 1e-9;
 
-/// Relative tolerance for matching a numerator root with a denominator root (cancellation).
+/// Relative tolerance under which two computed roots are the same root: a numerator root
+/// cancels a denominator root, an input pole coincides with a system pole.
 pub const CANCEL_REL_TOL: f64 = 1e-8;
 
-/// Relative size under which a coefficient or value is treated as exactly zero in
-/// classification decisions (e.g. ζ = 0 when |Re p| is this small relative to |p|).
+/// Relative size under which a computed coefficient is rounding noise in a display (a
+/// linearised transfer function's structurally zero terms).
 pub const ZERO_REL_TOL: f64 = 1e-12;
-
-/// True when `a` and `b` agree to `rel` relative to the larger magnitude (or both are tiny
-/// in absolute terms, below `abs`).
-pub fn close(a: f64, b: f64, rel: f64, abs: f64) -> bool {
-    let d = (a - b).abs();
-    d <= abs || d <= rel * a.abs().max(b.abs())
-}

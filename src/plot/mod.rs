@@ -32,6 +32,7 @@ mod layout;
 mod legend;
 mod nyquist;
 mod output;
+mod projection;
 mod pzmap;
 mod raster;
 mod step;
@@ -42,6 +43,7 @@ use std::path::Path;
 
 pub use bode::{BodeSeries, bode_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
+pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};
 pub use pzmap::{PzMap, pzmap_png};
 pub use step::{InputKind, StepSeries, step_png};
 pub use style::{Color, LineStyle, MarkerShape, PALETTE, series_color};

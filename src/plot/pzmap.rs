@@ -261,9 +261,9 @@ fn draw(
             CANCEL_COLOR,
         ));
     }
-    if pz.zeros_at_infinity > 0 {
+    if let Some(k) = pz.zeros_at_infinity.filter(|&k| k > 0) {
         legend.push(LegendEntry::text(
-            format!("{} zero(s) at infinity", pz.zeros_at_infinity),
+            format!("{k} zero(s) at infinity"),
             Theme::NOTE,
         ));
     }

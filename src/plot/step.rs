@@ -177,17 +177,13 @@ fn check(series: &[StepSeries]) -> Result<()> {
 /// unwritable path; no file is left behind.
 ///
 /// ```no_run
-/// use ltikit::analysis::{StepInfo, TimeResponse};
+/// use ltikit::TransferFunction;
 /// use ltikit::plot::{step_png, PlotOptions, StepSeries};
 /// // First-order lag 1/(s + 1): y = 1 − e^(−t).
+/// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap().factored().unwrap();
 /// let t: Vec<f64> = (0..=500).map(|k| k as f64 * 0.01).collect();
-/// let y = t.iter().map(|t| 1.0 - (-t).exp()).collect();
-/// let r = TimeResponse { t, y, final_value: Some(1.0) };
-/// let ln = |x: f64| x.ln();
-/// let info = StepInfo {
-///     rise_time: ln(9.0), settling_time: -ln(0.02), overshoot_percent: 0.0, peak: 1.0,
-///     peak_time: 5.0, steady_state: 1.0, rise_start: -ln(0.9), rise_end: -ln(0.1),
-/// };
+/// let r = g.step_response(&t).unwrap();
+/// let info = g.step_info().unwrap().unwrap();
 /// step_png("/tmp/step.png", &[StepSeries::new(&r).label("1/(s + 1)").info(&info)], &PlotOptions::default()).unwrap();
 /// ```
 pub fn step_png(path: impl AsRef<Path>, series: &[StepSeries], opts: &PlotOptions) -> Result<()> {

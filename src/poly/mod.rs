@@ -15,7 +15,7 @@ use num_complex::Complex64;
 use std::fmt;
 
 use crate::error::{LtiError, Result, check_finite};
-pub use root::Root;
+pub use root::{HalfPlane, Root, half_plane, same_root};
 
 /// Highest polynomial degree (system order) ltikit accepts.
 pub const MAX_ORDER: usize = 200;

@@ -6,6 +6,11 @@
 //!
 //! Only factor sets without imaginary-axis pairs come here (the caller checks); those, and
 //! every lane whose product is not a normal number, go through the portable path.
+//!
+//! Length: the per-block loop is one function of ~130 lines on purpose — its state lives in
+//! locals (registers) across the factor loop, and splitting it into calls measurably costs
+//! throughput (the loop is latency-bound); the three loops mirror each other line by line,
+//! which is what the bitwise-equality tests rely on.
 
 // Compiled only where build.rs found rustc ≥ 1.89 (`cfg(ltikit_simd)`), whatever the crate's
 // declared minimum: the intrinsics used here are stable from there on.

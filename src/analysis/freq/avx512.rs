@@ -3,6 +3,11 @@
 //! operations in the same order as the portable lane loop and the AVX2 path (no fused
 //! multiply-add, no reassociation; masks where AVX2 blends), so all three give bitwise the
 //! same values — tested in `kernel`.
+//!
+//! Length: the per-block loop is one function of ~130 lines on purpose — its state lives in
+//! locals (registers) across the factor loop, and splitting it into calls measurably costs
+//! throughput (the loop is latency-bound); the three loops mirror each other line by line,
+//! which is what the bitwise-equality tests rely on.
 
 // Compiled only where build.rs found rustc ≥ 1.89 (`cfg(ltikit_simd)`), whatever the crate's
 // declared minimum: the intrinsics used here are stable from there on.

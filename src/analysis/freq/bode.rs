@@ -5,10 +5,8 @@ use std::f64::consts::{LN_2, TAU};
 
 use super::factors::*;
 use super::fastmath;
-use super::horner::{AxisHorner, FACTORED_CHECK_TOL, wrap_pi};
-use crate::analysis::pz::PoleZero;
-use crate::error::Result;
-use crate::lti::TransferFunction;
+use super::horner::AxisHorner;
+use crate::analysis::factored::Factored;
 
 /// The factored (Bode) form of a reduced transfer function, precomputed for evaluation at
 /// many frequencies. Shared by the frequency response, margins and grids.
@@ -36,98 +34,46 @@ pub(crate) struct BodeForm {
 }
 
 impl BodeForm {
-    /// Builds the factored form of the reduced G.
-    pub fn new(tf: &TransferFunction) -> Result<BodeForm> {
-        if tf.num().is_zero() {
-            return Ok(Self::zero_form());
-        }
-        Ok(Self::with_pole_zero(tf, &tf.pole_zero()?))
-    }
-
-    /// As [`BodeForm::new`], reusing an already computed [`PoleZero`] of `tf`.
-    pub fn with_pole_zero(tf: &TransferFunction, pz: &PoleZero) -> BodeForm {
-        if tf.num().is_zero() {
+    /// The evaluation form of a factored plant: K and k of the low-frequency asymptote from
+    /// the source (exact from coefficients), the reduced zeros and poles as real factors.
+    pub fn new(f: &Factored) -> BodeForm {
+        if f.is_zero() {
             return Self::zero_form();
         }
-        // K and k from the coefficients as given: cancelled common factors contribute the
-        // same lowest non-zero coefficient to both, so the ratio is that of the reduced G.
-        let zn = tf.num().zero_root_multiplicity();
-        let zd = tf.den().zero_root_multiplicity();
-        let k = tf.num().coeff(zn) / tf.den().coeff(zd);
-        let int_order = zn as i32 - zd as i32;
-        let num = FactorSet::from_roots(&pz.reduced_zeros);
-        let den = FactorSet::from_roots(&pz.reduced_poles);
+        let lf = f.low_frequency();
+        let num = FactorSet::from_roots(f.reduced_zeros());
+        let den = FactorSet::from_roots(f.reduced_poles());
         let rate = num.max_rate().max(den.max_rate());
         let fast_limit = if rate > 0.0 {
             FAST_FACTOR_LIMIT / rate
         } else {
             f64::INFINITY
         };
-        let ka = k.abs();
-        let ln_k = tf.num().coeff(zn).abs().ln() - tf.den().coeff(zd).abs().ln();
+        let ka = lf.k.abs();
         let (k_mant, k_exp) = if ka.is_normal() {
             let e = exponent(ka);
             (ka * pow2(-e), e)
         } else {
             // the ratio under- or overflowed: rebuild it from logarithms
-            let e = (ln_k / LN_2).floor();
-            ((ln_k - e * LN_2).exp(), e as i32)
+            let e = (lf.ln_abs / LN_2).floor();
+            ((lf.ln_abs - e * LN_2).exp(), e as i32)
         };
-        BodeForm {
+        let form = BodeForm {
             zero: false,
             k_mant,
             k_exp,
-            ln_k,
-            base_quarters: (if k < 0.0 { -2 } else { 0 }) + int_order as i64,
-            int_order,
+            ln_k: lf.ln_abs,
+            base_quarters: (if lf.sign < 0.0 { -2 } else { 0 }) + lf.int_order as i64,
+            int_order: lf.int_order,
             num,
             den,
             fast_limit,
             exact: None,
+        };
+        match f.source().coefficients() {
+            Some(c) => form.checked(&c.tf, &c.reduced, &f.pole_zero().cancelled),
+            None => form,
         }
-        .checked(&pz.reduced)
-    }
-
-    /// Compares the factored form with double-double Horner on the reduced coefficients at
-    /// probe frequencies (the corner frequencies and a log grid); on disagreement beyond
-    /// [`FACTORED_CHECK_TOL`] switches to Horner magnitudes and principal phases.
-    fn checked(mut self, reduced: &TransferFunction) -> BodeForm {
-        let horner = AxisHorner::new(reduced);
-        let mut probes = self.corner_frequencies();
-        probes.sort_by(f64::total_cmp);
-        probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
-        if probes.len() > 48 {
-            let step = probes.len() as f64 / 48.0;
-            probes = (0..48)
-                .map(|i| probes[(i as f64 * step) as usize])
-                .collect();
-        }
-        let (a, b) = self.decade_range();
-        probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
-        let axis: Vec<f64> = self
-            .num
-            .axis
-            .iter()
-            .chain(&self.den.axis)
-            .copied()
-            .collect();
-        for &w in &probes {
-            if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
-                continue;
-            }
-            let f = self.eval(w);
-            if !(f.mant > 0.0 && f.mant.is_finite()) {
-                continue;
-            }
-            let (ln_h, arg_h) = horner.eval(w);
-            let dl = (f.ln_mag() - ln_h).abs();
-            let dp = wrap_pi(f.phase_rad() - arg_h).abs();
-            if !(dl <= FACTORED_CHECK_TOL && dp <= FACTORED_CHECK_TOL) {
-                self.exact = Some(Box::new(horner));
-                break;
-            }
-        }
-        self
     }
 
     /// True when evaluation falls back to double-double Horner (see [`BodeForm::checked`]).
@@ -193,22 +139,6 @@ impl BodeForm {
         match &self.exact {
             None => f,
             Some(h) => Self::refine(f, h, w),
-        }
-    }
-
-    /// Horner magnitude and principal phase on the branch of the factored phase `f`.
-    #[cold]
-    fn refine(f: Eval, h: &AxisHorner, w: f64) -> Eval {
-        if !(f.mant > 0.0 && f.mant.is_finite()) {
-            return f; // an exact zero or pole on the axis
-        }
-        let (ln, arg) = h.eval(w);
-        let e = (ln / LN_2).floor().clamp(-2.0e9, 2.0e9);
-        Eval {
-            mant: (ln - e * LN_2).exp(),
-            exp2: e as i32,
-            angle: f.angle + wrap_pi(arg - f.phase_rad()),
-            quarters: f.quarters,
         }
     }
 
@@ -377,82 +307,20 @@ impl BodeForm {
         }
         d
     }
-
-    /// Corner frequencies |p| of every non-zero reduced pole and zero (with repetition).
-    pub fn corner_frequencies(&self) -> Vec<f64> {
-        let mut out = Vec::new();
-        for s in [&self.num, &self.den] {
-            out.extend(s.real_p.iter().map(|p| p.abs()));
-            out.extend(s.quad.iter().map(|q| q.r));
-            out.extend(s.axis.iter().copied());
-        }
-        out
-    }
-
-    /// Lightly damped pairs (ζ < `zeta_max`, including undamped ones with ζ = 0) of the
-    /// numerator and denominator, as (ωn, ζ).
-    pub fn light_pairs(&self, zeta_max: f64) -> Vec<(f64, f64)> {
-        let mut out = Vec::new();
-        for s in [&self.num, &self.den] {
-            out.extend(s.axis.iter().map(|&b| (b, 0.0)));
-            out.extend(
-                s.quad
-                    .iter()
-                    .map(|q| (q.r, q.sn.abs()))
-                    .filter(|&(_, z)| z < zeta_max),
-            );
-        }
-        out
-    }
-
-    /// The plotting range: two decades below the smallest corner frequency and above the
-    /// largest, rounded out to whole decades; 0.01…100 rad/s without corners. Returned as
-    /// (log₁₀ ω_min, log₁₀ ω_max).
-    pub fn decade_range(&self) -> (f64, f64) {
-        let c = self.corner_frequencies();
-        let lo = c.iter().copied().reduce(f64::min);
-        let hi = c.iter().copied().reduce(f64::max);
-        match (lo, hi) {
-            (Some(lo), Some(hi)) => (
-                (lo.log10() - 2.0).floor().max(-300.0),
-                (hi.log10() + 2.0).ceil().min(300.0),
-            ),
-            _ => (-2.0, 2.0),
-        }
-    }
-
-    /// A dense sampling grid for bracketing: `per_decade` log-spaced points per decade over
-    /// [`BodeForm::decade_range`] plus points around every lightly damped pair within a
-    /// few bandwidths ζ·ωn of ωn. Sorted, unique, finite, positive.
-    pub fn sampling_grid(&self, per_decade: usize) -> Vec<f64> {
-        let (a, b) = self.decade_range();
-        let n = ((b - a) * per_decade as f64).ceil().max(1.0) as usize;
-        let mut xs: Vec<f64> = (0..=n)
-            .map(|i| 10f64.powf(a + (b - a) * i as f64 / n as f64))
-            .collect();
-        for (wn, z) in self.light_pairs(0.5) {
-            let z = z.max(1e-6);
-            for k in -40..=40 {
-                let x = wn * (1.0 + 0.25 * z * k as f64);
-                if x > 0.0 {
-                    xs.push(x);
-                }
-            }
-        }
-        xs.retain(|x| x.is_finite() && *x > 0.0);
-        xs.sort_by(f64::total_cmp);
-        xs.dedup();
-        xs
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lti::TransferFunction;
     use num_complex::Complex64;
 
     fn tf(n: &[f64], d: &[f64]) -> TransferFunction {
         TransferFunction::from_descending(n, d).unwrap()
+    }
+
+    fn form(g: &TransferFunction) -> BodeForm {
+        BodeForm::new(&g.factored().unwrap())
     }
 
     /// Both evaluation paths agree (fast path against the per-factor logarithmic path).
@@ -465,7 +333,7 @@ mod tests {
             tf(&[2.0], &[1.0, -1.0, 10.0]),
         ];
         for g in &cases {
-            let f = BodeForm::new(g).unwrap();
+            let f = form(g);
             for i in 0..400 {
                 let w = 10f64.powf(-4.0 + 8.0 * i as f64 / 399.0);
                 let a = f.eval_fast(w);
@@ -512,7 +380,7 @@ mod tests {
     #[test]
     fn derivative_matches_finite_difference() {
         let g = tf(&[1.0, -2.0, 5.0], &[1.0, 3.0, 7.0, 9.0, 4.0, 0.5]);
-        let f = BodeForm::new(&g).unwrap();
+        let f = form(&g);
         for &w in &[0.01, 0.3, 1.0, 2.5, 40.0, 1e4] {
             let h = 1e-6 * w;
             let fd = (f.eval(w + h).ln_mag() - f.eval(w - h).ln_mag()) / (2.0 * h);
@@ -562,7 +430,7 @@ mod tests {
             for _ in 0..int.abs() {
                 g = if int > 0 { &g * &s } else { &g * &s.inv().unwrap() };
             }
-            let f = BodeForm::new(&g).unwrap();
+            let f = form(&g);
             let mut w: Vec<f64> = (0..301).map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 300.0)).collect();
             for c in f.corner_frequencies() {
                 w.extend([c, c * (1.0 + 1e-9), c * (1.0 - 1e-9), c * 1.01, c * 0.99]);
@@ -601,7 +469,7 @@ mod tests {
         // (s + 1)^20 expanded: the roots come back as one exact 20-fold pole, so the factored
         // form is used; |G| = (1 + ω²)^−10, φ = −20·atan ω.
         let g = tf(&[1.0], &binomial_den(20));
-        let f = BodeForm::new(&g).unwrap();
+        let f = form(&g);
         for &w in &[0.01, 0.5, 1.0, 2.0, 100.0] {
             let e = f.eval(w);
             let m = (1.0 + w * w).powi(-10);
@@ -631,7 +499,7 @@ mod tests {
             den = next;
         }
         let g = tf(&[1.0], &den);
-        let f = BodeForm::new(&g).unwrap();
+        let f = form(&g);
         assert!(f.uses_horner());
         for &w in &[0.01, 1.0, 10.0, 100.0] {
             let e = f.eval(w);
@@ -645,6 +513,6 @@ mod tests {
         }
         // a healthy plant does not
         let g = tf(&[1.0, 2.0], &[1.0, 3.0, 7.0, 9.0, 4.0, 0.5]);
-        assert!(!BodeForm::new(&g).unwrap().uses_horner());
+        assert!(!form(&g).uses_horner());
     }
 }

@@ -3,23 +3,25 @@
 
 use std::f64::consts::{FRAC_PI_2, LN_2, PI, TAU};
 
-use super::factors::{exponent, mul_pow2};
+use super::BodeForm;
+use super::factors::{Eval, exponent, mul_pow2};
 use crate::lti::TransferFunction;
+use crate::poly::{HalfPlane, Root};
 
-/// Reduced numerator and denominator for double-double Horner evaluation on the axis:
-/// coefficients normalised by a power of two to max |c| ∈ [1, 2), zero roots stripped.
+/// Numerator and denominator coefficients for double-double Horner evaluation on the axis:
+/// normalised by a power of two to max |c| ∈ [1, 2), zero roots stripped.
 #[derive(Debug, Clone)]
-pub(super) struct AxisHorner {
-    pub(super) num: Vec<f64>,
-    pub(super) den: Vec<f64>,
+pub(super) struct HornerPair {
+    num: Vec<f64>,
+    den: Vec<f64>,
     /// zeros at s = 0 minus poles at s = 0
-    pub(super) int_order: i32,
+    int_order: i32,
     /// ln(max|num| / max|den|)
-    pub(super) ln_scale: f64,
+    ln_scale: f64,
 }
 
-impl AxisHorner {
-    pub(super) fn new(reduced: &TransferFunction) -> AxisHorner {
+impl HornerPair {
+    fn new(g: &TransferFunction) -> HornerPair {
         let prep = |p: &crate::poly::Poly| -> (Vec<f64>, usize, f64) {
             let z = p.zero_root_multiplicity();
             let c = &p.coeffs()[..p.coeffs().len() - z];
@@ -31,9 +33,9 @@ impl AxisHorner {
                 e as f64 * LN_2,
             )
         };
-        let (num, zn, ln_n) = prep(reduced.num());
-        let (den, zd, ln_d) = prep(reduced.den());
-        AxisHorner {
+        let (num, zn, ln_n) = prep(g.num());
+        let (den, zd, ln_d) = prep(g.den());
+        HornerPair {
             num,
             den,
             int_order: zn as i32 - zd as i32,
@@ -41,8 +43,7 @@ impl AxisHorner {
         }
     }
 
-    /// (ln|G(jω)|, principal-or-not argument of G(jω)) for ω > 0.
-    pub(super) fn eval(&self, w: f64) -> (f64, f64) {
+    fn eval(&self, w: f64) -> (f64, f64) {
         let (ln_n, arg_n) = dd_axis(&self.num, w);
         let (ln_d, arg_d) = dd_axis(&self.den, w);
         let k = self.int_order as f64;
@@ -50,6 +51,54 @@ impl AxisHorner {
             self.ln_scale + ln_n - ln_d + k * w.ln(),
             arg_n - arg_d + k * FRAC_PI_2,
         )
+    }
+}
+
+/// The reference evaluation of G(jω): double-double Horner on the coefficients as given,
+/// and on the reduced coefficients near a cancelled root on the axis (where the given N and D
+/// both vanish).
+#[derive(Debug, Clone)]
+pub(super) struct AxisHorner {
+    given: HornerPair,
+    reduced: Option<HornerPair>,
+    /// β ≥ 0 of the cancelled roots on the imaginary axis.
+    cancelled_axis: Vec<f64>,
+}
+
+/// Relative distance to a cancelled axis root within which the reduced coefficients are used.
+const NEAR_CANCELLED: f64 = 1e-6;
+
+impl AxisHorner {
+    pub(super) fn new(
+        given: &TransferFunction,
+        reduced: &TransferFunction,
+        cancelled: &[Root],
+    ) -> AxisHorner {
+        let cancelled_axis: Vec<f64> = cancelled
+            .iter()
+            .filter(|r| r.half_plane() == HalfPlane::Axis && r.value.im >= 0.0)
+            .map(|r| r.value.im)
+            .collect();
+        AxisHorner {
+            given: HornerPair::new(given),
+            reduced: (!cancelled_axis.is_empty()).then(|| HornerPair::new(reduced)),
+            cancelled_axis,
+        }
+    }
+
+    /// (ln|G(jω)|, principal-or-not argument of G(jω)) for ω > 0.
+    pub(super) fn eval(&self, w: f64) -> (f64, f64) {
+        match &self.reduced {
+            Some(r)
+                if self
+                    .cancelled_axis
+                    .iter()
+                    .any(|&b| (w - b).abs() <= NEAR_CANCELLED * b.max(w)) =>
+            {
+                r.eval(w)
+            }
+            _ => self.given.eval(w),
+        }
     }
 }
 
@@ -98,4 +147,72 @@ pub(super) const FACTORED_CHECK_TOL: f64 = 1e-11;
 pub(super) fn wrap_pi(x: f64) -> f64 {
     let y = x - TAU * (x / TAU).round();
     if y <= -PI { y + TAU } else { y }
+}
+
+impl BodeForm {
+    /// Compares the factored form with double-double Horner on the coefficients *as given*
+    /// at probe frequencies (the corner frequencies and a log grid); on disagreement beyond
+    /// [`FACTORED_CHECK_TOL`] switches to Horner magnitudes and principal phases. (The reduced
+    /// coefficients come from a division by the computed common factor and carry its error:
+    /// they are only the reference within a relative 1e-6 of a cancelled root on the axis,
+    /// where N and D both vanish.)
+    pub(super) fn checked(
+        mut self,
+        given: &TransferFunction,
+        reduced: &TransferFunction,
+        cancelled: &[Root],
+    ) -> BodeForm {
+        let horner = AxisHorner::new(given, reduced, cancelled);
+        let mut probes = self.corner_frequencies();
+        probes.sort_by(f64::total_cmp);
+        probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
+        if probes.len() > 48 {
+            let step = probes.len() as f64 / 48.0;
+            probes = (0..48)
+                .map(|i| probes[(i as f64 * step) as usize])
+                .collect();
+        }
+        let (a, b) = self.decade_range();
+        probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
+        let axis: Vec<f64> = self
+            .num
+            .axis
+            .iter()
+            .chain(&self.den.axis)
+            .copied()
+            .collect();
+        for &w in &probes {
+            if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
+                continue;
+            }
+            let f = self.eval(w);
+            if !(f.mant > 0.0 && f.mant.is_finite()) {
+                continue;
+            }
+            let (ln_h, arg_h) = horner.eval(w);
+            let dl = (f.ln_mag() - ln_h).abs();
+            let dp = wrap_pi(f.phase_rad() - arg_h).abs();
+            if !(dl <= FACTORED_CHECK_TOL && dp <= FACTORED_CHECK_TOL) {
+                self.exact = Some(Box::new(horner));
+                break;
+            }
+        }
+        self
+    }
+
+    /// Horner magnitude and principal phase on the branch of the factored phase `f`.
+    #[cold]
+    pub(super) fn refine(f: Eval, h: &AxisHorner, w: f64) -> Eval {
+        if !(f.mant > 0.0 && f.mant.is_finite()) {
+            return f; // an exact zero or pole on the axis
+        }
+        let (ln, arg) = h.eval(w);
+        let e = (ln / LN_2).floor().clamp(-2.0e9, 2.0e9);
+        Eval {
+            mant: (ln - e * LN_2).exp(),
+            exp2: e as i32,
+            angle: f.angle + wrap_pi(arg - f.phase_rad()),
+            quarters: f.quarters,
+        }
+    }
 }

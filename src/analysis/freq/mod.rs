@@ -41,6 +41,7 @@
 
 use serde::Serialize;
 
+use crate::analysis::factored::Factored;
 use crate::error::{LtiError, Result, check_finite};
 use crate::lti::TransferFunction;
 
@@ -82,7 +83,28 @@ impl TransferFunction {
     /// ```
     pub fn freq_response(&self, w: &[f64]) -> Result<FrequencyResponse> {
         check_frequencies(w)?;
-        let form = BodeForm::new(self)?;
+        self.factored()?.freq_response(w)
+    }
+}
+
+impl Factored {
+    /// Frequency response G(jω) at the frequencies `w` (rad/s, finite, ≥ 0, any order), on
+    /// the evaluation form built once per factorisation (see
+    /// [`TransferFunction::freq_response`] and the [module docs](self)).
+    ///
+    /// ```
+    /// use ltikit::analysis::Factored;
+    /// use ltikit::Root;
+    /// use num_complex::Complex64 as C;
+    /// // 1/(s + 1)^40: −40·45° = −1800° at ω = 1, |G| = 2^−20.
+    /// let f = Factored::from_zpk(&[], &[Root::new(C::new(-1.0, 0.0), 40)], 1.0).unwrap();
+    /// let r = f.freq_response(&[1.0]).unwrap();
+    /// assert!((r.phase_deg[0] + 1800.0).abs() < 1e-9);
+    /// assert!((r.magnitude[0] - 2f64.powi(-20)).abs() < 1e-20);
+    /// ```
+    pub fn freq_response(&self, w: &[f64]) -> Result<FrequencyResponse> {
+        check_frequencies(w)?;
+        let form = self.bode();
         let n = w.len();
         let mut out_w = vec![0.0; n];
         let mut magnitude = vec![0.0; n];
@@ -107,7 +129,7 @@ impl TransferFunction {
                     .zip(magnitude_db.chunks_mut(chunk))
                     .zip(phase_deg.chunks_mut(chunk));
                 for (k, ((((wc, ow), m), db), ph)) in blocks.enumerate() {
-                    let form = &form;
+                    let form: &BodeForm = form;
                     let mut job = move || {
                         ow.copy_from_slice(wc);
                         form.response_fill(wc, m, db, ph);
@@ -159,7 +181,7 @@ fn worker_count(n: usize) -> usize {
 }
 
 /// Checks that every frequency is finite and ≥ 0.
-pub(crate) fn check_frequencies(w: &[f64]) -> Result<()> {
+pub fn check_frequencies(w: &[f64]) -> Result<()> {
     for (i, &x) in w.iter().enumerate() {
         check_finite(|| format!("frequency w[{i}]"), x)?;
         if x < 0.0 {
@@ -178,6 +200,7 @@ mod avx2;
 #[cfg(all(target_arch = "x86_64", ltikit_simd))]
 mod avx512;
 mod bode;
+mod corners;
 mod factors;
 mod fastmath;
 mod horner;

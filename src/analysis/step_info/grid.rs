@@ -77,7 +77,7 @@ impl GridDerivative {
                         phases,
                     } => (*sigma, *omega, amplitudes.clone(), phases.clone()),
                 };
-                let (rate, t_max) = super::mode_scales(t);
+                let (rate, t_max) = super::search::mode_scales(t);
                 Some(Mode {
                     sigma,
                     omega,

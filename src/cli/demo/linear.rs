@@ -6,17 +6,24 @@ use super::super::plots;
 use super::Ctx;
 use super::md::Md;
 use crate::TransferFunction;
+use crate::analysis::Factored;
 use crate::analysis::{Analysis, Input, auto_time_span};
 pub use crate::cli::text::roots_text;
-use crate::lti::PlantFile;
+use crate::lti::{Plant, PlantFile};
 use crate::poly::{fmt_num, fmt_root, fmt_sig};
 
-/// A plant of the tour.
+/// A plant of the tour, factored once.
 pub struct DemoPlant {
     /// File-name stem for its pictures.
     pub slug: &'static str,
+    /// Its plant file (name, description, source, units).
     pub file: PlantFile,
+    /// Its name.
+    pub name: String,
+    /// The plant as given.
     pub tf: TransferFunction,
+    /// The factored form every analysis of the section reads.
+    pub f: Factored,
 }
 
 /// The shipped plant files, compiled in so the demo runs from any directory.
@@ -39,8 +46,18 @@ pub fn plants() -> Result<Vec<DemoPlant>> {
         .iter()
         .map(|(slug, text)| {
             let file = PlantFile::parse(text)?;
-            let tf = file.transfer_function()?;
-            Ok(DemoPlant { slug, file, tf })
+            let plant = Plant::from_record(&file)?;
+            let f = plant.factored()?;
+            let tf = plant.tf().cloned().ok_or_else(|| {
+                anyhow::anyhow!("the textbook plant files hold transfer functions")
+            })?;
+            Ok(DemoPlant {
+                slug,
+                file,
+                name: plant.name,
+                tf,
+                f,
+            })
         })
         .collect()
 }
@@ -82,13 +99,16 @@ pub fn ode_of(g: &TransferFunction) -> String {
 }
 
 /// Summary table rows of an analysis.
-pub fn analysis_rows(g: &TransferFunction, a: &Analysis) -> Vec<Vec<String>> {
+pub fn analysis_rows(g: &Factored, a: &Analysis) -> Vec<Vec<String>> {
     let pz = &a.pole_zero;
     let mut rows = vec![
         vec!["transfer function".into(), format!("G(s) = {g}")],
         vec![
             "order, relative degree".into(),
-            format!("{}, {}", a.order, a.relative_degree),
+            match a.relative_degree {
+                Some(r) => format!("{}, {r}", a.order),
+                None => format!("{}, – (G = 0)", a.order),
+            },
         ],
         vec!["poles".into(), roots_text(&pz.poles)],
         vec![
@@ -96,10 +116,9 @@ pub fn analysis_rows(g: &TransferFunction, a: &Analysis) -> Vec<Vec<String>> {
             format!(
                 "{}{}",
                 roots_text(&pz.zeros),
-                if pz.zeros_at_infinity > 0 {
-                    format!("; {} at infinity", pz.zeros_at_infinity)
-                } else {
-                    String::new()
+                match pz.zeros_at_infinity {
+                    Some(k) if k > 0 => format!("; {k} at infinity"),
+                    _ => String::new(),
                 }
             ),
         ],
@@ -179,16 +198,18 @@ pub fn modes_table(md: &mut Md, a: &Analysis) {
 }
 
 /// Writes the closed-form response for `input` and `ics`, records the closed form vs exact
-/// simulation check, and returns the response.
+/// simulation check, and returns the response (closed form and samples from one call).
 pub fn closed_form_block(
     ctx: &mut Ctx,
     md: &mut Md,
     name: &str,
-    g: &TransferFunction,
+    g: &Factored,
     input: &Input,
     ics: &[f64],
 ) -> Result<crate::analysis::Response> {
-    let resp = g.inverse_laplace(input, ics)?;
+    let t_end = auto_time_span(g)?.t_end;
+    let t: Vec<f64> = (0..=400).map(|i| t_end * i as f64 / 400.0).collect();
+    let resp = g.response(input, ics, &t)?;
     let mut text = resp.closed_form.formula("y(t)");
     text.push_str(&format!(
         "\n  transient (system poles):   {}",
@@ -199,9 +220,7 @@ pub fn closed_form_block(
         resp.steady_state.expression()
     ));
     md.code(&text);
-    let t_end = auto_time_span(g)?.t_end;
-    let t: Vec<f64> = (0..=400).map(|i| t_end * i as f64 / 400.0).collect();
-    let s = g.response_samples(input, ics, &t)?;
+    let s = &resp.samples;
     let rel = if s.max_abs_y > 0.0 {
         s.closed_form_error / s.max_abs_y
     } else {
@@ -242,8 +261,9 @@ fn table_frequencies(a: &Analysis) -> Vec<f64> {
 
 /// One plant's section.
 pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) -> Result<Analysis> {
-    let g = &p.tf;
-    md.h2(&format!("{index}. {}", p.file.name));
+    let g = &p.f;
+    let name = p.name.as_str();
+    md.h2(&format!("{index}. {name}"));
     let mut intro = String::new();
     if let Some(d) = &p.file.description {
         intro.push_str(d);
@@ -255,17 +275,26 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
         intro.push_str(&format!(" Input: {i}; output: {o}."));
     }
     md.p(&intro);
-    md.p(&format!("ODE: `{}`", ode_of(g)));
+    md.p(&format!("ODE: `{}`", ode_of(&p.tf)));
     let a = g.analyze()?;
     md.table(&["property", "value"], &analysis_rows(g, &a));
     modes_table(md, &a);
 
+    step_block(ctx, md, name, g, &a)?;
+    ic_block(ctx, md, name, g)?;
+    frequency_block(ctx, md, name, g, &a)?;
+    figures(ctx, md, p)?;
+    Ok(a)
+}
+
+/// The closed-form step response and the step metrics (checked on the exact response).
+fn step_block(ctx: &mut Ctx, md: &mut Md, name: &str, g: &Factored, a: &Analysis) -> Result<()> {
     md.h3("Step response");
     md.p(
         "Closed form of L⁻¹{G(s)/s}; the transient part comes from the system poles, the \
           steady state from the input pole (seed eqs. 3.39–3.40).",
     );
-    closed_form_block(ctx, md, &p.file.name, g, &Input::Step, &[])?;
+    closed_form_block(ctx, md, name, g, &Input::Step, &[])?;
     match &a.step_info {
         Some(si) => {
             md.table(
@@ -290,11 +319,16 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
                     fmt_sig(si.steady_state, 6),
                 ]],
             );
-            super::verify_step_info(ctx, &p.file.name, g, si)?;
+            super::verify_step_info(ctx, name, g, si)?;
         }
         None => md.p("The step response does not settle: no step metrics."),
     }
 
+    Ok(())
+}
+
+/// The free response from y(0) = 1.
+fn ic_block(ctx: &mut Ctx, md: &mut Md, name: &str, g: &Factored) -> Result<()> {
     md.h3("Initial-condition response");
     let n = g.order();
     let mut ics = vec![0.0; n];
@@ -306,10 +340,21 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
         "Free response (no input) from {} (seed eqs. 3.13, 3.30):",
         ic_text.join(", ")
     ));
-    closed_form_block(ctx, md, &p.file.name, g, &Input::None, &ics)?;
+    closed_form_block(ctx, md, name, g, &Input::None, &ics)?;
 
+    Ok(())
+}
+
+/// M(ω), φ(ω) at a few frequencies, margins, bandwidth and resonance (checked on G(jω)).
+fn frequency_block(
+    ctx: &mut Ctx,
+    md: &mut Md,
+    name: &str,
+    g: &Factored,
+    a: &Analysis,
+) -> Result<()> {
     md.h3("Frequency response");
-    let w = table_frequencies(&a);
+    let w = table_frequencies(a);
     let fr = g.freq_response(&w)?;
     let rows: Vec<Vec<String>> = (0..w.len())
         .map(|i| {
@@ -359,8 +404,15 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
             _ => "no resonant peak".into(),
         },
     ]);
-    super::verify_margins(ctx, &p.file.name, g, &m)?;
+    super::verify_margins(ctx, name, g, &m)?;
 
+    Ok(())
+}
+
+/// Bode, step and pole-zero pictures of the plant.
+fn figures(ctx: &mut Ctx, md: &mut Md, p: &DemoPlant) -> Result<()> {
+    let g = &p.f;
+    let name = p.name.as_str();
     let label = format!("G(s) = {g}");
     let plant = [(label.clone(), g.clone())];
     let bode = format!("{}-bode.png", p.slug);
@@ -370,7 +422,7 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
         None,
         true,
         true,
-        &super::fig(format!("{}: Bode diagram", p.file.name)),
+        &super::fig(format!("{}: Bode diagram", name)),
     )?;
     let step = format!("{}-step.png", p.slug);
     plots::step_figure(
@@ -378,7 +430,7 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
         &plant,
         &Input::Step,
         None,
-        &super::fig(format!("{}: step response", p.file.name)),
+        &super::fig(format!("{}: step response", name)),
     )?;
     let pz = format!("{}-pzmap.png", p.slug);
     plots::pzmap_figure(
@@ -386,10 +438,10 @@ pub fn plant_section(ctx: &mut Ctx, md: &mut Md, index: usize, p: &DemoPlant) ->
         &label,
         g,
         true,
-        &super::fig(format!("{}: poles and zeros", p.file.name)),
+        &super::fig(format!("{}: poles and zeros", name)),
     )?;
-    md.image(&format!("Bode diagram of the {}", p.file.name), &bode);
-    md.image(&format!("Step response of the {}", p.file.name), &step);
-    md.image(&format!("Pole-zero map of the {}", p.file.name), &pz);
-    Ok(a)
+    md.image(&format!("Bode diagram of the {}", name), &bode);
+    md.image(&format!("Step response of the {}", name), &step);
+    md.image(&format!("Pole-zero map of the {}", name), &pz);
+    Ok(())
 }

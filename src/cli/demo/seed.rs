@@ -8,16 +8,13 @@ use super::Ctx;
 use super::linear::roots_text;
 use super::md::Md;
 use crate::TransferFunction;
-use crate::analysis::Input;
+use crate::analysis::{Factored, Input};
 use crate::plot::{Curve, Equilibrium, PhasePortrait, phase_portrait_png, series_color};
 use crate::poly::fmt_sig;
 
-/// ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1.
-pub fn second_order(zeta: f64) -> Result<TransferFunction> {
-    Ok(TransferFunction::from_descending(
-        &[1.0],
-        &[1.0, 2.0 * zeta, 1.0],
-    )?)
+/// ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1, factored.
+pub fn second_order(zeta: f64) -> Result<Factored> {
+    Ok(TransferFunction::from_descending(&[1.0], &[1.0, 2.0 * zeta, 1.0])?.factored()?)
 }
 
 /// The damping cases of the seed's figures.
@@ -37,10 +34,14 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
           (c₁ + c₂t)e^(−t) form of eq. 3.35.",
     );
     let mut rows = Vec::new();
-    for &z in &CASES {
-        let g = second_order(z)?;
+    let plants: Vec<(String, Factored)> = CASES
+        .iter()
+        .map(|&z| Ok((format!("ζ = {z}"), second_order(z)?)))
+        .collect::<Result<_>>()?;
+    for (&z, (_, g)) in CASES.iter().zip(&plants) {
         let a = g.analyze()?;
-        let free = g.inverse_laplace(&Input::None, &[X0, 0.0])?;
+        let t: Vec<f64> = (0..=400).map(|i| 0.1 * i as f64).collect();
+        let free = g.response(&Input::None, &[X0, 0.0], &t)?;
         let step = a.step_info.map(|s| {
             format!(
                 "rise {} s, settling {} s, overshoot {} %",
@@ -58,8 +59,7 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
             format!("`{}`", free.closed_form.formula("x(t)")),
             step.unwrap_or_else(|| "does not settle".into()),
         ]);
-        let t: Vec<f64> = (0..=400).map(|i| 0.1 * i as f64).collect();
-        let s = g.response_samples(&Input::None, &[X0, 0.0], &t)?;
+        let s = &free.samples;
         ctx.checks.add(
             "closed form vs exact simulation (relative to max|y|)",
             format!("damping case ζ = {z}: free response from π/36"),
@@ -77,10 +77,6 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         ],
         &rows,
     );
-    let plants: Vec<(String, TransferFunction)> = CASES
-        .iter()
-        .map(|&z| Ok((format!("ζ = {z}"), second_order(z)?)))
-        .collect::<Result<_>>()?;
     let step = "damping-step.png";
     plots::step_figure(
         &ctx.figure(step),
@@ -100,8 +96,8 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
     )?;
     // Phase plots ẋ against x from x(0) = π/36 (fig. 2.6), from the exact closed forms.
     let mut curves = Vec::new();
-    for (k, &z) in CASES.iter().enumerate() {
-        let free = second_order(z)?.inverse_laplace(&Input::None, &[X0, 0.0])?;
+    for (k, (&z, (_, g))) in CASES.iter().zip(&plants).enumerate() {
+        let free = g.inverse_laplace(&Input::None, &[X0, 0.0])?;
         let t_end = if z == 0.0 {
             2.0 * std::f64::consts::PI
         } else {

@@ -24,9 +24,6 @@ pub const MAX_DIGITS: usize = 1000;
 /// number read from text to about 2000 decimal digits (≈ 6700 bits) of numerator and denominator.
 pub const MAX_EXPONENT: i64 = 1000;
 
-/// Tokens longer than this are abbreviated in error messages.
-const TOKEN_SHOWN: usize = 80;
-
 /// An exact rational number n/d in lowest terms (d > 0).
 ///
 /// ```
@@ -47,10 +44,20 @@ impl Rational {
     /// Reads the exact value of a decimal number or fraction (see the module docs for the
     /// accepted forms). Surrounding whitespace is ignored.
     pub fn parse(text: &str) -> Result<Rational> {
+        Rational::parse_named(text, "number")
+    }
+
+    /// As [`Rational::parse`], naming the value in the error (e.g. "coefficient 2 of --den").
+    ///
+    /// ```
+    /// use ltikit::poly::exact::Rational;
+    /// let e = Rational::parse_named("1/0", "coefficient 1").unwrap_err();
+    /// assert_eq!(e.to_string(), "coefficient 1: '1/0' is not a valid exact number (division by zero)");
+    /// ```
+    pub fn parse_named(text: &str, what: &str) -> Result<Rational> {
         let t = text.trim();
-        parse_token(t).map_err(|reason| LtiError::BadNumber {
-            token: abbreviate(t),
-            reason,
+        parse_token(t).map_err(|reason| {
+            LtiError::bad_number(what, t, format!("is not a valid exact number ({reason})"))
         })
     }
 
@@ -62,10 +69,11 @@ impl Rational {
     /// ```
     pub fn new(num: i64, den: i64) -> Result<Rational> {
         if den == 0 {
-            return Err(LtiError::BadNumber {
-                token: format!("{num}/{den}"),
-                reason: "division by zero".into(),
-            });
+            return Err(LtiError::bad_number(
+                "fraction",
+                &format!("{num}/{den}"),
+                "is not a valid exact number (division by zero)",
+            ));
         }
         Ok(Rational::from_parts(IBig::from(num), IBig::from(den)))
     }
@@ -185,17 +193,6 @@ impl fmt::Display for Rational {
             write!(f, "{}/{}", self.num, self.den)
         }
     }
-}
-
-/// `token` as shown in an error: at most about 80 characters.
-pub(crate) fn abbreviate(token: &str) -> String {
-    let n = token.chars().count();
-    if n <= TOKEN_SHOWN {
-        return token.to_string();
-    }
-    let head: String = token.chars().take(60).collect();
-    let tail: String = token.chars().skip(n - 12).collect();
-    format!("{head}…{tail} ({n} characters)")
 }
 
 /// A decimal number m·10^e read from text.
@@ -452,7 +449,7 @@ mod tests {
         ];
         for (tok, why) in cases {
             match Rational::parse(tok) {
-                Err(LtiError::BadNumber { token, reason }) => {
+                Err(LtiError::BadNumber { token, reason, .. }) => {
                     assert!(reason.contains(why), "{tok}: {reason}");
                     assert_eq!(token, tok.trim());
                 }
@@ -463,7 +460,7 @@ mod tests {
         assert!(Rational::parse(&"7".repeat(1000)).is_ok());
         let long = "7".repeat(1001);
         match Rational::parse(&long) {
-            Err(LtiError::BadNumber { token, reason }) => {
+            Err(LtiError::BadNumber { token, reason, .. }) => {
                 assert!(reason.contains("more than 1000 digits"));
                 assert!(token.chars().count() < 100, "{token}");
                 assert!(token.contains("1001 characters"));

@@ -51,10 +51,22 @@ impl ExactPoly {
     /// assert!(ExactPoly::parse_descending(&["1", "1/0"]).is_err());
     /// ```
     pub fn parse_descending<S: AsRef<str>>(tokens: &[S]) -> Result<ExactPoly> {
+        ExactPoly::parse_descending_named(tokens, "polynomial")
+    }
+
+    /// As [`ExactPoly::parse_descending`], naming the polynomial in errors
+    /// ("coefficient 2 of the denominator").
+    pub fn parse_descending_named<S: AsRef<str>>(tokens: &[S], what: &str) -> Result<ExactPoly> {
         let c = tokens
             .iter()
-            .map(|t| Rational::parse(t.as_ref()))
+            .enumerate()
+            .map(|(i, t)| {
+                Rational::parse_named(t.as_ref(), &format!("coefficient {i} of the {what}"))
+            })
             .collect::<Result<Vec<_>>>()?;
+        if c.is_empty() {
+            return Err(LtiError::EmptyPolynomial { what: what.into() });
+        }
         ExactPoly::from_rationals(&c)
     }
 

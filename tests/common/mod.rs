@@ -1,0 +1,65 @@
+//! Helpers shared by the integration tests: plants from coefficients, grids, reference
+//! arithmetic that does not use the library (bisection), and error measures.
+#![allow(dead_code)] // each test file uses its own subset
+
+use ltikit::{Poly, Root, TransferFunction};
+use num_complex::Complex64;
+
+/// G = num/den from descending coefficients (the test's plant; panics on bad input).
+pub fn tf(num: &[f64], den: &[f64]) -> TransferFunction {
+    TransferFunction::from_descending(num, den).unwrap()
+}
+
+/// A polynomial from descending coefficients.
+pub fn poly(c: &[f64]) -> Poly {
+    Poly::from_descending(c).unwrap()
+}
+
+/// A complex number.
+pub fn c(re: f64, im: f64) -> Complex64 {
+    Complex64::new(re, im)
+}
+
+/// A simple real root.
+pub fn real_root(re: f64) -> Root {
+    Root::new(c(re, 0.0), 1)
+}
+
+/// `n` log-spaced points from 10^a to 10^b inclusive.
+pub fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
+        .collect()
+}
+
+/// n + 1 equally spaced times from 0 to `t_end`.
+pub fn grid(t_end: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|k| t_end * k as f64 / n as f64).collect()
+}
+
+/// |a − b| / |b| (|a − b| when b = 0).
+pub fn rel(a: f64, b: f64) -> f64 {
+    if b == 0.0 {
+        (a - b).abs()
+    } else {
+        ((a - b) / b).abs()
+    }
+}
+
+/// Plain bisection for f(x) = 0 on [a, b] with f(a)·f(b) ≤ 0 (independent of the library).
+pub fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let fa = f(a);
+    assert!(fa * f(b) <= 0.0, "no sign change on [{a}, {b}]");
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if (f(m) > 0.0) == (fa > 0.0) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}

@@ -1,0 +1,69 @@
+//! Factor once: how many times each command factors its plant (counted on the calling thread
+//! with `factorizations_on_this_thread`, not timed).
+
+use ltikit::analysis::factorizations_on_this_thread;
+
+/// Factorisations performed by one in-process command line.
+fn count(args: &[&str]) -> usize {
+    let before = factorizations_on_this_thread();
+    let mut argv = vec!["ltikit"];
+    argv.extend_from_slice(args);
+    ltikit::cli::run_from(argv).unwrap();
+    factorizations_on_this_thread() - before
+}
+
+fn out(name: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("factor_counts");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name).display().to_string()
+}
+
+#[test]
+fn every_command_factors_each_plant_once() {
+    let png = out("bode.png");
+    let cases: Vec<(Vec<&str>, usize)> = vec![
+        (vec!["analyze", "--num", "2", "--den", "1 3 2 0"], 1),
+        (vec!["margins", "--num", "2", "--den", "1 3 2 0"], 1),
+        (vec!["residue", "--num", "1 3", "--den", "1 3 3 1"], 1),
+        (vec!["freq", "--den", "1 0.2 1"], 1),
+        (vec!["response", "--den", "1 2 1", "--input", "step"], 1),
+        (
+            vec![
+                "bode",
+                "--num",
+                "2",
+                "--den",
+                "1 3 2 0",
+                "--asymptotes",
+                "-o",
+                &png,
+            ],
+            1,
+        ),
+        (vec!["step", "--den", "1 0.2 1", "-o", &png], 1),
+        (
+            vec!["step", "--den", "1 0.2 1", "--den", "1 2 1", "-o", &png],
+            2,
+        ),
+        (vec!["pzmap", "--den", "1 2 1", "-o", &png], 1),
+        (
+            vec!["nyquist", "--num", "2", "--den", "1 3 2 0", "-o", &png],
+            1,
+        ),
+    ];
+    for (args, want) in cases {
+        assert_eq!(count(&args), want, "{args:?}");
+    }
+}
+
+#[test]
+fn the_demo_factors_each_plant_a_handful_of_times() {
+    let dir = out("demo");
+    let n = count(&["demo", "--out", &dir]);
+    // Each plant of the tour is factored once: 6 textbook plants, 4 damping cases, 6 analytic
+    // checks; each linearised equilibrium with an input twice (its transfer function, and the
+    // display form with the rounding noise of the linearisation removed): pendulum, MEMS,
+    // rigid body, heavy top, gyroscope channels, double pendulum. Measured 33 (1 740 before
+    // the factored core, with fewer models).
+    assert!(n <= 40, "{n}");
+}
