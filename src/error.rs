@@ -168,6 +168,14 @@ pub enum LtiError {
         /// separator, or empty.
         reason: String,
     },
+    /// Exact input is too large or too ill-separated for the exact path (degree, coefficient
+    /// size, or roots closer than its refinement separates); the caller falls back to the
+    /// numerical path.
+    #[error("beyond the exact budget: {reason}")]
+    BeyondExactBudget {
+        /// Which limit was hit, with the numbers.
+        reason: String,
+    },
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]
     BadNumber {

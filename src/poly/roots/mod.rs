@@ -36,6 +36,7 @@
 use num_complex::Complex64;
 
 mod candidates;
+pub(crate) use candidates::candidates;
 mod checks;
 mod companion;
 mod derivatives;
@@ -46,7 +47,6 @@ mod scale;
 
 use super::{MAX_ORDER, Poly, Root};
 use crate::error::{LtiError, Result};
-use candidates::candidates;
 use checks::{any_more_multiple, reconstructs, simple_roots};
 use derivatives::{hidden_multiple_root, structure_from_derivatives};
 use group::{group_weight, link_groups, resolve_group};
