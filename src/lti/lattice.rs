@@ -136,16 +136,64 @@ pub enum Output {
 /// from `w0`, or from ω0² = αβ/m when `alpha` or `beta` is given (then `w0` must not be);
 /// `m` also converts the force into an acceleration.
 pub const LATTICE_PARAMS: &[ModelParam] = &[
-    param("N", 128.0, "1", "number of moving particles (integer 2…1024)", Constraint::Positive),
-    param("periodic", 1.0, "1", "boundary: 1 periodic (ring), 0 fixed ends", Constraint::Any),
+    param(
+        "N",
+        128.0,
+        "1",
+        "number of moving particles (integer 2…1024)",
+        Constraint::Positive,
+    ),
+    param(
+        "periodic",
+        1.0,
+        "1",
+        "boundary: 1 periodic (ring), 0 fixed ends",
+        Constraint::Any,
+    ),
     param("w0", 1.0, "rad/s", "ω0 = √(αβ/m)", Constraint::Positive),
-    param("alpha", 1.0, "1", "α of φ(r) = αβr²/2 (αβ > 0)", Constraint::Any),
-    param("beta", 1.0, "N/m", "β of φ(r) = αβr²/2 (αβ > 0)", Constraint::Any),
+    param(
+        "alpha",
+        1.0,
+        "1",
+        "α of φ(r) = αβr²/2 (αβ > 0)",
+        Constraint::Any,
+    ),
+    param(
+        "beta",
+        1.0,
+        "N/m",
+        "β of φ(r) = αβr²/2 (αβ > 0)",
+        Constraint::Any,
+    ),
     param("m", 1.0, "kg", "particle mass", Constraint::Positive),
-    param("gamma", 0.0, "1/s", "damping to the ground per unit mass", Constraint::NonNegative),
-    param("eta", 0.0, "s", "spring-parallel damping time", Constraint::NonNegative),
-    param("input", 1.0, "1", "particle the force acts on (1…N)", Constraint::Positive),
-    param("output", 1.0, "1", "particle measured (1…N; 0 = all)", Constraint::NonNegative),
+    param(
+        "gamma",
+        0.0,
+        "1/s",
+        "damping to the ground per unit mass",
+        Constraint::NonNegative,
+    ),
+    param(
+        "eta",
+        0.0,
+        "s",
+        "spring-parallel damping time",
+        Constraint::NonNegative,
+    ),
+    param(
+        "input",
+        1.0,
+        "1",
+        "particle the force acts on (1…N)",
+        Constraint::Positive,
+    ),
+    param(
+        "output",
+        1.0,
+        "1",
+        "particle measured (1…N; 0 = all)",
+        Constraint::NonNegative,
+    ),
 ];
 
 /// The linear lattice of seed §2.4 (see the module documentation).
@@ -271,7 +319,10 @@ impl Lattice {
         let n = integer("N", v[0], 2, MAX_PARTICLES, "the number of particles")?;
         let boundary = Boundary::from_flag(v[1])?;
         for (i, p) in LATTICE_PARAMS.iter().enumerate() {
-            if !matches!(p.name, "N" | "periodic" | "alpha" | "beta" | "input" | "output") {
+            if !matches!(
+                p.name,
+                "N" | "periodic" | "alpha" | "beta" | "input" | "output"
+            ) {
                 p.check(v[i])?;
             }
         }
@@ -298,7 +349,13 @@ impl Lattice {
         let input = integer("input", v[8], 1, n, "the particle the force acts on")?;
         let output = match v[9] {
             x if x == 0.0 => Output::All,
-            x => Output::Particle(integer("output", x, 1, n, "the measured particle (0 = all)")?),
+            x => Output::Particle(integer(
+                "output",
+                x,
+                1,
+                n,
+                "the measured particle (0 = all)",
+            )?),
         };
         Lattice::new(n, boundary, w0)?
             .with_mass(mass)?
@@ -497,13 +554,17 @@ mod tests {
         assert_eq!(o[(0, 4)], 4.0);
         assert_eq!(o[(2, 0)], 0.0);
         // N = 2: both neighbours of a particle are the same particle.
-        let two = Lattice::new(2, Boundary::Periodic, 1.0).unwrap().omega_matrix();
+        let two = Lattice::new(2, Boundary::Periodic, 1.0)
+            .unwrap()
+            .omega_matrix();
         assert_eq!(two.as_slice(), &[-2.0, 2.0, 2.0, -2.0]);
     }
 
     #[test]
     fn fixed_omega_has_walls() {
-        let o = Lattice::new(3, Boundary::Fixed, 1.0).unwrap().omega_matrix();
+        let o = Lattice::new(3, Boundary::Fixed, 1.0)
+            .unwrap()
+            .omega_matrix();
         assert_eq!(o[(0, 0)], -2.0);
         assert_eq!(o[(0, 2)], 0.0);
         assert_eq!(o[(2, 2)], -2.0);

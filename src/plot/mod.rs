@@ -28,6 +28,7 @@
 mod axes;
 mod bode;
 mod frame;
+mod heatmap;
 mod layout;
 mod legend;
 mod nyquist;
@@ -41,6 +42,7 @@ mod xy;
 use std::path::Path;
 
 pub use bode::{BodeSeries, bode_png};
+pub use heatmap::{ColorMap, HeatMap, MAX_HEATMAP_CELLS, heatmap_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
 pub use pzmap::{PzMap, pzmap_png};
 pub use step::{InputKind, StepSeries, step_png};

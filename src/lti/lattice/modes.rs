@@ -122,9 +122,7 @@ fn shape_wavenumber(boundary: Boundary, v: &[f64]) -> f64 {
         }
         Boundary::Fixed => {
             let m = 2 * (n + 1);
-            let table: Vec<f64> = (0..m)
-                .map(|j| (PI * j as f64 / (nf + 1.0)).sin())
-                .collect();
+            let table: Vec<f64> = (0..m).map(|j| (PI * j as f64 / (nf + 1.0)).sin()).collect();
             for k in 1..=n {
                 let s: f64 = v
                     .iter()

@@ -3,8 +3,8 @@
 
 use nalgebra::DMatrix;
 
-use super::modes::Modes;
 use super::Lattice;
+use super::modes::Modes;
 use crate::error::{LtiError, Result};
 
 /// The largest trajectory stored: N × (number of samples) values per matrix.
@@ -231,7 +231,14 @@ mod tests {
     /// initial conditions, in every regime.
     #[test]
     fn free_response_solves_the_oscillator() {
-        for (c, w) in [(0.0, 1.0), (0.3, 1.0), (2.0, 1.0), (5.0, 1.0), (1.0, 0.0), (0.0, 0.0)] {
+        for (c, w) in [
+            (0.0, 1.0),
+            (0.3, 1.0),
+            (2.0, 1.0),
+            (5.0, 1.0),
+            (1.0, 0.0),
+            (0.0, 0.0),
+        ] {
             let (z, v) = modal_free_response(c, w, 0.7, -0.4, 0.0);
             assert!((z - 0.7).abs() < 1e-15 && (v + 0.4).abs() < 1e-15);
             for t in [0.3, 1.7, 6.0] {
