@@ -150,7 +150,13 @@ pub const LATTICE_PARAMS: &[ModelParam] = &[
         "boundary: 1 periodic (ring), 0 fixed ends",
         Constraint::Any,
     ),
-    param("w0", 1.0, "rad/s", "ω0 = √(αβ/m)", Constraint::Positive),
+    param(
+        "w0",
+        1.0,
+        "rad/s",
+        "natural frequency ω0 = √(αβ/m)",
+        Constraint::Positive,
+    ),
     param(
         "alpha",
         1.0,
