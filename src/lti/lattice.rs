@@ -80,6 +80,7 @@ impl Boundary {
     /// assert_eq!(Boundary::from_flag(0.0).unwrap(), Boundary::Fixed);
     /// assert!(Boundary::from_flag(0.5).is_err());
     /// ```
+    #[allow(clippy::float_cmp)] // the flag is exactly 1 or 0
     pub fn from_flag(v: f64) -> Result<Boundary> {
         if v == 1.0 {
             Ok(Boundary::Periodic)
@@ -297,6 +298,13 @@ impl Lattice {
     }
 
     /// Sets what is measured.
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice, Output};
+    /// let lat = Lattice::new(8, Boundary::Periodic, 1.0).unwrap();
+    /// assert!(lat.clone().with_output(Output::Particle(8)).is_ok());
+    /// assert!(lat.with_output(Output::Particle(9)).is_err());
+    /// ```
     pub fn with_output(mut self, output: Output) -> Result<Lattice> {
         if let Output::Particle(i) = output {
             integer("output", i as f64, 1, self.n, "the measured particle")?;
@@ -353,15 +361,16 @@ impl Lattice {
             v[2]
         };
         let input = integer("input", v[8], 1, n, "the particle the force acts on")?;
-        let output = match v[9] {
-            x if x == 0.0 => Output::All,
-            x => Output::Particle(integer(
+        let output = if v[9] == 0.0 {
+            Output::All
+        } else {
+            Output::Particle(integer(
                 "output",
-                x,
+                v[9],
                 1,
                 n,
                 "the measured particle (0 = all)",
-            )?),
+            )?)
         };
         Lattice::new(n, boundary, w0)?
             .with_mass(mass)?
@@ -445,6 +454,14 @@ impl Lattice {
 
     /// The bond-stretch matrix D (bonds × particles): r = D q, the stretch of each bond.
     /// The potential energy per unit mass is ½ω0²|Dq|², and Ω = −ω0² DᵀD.
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice};
+    /// let lat = Lattice::new(3, Boundary::Fixed, 2.0).unwrap();
+    /// let d = lat.bond_matrix(); // 4 bonds: wall–1, 1–2, 2–3, 3–wall
+    /// assert_eq!(d.shape(), (4, 3));
+    /// assert_eq!(d.transpose() * &d * (-4.0), lat.omega_matrix());
+    /// ```
     pub fn bond_matrix(&self) -> DMatrix<f64> {
         let bonds = self.bonds();
         let mut d = DMatrix::zeros(bonds.len(), self.n);
@@ -519,6 +536,12 @@ impl Lattice {
 
     /// The middle `width` particles, 0-based half-open (57…72 in the seed's 1-based count
     /// for width 16 of 128). Errors when width is 0 or exceeds N.
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice};
+    /// let lat = Lattice::new(128, Boundary::Periodic, 1.0).unwrap();
+    /// assert_eq!(lat.middle(16).unwrap(), 56..72);
+    /// ```
     pub fn middle(&self, width: usize) -> Result<std::ops::Range<usize>> {
         if width == 0 || width > self.n {
             return Err(LtiError::invalid(format!(

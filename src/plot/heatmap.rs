@@ -124,6 +124,12 @@ pub struct HeatMap {
 impl HeatMap {
     /// A heat map of `values` (row by row) on `columns` × `rows` cells; checks the sizes and
     /// the ranges.
+    ///
+    /// ```
+    /// use ltikit::plot::HeatMap;
+    /// assert!(HeatMap::new(vec![0.0; 6], 3, 2, (0.5, 3.5), (0.0, 1.0)).is_ok());
+    /// assert!(HeatMap::new(vec![0.0; 5], 3, 2, (0.5, 3.5), (0.0, 1.0)).is_err());
+    /// ```
     pub fn new(
         values: Vec<f64>,
         columns: usize,
@@ -150,7 +156,7 @@ impl HeatMap {
                 self.columns, self.rows
             )));
         }
-        let cells = self.columns.checked_mul(self.rows).unwrap_or(usize::MAX);
+        let cells = self.columns.saturating_mul(self.rows);
         if cells > MAX_HEATMAP_CELLS {
             return Err(LtiError::Plot(format!(
                 "a heat map of {}×{} cells exceeds the maximum of {MAX_HEATMAP_CELLS}",

@@ -51,6 +51,14 @@ pub fn group_velocity(w0: f64, ka: f64) -> f64 {
 /// The two roots of s² + c s + ω² (c, ω ≥ 0), without cancellation: complex conjugates for
 /// c < 2ω (the one with positive imaginary part first), otherwise real, the larger magnitude
 /// first.
+///
+/// ```
+/// use ltikit::lti::lattice::closed_form::oscillator_roots;
+/// let [a, b] = oscillator_roots(1.2, 1.0); // s² + 1.2s + 1: −0.6 ± 0.8j
+/// assert!((a.re + 0.6).abs() < 1e-15 && (a.im - 0.8).abs() < 1e-15 && b == a.conj());
+/// let [f, s] = oscillator_roots(1e9, 1.0); // slow root −1e-9 without cancellation
+/// assert!((s.re + 1e-9).abs() < 1e-24 && (f.re + 1e9).abs() < 1.0);
+/// ```
 pub fn oscillator_roots(c: f64, omega: f64) -> [Complex64; 2] {
     let h = 0.5 * c;
     if h < omega {
@@ -116,6 +124,14 @@ impl Lattice {
 
     /// The 2N eigenvalues of A, mode by mode in order of increasing frequency (each mode's
     /// two roots of s² + cₖ s + ωₖ², see [`oscillator_roots`]).
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice};
+    /// let ev = Lattice::new(6, Boundary::Periodic, 1.0).unwrap().eigenvalues_closed_form();
+    /// assert_eq!(ev.len(), 12);
+    /// assert_eq!((ev[0].norm(), ev[1].norm()), (0.0, 0.0)); // the rigid mode's double 0
+    /// assert!((ev[2].im - 1.0).abs() < 1e-15 && (ev[4].im - 1.0).abs() < 1e-15); // a pair
+    /// ```
     pub fn eigenvalues_closed_form(&self) -> Vec<Complex64> {
         self.frequencies_closed_form()
             .into_iter()
@@ -127,6 +143,14 @@ impl Lattice {
     /// increasing frequency). Periodic, as the seed writes it: 1/√N; then for each pair
     /// √(2/N) sin(2πpn/N) and √(2/N) cos(2πpn/N); for even N last (−1)ⁿ/√N (n = 1…N).
     /// Fixed: √(2/(N + 1)) sin(πkn/(N + 1)).
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice};
+    /// let lat = Lattice::new(8, Boundary::Periodic, 1.0).unwrap();
+    /// let t = lat.modal_matrix_closed_form();
+    /// let d = t.transpose() * lat.omega_matrix() * &t; // diag(−ωₖ²), increasing ωₖ
+    /// assert!((d[(7, 7)] + 4.0).abs() < 1e-14 && d[(2, 3)].abs() < 1e-14);
+    /// ```
     pub fn modal_matrix_closed_form(&self) -> DMatrix<f64> {
         let n = self.n();
         let nf = n as f64;
@@ -255,6 +279,14 @@ impl ModalSum {
 
     /// The order of a minimal realisation: two states per mode with a non-zero weight
     /// (exact for distinct poles, i.e. when no two overdamped modes share a real pole).
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice};
+    /// // Driven and measured at the centre of 7 fixed particles: the antisymmetric modes
+    /// // (k = 2, 4, 6) have a node there and drop out.
+    /// let lat = Lattice::new(7, Boundary::Fixed, 1.0).unwrap();
+    /// assert_eq!(lat.modal_sum(4, 4).unwrap().minimal_order(), 8);
+    /// ```
     pub fn minimal_order(&self) -> usize {
         2 * self.weight.iter().filter(|w| **w != 0.0).count()
     }

@@ -167,6 +167,16 @@ impl Lattice {
 
     /// The energy of the particles in `block` (0-based range) at every sample, per unit
     /// mass (seed fig. 2.18 for the middle 16).
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice, Packet};
+    /// let lat = Lattice::new(64, Boundary::Periodic, 1.0).unwrap();
+    /// let modes = lat.modes().unwrap();
+    /// let q0 = Packet::zone_centre(8).displacements(&lat).unwrap();
+    /// let tr = lat.simulate(&modes, &q0, &[0.0; 64], &[0.0, 20.0]).unwrap();
+    /// let e = lat.block_energy(&tr, lat.middle(8).unwrap());
+    /// assert!(e[1] < 1e-3 * e[0]); // gone at the speed of sound
+    /// ```
     pub fn block_energy(&self, tr: &Trajectory, block: std::ops::Range<usize>) -> Vec<f64> {
         let block = block.start.min(self.n())..block.end.min(self.n());
         (0..tr.t.len())
@@ -204,6 +214,16 @@ impl Trajectory {
     /// max over modes and samples of |Hₖ(t) − Hₖ(0)|, relative to the total energy at the
     /// first sample (0 for a state at rest). For an undamped lattice every Hₖ is an invariant
     /// (eqs. 2.80–2.81), so this is the simulation's drift.
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice, Packet};
+    /// let lat = Lattice::new(32, Boundary::Fixed, 1.0).unwrap();
+    /// let modes = lat.modes().unwrap();
+    /// let q0 = Packet::zone_edge(8).displacements(&lat).unwrap();
+    /// let t: Vec<f64> = (0..100).map(|i| i as f64).collect();
+    /// let tr = lat.simulate(&modes, &q0, &[0.0; 32], &t).unwrap();
+    /// assert!(tr.modal_energy_drift(&modes) < 1e-14);
+    /// ```
     pub fn modal_energy_drift(&self, modes: &Modes) -> f64 {
         let h = self.modal_energies(modes);
         if h.ncols() == 0 {

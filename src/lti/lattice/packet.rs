@@ -78,6 +78,7 @@ impl Packet {
     /// assert_eq!(q.iter().filter(|x| **x != 0.0).count(), 16);
     /// assert!(q[56] > 0.0 && q[57] < 0.0 && q[55] == 0.0 && q[72] == 0.0);
     /// ```
+    #[allow(clippy::float_cmp)] // k₀a exactly π selects the exact ±1 carrier
     pub fn displacements(&self, lattice: &Lattice) -> Result<Vec<f64>> {
         if !(self.ka.is_finite() && self.amplitude.is_finite()) {
             return Err(LtiError::invalid(format!(
