@@ -30,7 +30,7 @@ pub fn modal_free_response(c: f64, omega: f64, z0: f64, v0: f64, t: f64) -> (f64
     // (e^{−σt}C, e^{−σt}S)
     let (ec, es) = if d2 > 0.0 {
         let d = d2.sqrt();
-        let e = (-s * t).exp();
+        let e = if s == 0.0 { 1.0 } else { (-s * t).exp() };
         let (sn, cs) = (d * t).sin_cos();
         (e * cs, e * sn / d)
     } else if d2 == 0.0 {
