@@ -91,7 +91,7 @@ impl ColorMap {
 /// h.x_label = "position x (m)".into();
 /// h.y_label = "time t (s)".into();
 /// h.z_label = "u(x, t)".into();
-/// heatmap_png("/tmp/wave.png", &h, &PlotOptions::default()).unwrap();
+/// heatmap_png(std::env::temp_dir().join("wave.png"), &h, &PlotOptions::default()).unwrap();
 /// ```
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct HeatMap {
