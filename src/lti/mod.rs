@@ -1,5 +1,6 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod lattice;
 pub mod model;
 pub mod params;
 pub mod plant;

@@ -32,6 +32,7 @@ mod axes;
 mod bode;
 mod bode_margins;
 mod frame;
+mod heatmap;
 mod layout;
 mod legend;
 mod markup;
@@ -48,6 +49,7 @@ mod xy;
 use std::path::Path;
 
 pub use bode::{BodeSeries, bode_png};
+pub use heatmap::{ColorMap, HeatMap, MAX_HEATMAP_CELLS, heatmap_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
 pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};
 pub use pzmap::{PzMap, pzmap_png};

@@ -1,6 +1,7 @@
 //! `ltikit demo`: the textbook tour. Analyses every textbook plant and the seed's nonlinear
 //! models, verifies the results at run time, and writes `report.md` with its PNGs.
 
+mod lattice;
 mod linear;
 mod md;
 mod mechanics;
@@ -104,7 +105,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         figures: Vec::new(),
         checks: Checks::default(),
         step: 0,
-        steps: plants.len() + 11,
+        steps: plants.len() + 12,
         tty: std::io::stderr().is_terminal() && !a.json,
     };
     let mut md = Md::default();
@@ -129,6 +130,10 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     ));
     toc.push(format!("{}. Nonlinear models", plants.len() + 2));
     toc.push(format!("{}. Mechanical systems", plants.len() + 3));
+    toc.push(format!(
+        "{}. The linear lattice (seed §2.4)",
+        plants.len() + 4
+    ));
     toc.push("Verification".into());
     md.bullets(&toc);
 
@@ -162,6 +167,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     ctx.progress("van der Pol");
     nonlinear::vanderpol(&mut ctx, &mut md)?;
     mechanics::sections(&mut ctx, &mut md, plants.len() + 3)?;
+    ctx.progress("linear lattice");
+    lattice::section(&mut ctx, &mut md, plants.len() + 4)?;
 
     ctx.progress("verification");
     seed::analytic_checks(&mut ctx)?;
