@@ -366,7 +366,7 @@ fn impulse_and_ramp_responses() {
         &path,
         &[StepSeries::new(&r)
             .label("4 / (s^2 + 1.2 s + 4)")
-            .input(InputKind::Impulse)],
+            .input(ltikit::analysis::Input::Impulse)],
         &PlotOptions::default(),
     )
     .unwrap();
@@ -378,7 +378,7 @@ fn impulse_and_ramp_responses() {
         &path,
         &[StepSeries::new(&r)
             .label("1 / (s + 1)")
-            .input(InputKind::Ramp)],
+            .input(ltikit::analysis::Input::Ramp)],
         &PlotOptions::default(),
     )
     .unwrap();
@@ -894,8 +894,6 @@ fn text_length_limit_is_enforced_on_both_sides() {
         final_value: None,
     };
     too_long(step_png(&path, &[StepSeries::new(&r).label(&over)], &d).unwrap_err());
-    let named = StepSeries::new(&r).input(InputKind::Other(over.clone()));
-    too_long(step_png(&path, &[named], &d).unwrap_err());
     let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
     let pz = g.pole_zero().unwrap();
     too_long(pzmap_png(&path, &PzMap::new(&pz).label(&over), &d).unwrap_err());

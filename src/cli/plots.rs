@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
 use crate::plot::{
-    BodeSeries, InputKind, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png,
-    parse_size, pzmap_png, step_png,
+    BodeSeries, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png, parse_size,
+    pzmap_png, step_png,
 };
 
 /// Options common to every picture.
@@ -128,12 +128,7 @@ pub fn step_figure(
         }
     };
     let t: Vec<f64> = (0..=1000).map(|i| t_end * i as f64 / 1000.0).collect();
-    let kind = match input {
-        Input::Step => InputKind::Step,
-        Input::Impulse => InputKind::Impulse,
-        Input::Ramp => InputKind::Ramp,
-        other => InputKind::Other(other.to_string()),
-    };
+    let kind = input;
     let mut data: Vec<(
         &String,
         TimeResponse,
@@ -159,7 +154,7 @@ pub fn step_figure(
         .map(|(label, r, info, unstable)| {
             let mut s = StepSeries::new(r)
                 .label(label)
-                .input(kind.clone())
+                .input(*kind)
                 .unstable(*unstable);
             if let Some(i) = info {
                 s = s.info(i);

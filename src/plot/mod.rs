@@ -53,7 +53,7 @@ pub use heatmap::{ColorMap, HeatMap, MAX_HEATMAP_CELLS, heatmap_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
 pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};
 pub use pzmap::{PzMap, pzmap_png};
-pub use step::{InputKind, StepSeries, step_png};
+pub use step::{StepSeries, step_png};
 pub use style::{Color, LineStyle, MarkerShape, PALETTE, series_color};
 pub use xy::{
     Curve, Equilibrium, Marker, PhasePortrait, XyPlot, phase_portrait_png, time_plot_png, xy_png,

@@ -9,43 +9,19 @@ use super::legend::{Corner, LegendEntry, Rect, box_points, draw_legend, sample_r
 use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, check_label, check_text, render};
-use crate::analysis::{StepInfo, TimeResponse};
+use super::{Color, PlotOptions, check_label, render};
+use crate::analysis::{Input, StepInfo, TimeResponse};
 use crate::error::{LtiError, Result};
 use crate::poly::fmt_sig;
-
-/// The input that produced a response (for titles and labels).
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub enum InputKind {
-    /// Unit step.
-    #[default]
-    Step,
-    /// Unit impulse.
-    Impulse,
-    /// Unit ramp.
-    Ramp,
-    /// Anything else, named (e.g. "sin(2t)").
-    Other(String),
-}
-
-impl InputKind {
-    fn name(&self) -> String {
-        match self {
-            InputKind::Step => "Step".into(),
-            InputKind::Impulse => "Impulse".into(),
-            InputKind::Ramp => "Ramp".into(),
-            InputKind::Other(s) => s.clone(),
-        }
-    }
-}
 
 /// One response on a step-response plot.
 ///
 /// ```
 /// use ltikit::analysis::TimeResponse;
-/// use ltikit::plot::{InputKind, StepSeries};
+/// use ltikit::analysis::Input;
+/// use ltikit::plot::StepSeries;
 /// let r = TimeResponse { t: vec![0.0, 1.0], y: vec![0.0, 0.63], final_value: Some(1.0) };
-/// let s = StepSeries::new(&r).label("1/(s + 1)").input(InputKind::Step);
+/// let s = StepSeries::new(&r).label("1/(s + 1)").input(Input::Step);
 /// assert!(!s.unstable);
 /// ```
 #[derive(Debug, Clone)]
@@ -57,7 +33,7 @@ pub struct StepSeries<'a> {
     /// Step metrics to annotate (rise time, settling time and band, peak, overshoot).
     pub info: Option<&'a StepInfo>,
     /// The input (step, impulse, ramp, …).
-    pub input: InputKind,
+    pub input: Input,
     /// The plant is unstable: a note "unstable: response diverges" is drawn.
     pub unstable: bool,
     /// Colour; `None` takes the palette colour of the series' position.
@@ -71,7 +47,7 @@ impl<'a> StepSeries<'a> {
             response,
             label: None,
             info: None,
-            input: InputKind::Step,
+            input: Input::Step,
             unstable: false,
             color: None,
         }
@@ -90,7 +66,7 @@ impl<'a> StepSeries<'a> {
     }
 
     /// Sets the input kind.
-    pub fn input(mut self, input: InputKind) -> Self {
+    pub fn input(mut self, input: Input) -> Self {
         self.input = input;
         self
     }
@@ -146,9 +122,6 @@ fn check(series: &[StepSeries]) -> Result<()> {
     }
     for (k, s) in series.iter().enumerate() {
         check_label(k, s.label)?;
-        if let InputKind::Other(name) = &s.input {
-            check_text(&format!("the input name of series {}", k + 1), name)?;
-        }
         let r = s.response;
         if r.t.len() != r.y.len() {
             return Err(LtiError::Plot(format!(
@@ -196,8 +169,8 @@ fn check(series: &[StepSeries]) -> Result<()> {
 pub fn step_png(path: impl AsRef<Path>, series: &[StepSeries], opts: &PlotOptions) -> Result<()> {
     check(series)?;
     let kind = {
-        let first = series[0].input.name();
-        if series.iter().all(|s| s.input.name() == first) {
+        let first = series[0].input.title();
+        if series.iter().all(|s| s.input.title() == first) {
             first
         } else {
             "Time".into()
@@ -227,7 +200,7 @@ fn name_of(s: &StepSeries, k: usize) -> String {
 /// The step metrics of a series, if it is a step response that has them.
 fn step_info<'a>(s: &StepSeries<'a>) -> Option<&'a StepInfo> {
     match (s.info, &s.input) {
-        (Some(i), InputKind::Step) => Some(i),
+        (Some(i), Input::Step) => Some(i),
         _ => None,
     }
 }
@@ -490,7 +463,7 @@ fn legend_rows(series: &[StepSeries]) -> Vec<LegendEntry> {
         .map(|(k, s)| {
             let name = name_of(s, k);
             let name = if mixed {
-                format!("{name} ({})", s.input.name().to_lowercase())
+                format!("{name} ({})", s.input.title().to_lowercase())
             } else {
                 name
             };
@@ -518,10 +491,10 @@ fn draw(
     let avoid = draw_curves(c, th, &frame, series)?;
     frame.draw_axes(c, th, true, true)?;
     let y_title = match &series[0].input {
-        InputKind::Step => "Step response y(t)",
-        InputKind::Impulse => "Impulse response y(t)",
-        InputKind::Ramp => "Ramp response y(t)",
-        InputKind::Other(_) => "Output y(t)",
+        Input::Step => "Step response y(t)",
+        Input::Impulse => "Impulse response y(t)",
+        Input::Ramp => "Ramp response y(t)",
+        _ => "Output y(t)",
     };
     frame.draw_axis_titles(c, th, Some("Time t (s)"), Some(y_title), th.pad)?;
     let order = [
