@@ -13,9 +13,9 @@ use ltikit::nonlinear::models::{
 };
 use ltikit::nonlinear::period::crossing_times;
 use ltikit::nonlinear::{
-    DynSystem, EquilibriumSearch, Extremum, FreeRigidMotion, Input, LocalStability, build_model,
-    divergence, finite_time_exponent, jacobians, linearize, lyapunov_exponent, sample_times,
-    simulate,
+    DynSystem, EquilibriumSearch, Extremum, FreeRigidMotion, InputSignal, LocalStability,
+    build_model, divergence, finite_time_exponent, jacobians, linearize, lyapunov_exponent,
+    sample_times, simulate,
 };
 use ltikit::numeric::rk45::Rk45Options;
 
@@ -104,7 +104,7 @@ fn axisymmetric_body_has_a_circle_of_equilibria() {
     let sim = simulate(
         &body,
         &[1.0, 0.0, eps],
-        &Input::none(),
+        &InputSignal::none(),
         &[0.0, t_half],
         &tight(),
     )
@@ -130,7 +130,7 @@ fn elliptic_solution_matches_the_simulation() {
         let m = FreeRigidMotion::new(&body, pi0).unwrap();
         let period = m.period.unwrap();
         let t = sample_times(10.0 * period, 2001).unwrap();
-        let sim = simulate(&body, pi0, &Input::none(), &t, &tight()).unwrap();
+        let sim = simulate(&body, pi0, &InputSignal::none(), &t, &tight()).unwrap();
         let scale = m.momentum2.sqrt();
         let mut worst: f64 = 0.0;
         for (ti, x) in sim.t.iter().zip(&sim.states) {
@@ -167,7 +167,7 @@ fn conservation_drift_over_100_periods() {
     let sim = simulate(
         &body,
         &pi0,
-        &Input::none(),
+        &InputSignal::none(),
         &[0.0, 100.0 * period],
         &tight(),
     )
@@ -237,7 +237,7 @@ fn gyroscope_matches_the_seed_disc_frame_form() {
     let o2 = d1 * t2.sin() * theta3.cos() - d2 * theta3.sin();
     let x_euler = [t1, t2, d1, d2, w3];
     let x_disc = [t1, t2, theta3, o1, o2, d1 * t2.cos() + d3];
-    let u = Input::Constant(vec![0.3, -0.1, 0.05]);
+    let u = InputSignal::constant(vec![0.3, -0.1, 0.05]);
     let t = sample_times(3.0, 301).unwrap();
     let a = simulate(&g, &x_euler, &u, &t, &tight()).unwrap();
     let b = simulate(&d, &x_disc, &u, &t, &tight()).unwrap();
@@ -286,13 +286,20 @@ fn exercise_2_14_claims() {
     let x0 = g.steady_spin();
     let t = sample_times(5.0, 501).unwrap();
     // 1. No torque: the spin axis keeps its direction.
-    let free = simulate(&g, &x0, &Input::Constant(vec![0.0; 3]), &t, &tight()).unwrap();
+    let free = simulate(&g, &x0, &InputSignal::constant(vec![0.0; 3]), &t, &tight()).unwrap();
     for x in &free.states {
         assert!((x[0] - x0[0]).abs() < 1e-15 && (x[1] - x0[1]).abs() < 1e-15);
     }
     // 2. A torque about the outer gimbal axis moves the inner gimbal: mean rate −u1/(Iz ω).
     let u1 = 0.2;
-    let forced = simulate(&g, &x0, &Input::Constant(vec![u1, 0.0, 0.0]), &t, &tight()).unwrap();
+    let forced = simulate(
+        &g,
+        &x0,
+        &InputSignal::constant(vec![u1, 0.0, 0.0]),
+        &t,
+        &tight(),
+    )
+    .unwrap();
     let end = forced.states.last().unwrap();
     let rate = (end[1] - x0[1]) / 5.0;
     let want = -u1 / (g.i3 * g.w);
@@ -345,7 +352,14 @@ fn double_pendulum_normal_modes_and_equilibria() {
 fn double_pendulum_energy_and_chaos() {
     let p = DoublePendulum::default();
     let x0 = [FRAC_PI_2, FRAC_PI_2, 0.0, 0.0];
-    let sim = simulate(&p, &x0, &Input::Constant(vec![0.0]), &[0.0, 20.0], &tight()).unwrap();
+    let sim = simulate(
+        &p,
+        &x0,
+        &InputSignal::constant(vec![0.0]),
+        &[0.0, 20.0],
+        &tight(),
+    )
+    .unwrap();
     assert!(
         sim.conserved[0].relative_drift < 1e-10,
         "{:?}",
@@ -354,7 +368,15 @@ fn double_pendulum_energy_and_chaos() {
     let t = sample_times(20.0, 4001).unwrap();
     let mut xb = x0;
     xb[0] += 1e-9;
-    let d = divergence(&p, &x0, &xb, &Input::Constant(vec![0.0]), &t, &tight()).unwrap();
+    let d = divergence(
+        &p,
+        &x0,
+        &xb,
+        &InputSignal::constant(vec![0.0]),
+        &t,
+        &tight(),
+    )
+    .unwrap();
     let fit = finite_time_exponent(&d).unwrap();
     assert!(fit.exponent > 0.5, "{fit:?}");
     let est = lyapunov_exponent(&p, &x0, &[0.0], 100.0, 0.5, &tight()).unwrap();

@@ -6,7 +6,11 @@ use serde::Serialize;
 
 use super::output::{print, print_json};
 use super::parse;
-use crate::nonlinear::{ConservedDrift, Input, Simulation, build_model, sample_times, simulate};
+use crate::analysis::Input;
+use crate::error::abbreviate;
+use crate::nonlinear::{
+    ConservedDrift, InputSignal, Simulation, build_model, sample_times, simulate,
+};
 use crate::numeric::rk45::Rk45Options;
 
 #[derive(Args, Debug)]
@@ -27,8 +31,9 @@ pub struct SimulateArgs {
     /// Number of output samples, uniform from 0 to the end time.
     #[arg(long, default_value_t = 1001)]
     pub points: usize,
-    /// Input: constant values ("0.5"), or a step "step:T:BEFORE:AFTER" (single input).
-    /// Default: the model's operating input (e.g. the MEMS voltage v).
+    /// Input: constant values ("0.5"), a step "step:T:BEFORE:AFTER", or a signal added to the
+    /// operating input (step, ramp, exp:A, sin:W, cos:W; single input). Default: the model's
+    /// operating input (e.g. the MEMS voltage v).
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     pub input: Option<String>,
     /// Relative tolerance.
@@ -136,34 +141,64 @@ fn picture(
     Ok(())
 }
 
-/// Parses the `--input` value for a model with `nu` inputs.
-pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<Input> {
+/// Parses the `--input` value for a model whose operating input is `operating`.
+///
+/// - absent: the operating input, constant;
+/// - numbers ("0.5", "0.3 -0.1 0.05"): constant;
+/// - `step:T:BEFORE:AFTER` (single input): a jump at T;
+/// - a standard signal (`step`, `ramp`, `exp:A`, `sin:W`, `cos:W`, as in `response`) added to
+///   the operating input with unit amplitude from t = 0 (single input).
+pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<InputSignal> {
     let Some(text) = text else {
-        return Ok(Input::Constant(operating.to_vec()));
+        return Ok(InputSignal::constant(operating.to_vec()));
     };
-    if let Some(rest) = text.strip_prefix("step:") {
-        let parts: Vec<&str> = rest.split(':').collect();
-        if parts.len() != 3 {
-            bail!("--input '{text}': a step is step:T:BEFORE:AFTER, e.g. step:1:0:0.5");
+    let single = || -> Result<()> {
+        if operating.is_empty() {
+            bail!("--input '{}': this model has no input", abbreviate(text));
         }
-        let num = |s: &str, what: &str| -> Result<f64> {
-            s.trim()
-                .parse::<f64>()
-                .map_err(|_| anyhow::anyhow!("--input '{text}': {what} '{s}' is not a number"))
-        };
         if operating.len() != 1 {
             bail!(
-                "--input step: only for single-input models (this one has {} inputs)",
+                "--input '{}': a step or a signal is only for single-input models (this one has {} inputs)",
+                abbreviate(text),
                 operating.len()
             );
         }
-        return Ok(Input::Step {
-            t_step: num(parts[0], "the step time")?,
-            before: vec![num(parts[1], "the value before")?],
-            after: vec![num(parts[2], "the value after")?],
-        });
+        Ok(())
+    };
+    if let Some(rest) = text.strip_prefix("step:") {
+        let parts: Vec<&str> = rest.split(':').collect();
+        let [t_step, before, after] = parts.as_slice() else {
+            bail!(
+                "--input '{}': a step is step:T:BEFORE:AFTER, e.g. step:1:0:0.5",
+                abbreviate(text)
+            );
+        };
+        let num = |s: &str, what: &str| -> Result<f64> {
+            s.trim().parse::<f64>().map_err(|_| {
+                anyhow::anyhow!(
+                    "--input '{}': {what} '{}' is not a number",
+                    abbreviate(text),
+                    abbreviate(s)
+                )
+            })
+        };
+        single()?;
+        return Ok(InputSignal::step(
+            num(t_step, "the step time")?,
+            vec![num(before, "the value before")?],
+            vec![num(after, "the value after")?],
+        ));
     }
-    Ok(Input::Constant(parse::numbers(text, "--input")?))
+    if text
+        .trim_start()
+        .starts_with(|c: char| c.is_ascii_alphabetic())
+    {
+        let shape: Input = text.parse()?;
+        single()?;
+        let after: Vec<f64> = operating.iter().map(|u| u + 1.0).collect();
+        return Ok(InputSignal::shaped(operating.to_vec(), after, shape, 0.0));
+    }
+    Ok(InputSignal::constant(parse::numbers(text, "--input")?))
 }
 
 pub fn run(a: &SimulateArgs) -> Result<()> {

@@ -137,12 +137,12 @@ pub struct ExponentFit {
 /// samples.
 ///
 /// ```
-/// use ltikit::nonlinear::{divergence, finite_time_exponent, sample_times, Input, models::Lorenz};
+/// use ltikit::nonlinear::{divergence, finite_time_exponent, sample_times, InputSignal, models::Lorenz};
 /// use ltikit::numeric::rk45::Rk45Options;
 /// let t = sample_times(60.0, 6001).unwrap();
 /// let o = Rk45Options { rtol: 1e-12, atol: 1e-14, ..Default::default() };
 /// let d = divergence(&Lorenz::default(), &[1.0, 0.0, 0.0], &[1.0 + 1e-9, 0.0, 0.0],
-///                    &Input::none(), &t, &o).unwrap();
+///                    &InputSignal::none(), &t, &o).unwrap();
 /// let fit = finite_time_exponent(&d).unwrap();
 /// assert!(fit.exponent > 0.5 && fit.exponent < 1.5, "{fit:?}");
 /// ```

@@ -27,7 +27,7 @@
 //! | registry | [`model_names`], [`model_info`], [`build_model`] |
 //! | equilibria | [`equilibria()`], [`newton_equilibria`] |
 //! | linearisation | [`linearize()`], [`linearize_at`], [`local_stability`] |
-//! | simulation | [`simulate()`], [`Input`], [`sample_times`] (Dormand–Prince in [`crate::numeric::rk45`]) |
+//! | simulation | [`simulate()`], [`InputSignal`] (built on [`crate::analysis::Input`]), [`sample_times`] (Dormand–Prince in [`crate::numeric::rk45`]) |
 //! | picture data | [`trajectories`], [`pendulum_separatrices`], [`lorenz_divergence`], [`mems_pullin`], [`pendulum_periods`] |
 
 pub mod chaos;
@@ -41,6 +41,7 @@ pub mod portraits;
 pub mod pullin;
 pub mod registry;
 pub mod rigid_motion;
+pub mod signal;
 pub mod simulate;
 pub mod system;
 
@@ -64,7 +65,8 @@ pub use portraits::{
 pub use pullin::{PullInDiagram, find_pull_in, mems_pullin};
 pub use registry::{ModelInfo, ModelKind, build_model, model_info, model_names, models};
 pub use rigid_motion::FreeRigidMotion;
-pub use simulate::{ConservedDrift, Input, Simulation, SimulationStop, sample_times, simulate};
+pub use signal::InputSignal;
+pub use simulate::{ConservedDrift, Simulation, SimulationStop, sample_times, simulate};
 pub use system::{
     BoxedSystem, Derivatives2, DynSystem, Jacobians, NonlinearSystem, Scalar, SystemInfo,
     check_point, conserved_quantities, derivative, jacobians,

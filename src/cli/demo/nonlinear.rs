@@ -11,7 +11,7 @@ use crate::nonlinear::{
     pendulum_periods,
 };
 use crate::nonlinear::{
-    Input, Simulation, lorenz_divergence, pendulum_separatrices, sample_times, simulate,
+    InputSignal, Simulation, lorenz_divergence, pendulum_separatrices, sample_times, simulate,
     trajectories,
 };
 use crate::numeric::rk45::Rk45Options;
@@ -253,7 +253,13 @@ fn portraits(
         vec![pi, -9.0],
         vec![-pi, 6.5],
     ];
-    let damped = trajectories(p, &starts, &Input::Constant(vec![0.0]), &t, &accurate())?;
+    let damped = trajectories(
+        p,
+        &starts,
+        &InputSignal::constant(vec![0.0]),
+        &t,
+        &accurate(),
+    )?;
     let portrait = "pendulum-phase.png";
     let mut eq = markers(lin, 0, 1);
     eq.extend(markers(lin, 0, 1).into_iter().map(|mut e| {
@@ -282,7 +288,13 @@ fn portraits(
         vec![-pi, 8.5],
         vec![pi, -8.5],
     ];
-    let free = trajectories(&p0, &starts, &Input::Constant(vec![0.0]), &t, &accurate())?;
+    let free = trajectories(
+        &p0,
+        &starts,
+        &InputSignal::constant(vec![0.0]),
+        &t,
+        &accurate(),
+    )?;
     let [upper, lower] = pendulum_separatrices(&p0, -pi, pi, 401)?;
     let sep = |v: &[[f64; 2]]| Curve::new(v.iter().map(|q| (q[0], q[1])));
     let undamped = "pendulum-phase-undamped.png";
@@ -402,7 +414,7 @@ pub fn mems(ctx: &mut Ctx, md: &mut Md) -> Result<(Mems, Linearization)> {
         let sim = simulate(
             &mv,
             &[m.l0, 0.0, 0.0],
-            &Input::Constant(vec![v]),
+            &InputSignal::constant(vec![v]),
             &t,
             &accurate(),
         )?;
@@ -501,7 +513,7 @@ pub fn lorenz(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
           trajectories wander between them forever (the attractor below).",
     );
     let t = sample_times(50.0, 25001)?;
-    let sim = simulate(&l, &[1.0, 0.0, 0.0], &Input::none(), &t, &accurate())?;
+    let sim = simulate(&l, &[1.0, 0.0, 0.0], &InputSignal::none(), &t, &accurate())?;
     let attractor = "lorenz-attractor.png";
     phase_portrait_png(
         ctx.figure(attractor),
@@ -560,7 +572,7 @@ pub fn vanderpol(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         vec![-1.5, 1.5],
         vec![0.3, 0.2],
     ];
-    let tr = trajectories(&VanDerPol, &starts, &Input::none(), &t, &accurate())?;
+    let tr = trajectories(&VanDerPol, &starts, &InputSignal::none(), &t, &accurate())?;
     let worst = tr
         .iter()
         .map(|s| {

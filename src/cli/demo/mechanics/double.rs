@@ -10,7 +10,7 @@ use super::super::{Ctx, fig};
 use super::{eig_error, tight, verdict_table};
 use crate::nonlinear::models::{DoublePendulum, Lorenz};
 use crate::nonlinear::{
-    Divergence, EquilibriumSearch, ExponentFit, Input, SystemInfo, divergence,
+    Divergence, EquilibriumSearch, ExponentFit, InputSignal, SystemInfo, divergence,
     finite_time_exponent, linearize, lyapunov_exponent, sample_times, simulate,
 };
 use crate::numeric::rk45::Rk45Options;
@@ -87,7 +87,7 @@ pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
 /// Energy conservation, two starts 1e-9 apart, the Lyapunov exponent, the tip's path.
 fn chaos(ctx: &mut Ctx, md: &mut Md, p: &DoublePendulum) -> Result<()> {
     let x0 = p.default_initial_state();
-    let zero = Input::Constant(vec![0.0]);
+    let zero = InputSignal::constant(vec![0.0]);
     let horizon = 30.0;
     let t = sample_times(horizon, 12001)?;
     let mut xb = x0.clone();
@@ -114,7 +114,13 @@ fn chaos(ctx: &mut Ctx, md: &mut Md, p: &DoublePendulum) -> Result<()> {
     let est = lyapunov_exponent(p, &x0, &[0.0], 200.0, 0.5, &fast)?;
     // Lorenz from a point on the attractor (after a 20 s transient), 300 s.
     let l = Lorenz::default();
-    let on = simulate(&l, &[1.0, 0.0, 0.0], &Input::none(), &[0.0, 20.0], &fast)?;
+    let on = simulate(
+        &l,
+        &[1.0, 0.0, 0.0],
+        &InputSignal::none(),
+        &[0.0, 20.0],
+        &fast,
+    )?;
     let start = on
         .states
         .last()

@@ -10,7 +10,7 @@ use super::super::{Ctx, fig};
 use super::{eig_error, eigen_text, tight};
 use crate::cli::text::vector_text;
 use crate::nonlinear::models::{Gyroscope, GyroscopeDiscFrame};
-use crate::nonlinear::{EquilibriumSearch, Input, linearize, sample_times, simulate};
+use crate::nonlinear::{EquilibriumSearch, InputSignal, linearize, sample_times, simulate};
 use crate::plot::{Curve, LineStyle, XyPlot, series_color, xy_png};
 use crate::poly::fmt_sig;
 
@@ -133,7 +133,7 @@ pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         (0.3, 1.1, 0.7, -0.2, 20.0, 0.4);
     let o1 = d1 * t2.sin() * th3.sin() + d2 * th3.cos();
     let o2 = d1 * t2.sin() * th3.cos() - d2 * th3.sin();
-    let u = Input::Constant(vec![0.3, -0.1, 0.05]);
+    let u = InputSignal::constant(vec![0.3, -0.1, 0.05]);
     let t = sample_times(3.0, 601)?;
     let a = simulate(&g, &[t1, t2, d1, d2, w3], &u, &t, &tight())?;
     let b = simulate(
@@ -164,7 +164,7 @@ fn claims(ctx: &mut Ctx, md: &mut Md, g: &Gyroscope, cross: f64) -> Result<()> {
     let nu = g.nutation_frequency();
     let x0 = [0.3, 1.1, 0.0, 0.0, g.w];
     let t = sample_times(5.0, 501)?;
-    let free = simulate(g, &x0, &Input::Constant(vec![0.0; 3]), &t, &tight())?;
+    let free = simulate(g, &x0, &InputSignal::constant(vec![0.0; 3]), &t, &tight())?;
     let still = free
         .states
         .iter()
@@ -179,7 +179,13 @@ fn claims(ctx: &mut Ctx, md: &mut Md, g: &Gyroscope, cross: f64) -> Result<()> {
     let u1 = 1.0;
     let t = sample_times(1.0, 2001)?;
     let spin = g.steady_spin();
-    let forced = simulate(g, &spin, &Input::Constant(vec![u1, 0.0, 0.0]), &t, &tight())?;
+    let forced = simulate(
+        g,
+        &spin,
+        &InputSignal::constant(vec![u1, 0.0, 0.0]),
+        &t,
+        &tight(),
+    )?;
     // The linearisation's step response: θ₁ = (u₁/(Il ν²))(1 − cos νt),
     // θ₂ − π/2 = −(u₁/(Il ν))(t − sin(νt)/ν).
     let lin1 = |t: f64| u1 / (g.i1 * nu * nu) * (1.0 - (nu * t).cos());

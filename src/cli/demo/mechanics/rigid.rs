@@ -10,7 +10,7 @@ use super::{eig_error, tight, verdict_table};
 use crate::nonlinear::models::{AxisKind, RigidBody};
 use crate::nonlinear::period::crossing_times;
 use crate::nonlinear::{
-    EquilibriumSearch, FreeRigidMotion, Input, linearize, sample_times, simulate,
+    EquilibriumSearch, FreeRigidMotion, InputSignal, linearize, sample_times, simulate,
 };
 use crate::plot::{
     Curve, Curve3, Marker, MarkerShape, Point3, SpherePlot, View, XyPlot, series_color, sphere_png,
@@ -185,7 +185,7 @@ fn case_row(ctx: &mut Ctx, case: &Case) -> Result<Vec<String>> {
         .period
         .ok_or_else(|| anyhow::anyhow!("{}: no period", case.name))?;
     let t = sample_times(10.0 * period, 4001)?;
-    let sim = simulate(&body, &case.pi0, &Input::none(), &t, &tight())?;
+    let sim = simulate(&body, &case.pi0, &InputSignal::none(), &t, &tight())?;
     let scale = m.momentum2.sqrt();
     let mut err: f64 = 0.0;
     for (ti, x) in sim.t.iter().zip(&sim.states) {
@@ -207,7 +207,7 @@ fn case_row(ctx: &mut Ctx, case: &Case) -> Result<Vec<String>> {
     let long = simulate(
         &body,
         &case.pi0,
-        &Input::none(),
+        &InputSignal::none(),
         &[0.0, 100.0 * period],
         &tight(),
     )?;
@@ -267,7 +267,7 @@ fn components_figure(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
     let body = RigidBody::new(case.inertia[0], case.inertia[1], case.inertia[2])?;
     let m = FreeRigidMotion::new(&body, &case.pi0)?;
     let t = sample_times(16.0, 1601)?;
-    let sim = simulate(&body, &case.pi0, &Input::none(), &t, &tight())?;
+    let sim = simulate(&body, &case.pi0, &InputSignal::none(), &t, &tight())?;
     let mut curves = Vec::new();
     let mut markers = Vec::new();
     for k in 0..3 {

@@ -11,7 +11,7 @@ use crate::nonlinear::models::HeavyTop;
 use crate::nonlinear::models::heavy_top::{
     threshold_from_eigenvalues, threshold_from_energy_casimir,
 };
-use crate::nonlinear::{EquilibriumSearch, Input, linearize, sample_times, simulate};
+use crate::nonlinear::{EquilibriumSearch, InputSignal, linearize, sample_times, simulate};
 use crate::plot::{Curve, series_color, time_plot_png};
 use crate::poly::fmt_sig;
 
@@ -120,7 +120,7 @@ fn nutation(ctx: &mut Ctx, md: &mut Md, base: &HeavyTop) -> Result<()> {
     for (k, factor) in [0.9, 1.1, 2.0].into_iter().enumerate() {
         let top = base.with_spin(factor * wc)?;
         let x0 = crate::nonlinear::SystemInfo::default_initial_state(&top);
-        let sim = simulate(&top, &x0, &Input::none(), &t, &tight())?;
+        let sim = simulate(&top, &x0, &InputSignal::none(), &t, &tight())?;
         let tilt: Vec<f64> = sim
             .states
             .iter()
