@@ -373,6 +373,9 @@ pub(super) const G: usize = 2;
 /// latency-bound), then magnitude, dB and phase exactly as `BodeForm::finish` and
 /// `kernel::store` compute them. `k_mant·2^k_exp` = |K|; `base_quarters` the quarter turns
 /// of K. Same operations in the same order as [`State`]'s methods.
+///
+/// Longer than our ~120-line rule on purpose: one function, so that the compiler keeps the
+/// two interleaved groups in registers across the whole sweep (the reason for the kernel).
 #[target_feature(enable = "avx2")]
 #[allow(clippy::needless_range_loop)] // g indexes the parallel per-group locals
 pub(super) fn response8(

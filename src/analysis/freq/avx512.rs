@@ -207,7 +207,8 @@ fn lanes(v: __m512d) -> [f64; 8] {
 }
 
 /// The fast path for [`WIDTH`] frequencies of a G with k = 0 and without imaginary-axis
-/// pairs (as `avx2::response8`, which documents the arguments).
+/// pairs (as `avx2::response8`, which documents the arguments and why it is one long
+/// function).
 #[target_feature(enable = "avx512f")]
 #[allow(clippy::needless_range_loop)] // g indexes the parallel per-group locals
 pub(super) fn response16(

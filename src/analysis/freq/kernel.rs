@@ -325,10 +325,7 @@ impl BodeForm {
         let mut i = 0;
         for c in &mut chunks {
             if !(fused && c.iter().all(|&x| in_range(x))) {
-                for &x in c {
-                    store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
-                    i += 1;
-                }
+                i = self.fill_scalar(c, i, magnitude, magnitude_db, phase_deg);
                 continue;
             }
             #[cfg(all(target_arch = "x86_64", ltikit_simd))]
@@ -358,19 +355,7 @@ impl BodeForm {
                     }
                 }
                 // AVX-512 implies AVX2: the four-wide product with the scalar tail
-                for quarter in c.chunks_exact(4) {
-                    let block: [f64; 4] = std::array::from_fn(|k| quarter[k]);
-                    for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
-                        store(
-                            e.unwrap_or_else(|| self.eval(x)),
-                            i,
-                            magnitude,
-                            magnitude_db,
-                            phase_deg,
-                        );
-                        i += 1;
-                    }
-                }
+                i = self.fill_quads(c, i, magnitude, magnitude_db, phase_deg);
                 continue;
             }
             #[cfg(all(target_arch = "x86_64", ltikit_simd))]
@@ -399,19 +384,7 @@ impl BodeForm {
                         continue;
                     }
                 }
-                for half in c.chunks_exact(4) {
-                    let block: [f64; 4] = std::array::from_fn(|k| half[k]);
-                    for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
-                        store(
-                            e.unwrap_or_else(|| self.eval(x)),
-                            i,
-                            magnitude,
-                            magnitude_db,
-                            phase_deg,
-                        );
-                        i += 1;
-                    }
-                }
+                i = self.fill_quads(c, i, magnitude, magnitude_db, phase_deg);
                 continue;
             }
             let block: [f64; L] = std::array::from_fn(|k| c[k]);
@@ -430,10 +403,7 @@ impl BodeForm {
         // so every frequency gets the fused path's values whatever the block width.
         for c in chunks.remainder().chunks(L) {
             if !(fused && c.iter().all(|&x| in_range(x))) {
-                for &x in c {
-                    store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
-                    i += 1;
-                }
+                i = self.fill_scalar(c, i, magnitude, magnitude_db, phase_deg);
                 continue;
             }
             let block: [f64; L] = std::array::from_fn(|k| c[k.min(c.len() - 1)]);
@@ -448,6 +418,49 @@ impl BodeForm {
                 i += 1;
             }
         }
+    }
+
+    /// Frequencies one by one on the scalar path; returns the next output index.
+    fn fill_scalar(
+        &self,
+        w: &[f64],
+        mut i: usize,
+        magnitude: &mut [f64],
+        magnitude_db: &mut [f64],
+        phase_deg: &mut [f64],
+    ) -> usize {
+        for &x in w {
+            store(self.eval(x), i, magnitude, magnitude_db, phase_deg);
+            i += 1;
+        }
+        i
+    }
+
+    /// Frequencies four at a time on the AVX2 product (a lane it cannot take goes to the
+    /// scalar path); `w.len()` a multiple of 4; returns the next output index.
+    #[cfg(all(target_arch = "x86_64", ltikit_simd))]
+    fn fill_quads(
+        &self,
+        w: &[f64],
+        mut i: usize,
+        magnitude: &mut [f64],
+        magnitude_db: &mut [f64],
+        phase_deg: &mut [f64],
+    ) -> usize {
+        for quad in w.chunks_exact(4) {
+            let block: [f64; 4] = std::array::from_fn(|k| quad[k]);
+            for (e, &x) in self.eval_fused_avx2(&block).into_iter().zip(&block) {
+                store(
+                    e.unwrap_or_else(|| self.eval(x)),
+                    i,
+                    magnitude,
+                    magnitude_db,
+                    phase_deg,
+                );
+                i += 1;
+            }
+        }
+        i
     }
 }
 

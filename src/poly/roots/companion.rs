@@ -81,6 +81,10 @@ fn balance(a: &mut [f64], n: usize) {
 
 /// Eigenvalues of an upper Hessenberg matrix (row-major, destroyed) by the Francis
 /// double-shift QR iteration (EISPACK `hqr`).
+///
+/// Longer than our ~120-line rule on purpose: it is the classical algorithm in one piece, so
+/// that it can be checked line by line against EISPACK's `hqr` (deflation test, exceptional
+/// shifts, the double-shift sweep share its loop state).
 #[allow(clippy::many_single_char_names)] // the classical algorithm's names
 fn hqr(a: &mut [f64], n: usize) -> Option<Vec<Complex64>> {
     let idx = |i: usize, j: usize| i * n + j;
