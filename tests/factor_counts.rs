@@ -65,5 +65,6 @@ fn the_demo_factors_each_plant_a_handful_of_times() {
     // display form with the rounding noise of the linearisation removed): pendulum, MEMS,
     // rigid body, heavy top, gyroscope channels, double pendulum. Measured 33 (1 740 before
     // the factored core, with fewer models).
+    eprintln!("demo: {n} factorisations");
     assert!(n <= 40, "{n}");
 }
