@@ -207,7 +207,7 @@ pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
     points.extend(middle);
     points.extend(positive.iter().copied());
     let display_radius = geo.display_radius(&points, g_inf);
-    let encirclements = winding_about_minus_one(&points, g_inf);
+    let encirclements = winding_about_minus_one(&points, g_inf, |s| g.eval(s));
     Ok(NyquistContour {
         points,
         g_at_infinity: g_inf,
@@ -385,29 +385,120 @@ impl Geometry {
 }
 
 /// Clockwise encirclements of −1 by the closed curve (the points, closed through G(∞)).
-fn winding_about_minus_one(points: &[NyquistPoint], g_inf: f64) -> Option<i64> {
+///
+/// The angle of G + 1 is summed segment by segment; a segment along the imaginary axis whose
+/// turn is too large to tell the way round (the curve sweeps close by −1 between two samples:
+/// 1e8/(s + 1)² passes 2e-4 below −1 near ω = 1e4) is subdivided with `eval` (bisection in
+/// ω, geometric for ω of one sign) until every piece turns by less than 0.9π. `None` when the
+/// curve passes through −1 (|G + 1| ≤ 1e-10·max(1, |G|)) or refinement does not resolve it.
+fn winding_about_minus_one(
+    points: &[NyquistPoint],
+    g_inf: f64,
+    eval: impl Fn(Complex64) -> Complex64,
+) -> Option<i64> {
     let one = Complex64::new(1.0, 0.0);
-    let tiny = |z: Complex64, g: Complex64| z.norm() <= 1e-10 * g.norm().max(1.0);
     let inf = Complex64::new(g_inf + 1.0, 0.0);
-    if tiny(inf, Complex64::new(g_inf, 0.0)) {
+    if tiny_about_minus_one(inf, Complex64::new(g_inf, 0.0)) {
         return None;
     }
+    // The ends of the sampled axis join ω = ±∞ (where G = G(∞)); a segment on the axis, or to
+    // ω = ±∞, that turns too far is refined with `eval`.
+    let axis = |p: &NyquistPoint| (p.part == ContourPart::Axis).then_some(p.s.im);
     let mut total = 0.0;
-    let mut prev = inf;
-    for p in points.iter().map(|p| p.g + one).chain(std::iter::once(inf)) {
-        if !(p.re.is_finite() && p.im.is_finite()) || tiny(p, p - one) {
+    let mut prev_w: Option<f64> = Some(f64::NEG_INFINITY);
+    let mut prev_z = inf;
+    for p in points {
+        let z = p.g + one;
+        if !(z.re.is_finite() && z.im.is_finite()) || tiny_about_minus_one(z, p.g) {
             return None;
         }
-        let turn = (p / prev).arg();
-        if turn.abs() > 0.9 * std::f64::consts::PI {
-            // Too coarse to tell which way round: the curve passes (almost) through −1.
-            return None;
-        }
-        total += turn;
-        prev = p;
+        total += segment_turn(prev_w, axis(p), prev_z, z, &eval)?;
+        prev_w = axis(p);
+        prev_z = z;
     }
+    total += segment_turn(prev_w, Some(f64::INFINITY), prev_z, inf, &eval)?;
     let w = total / (2.0 * std::f64::consts::PI);
     ((w - w.round()).abs() < 0.05).then(|| -(w.round() as i64))
+}
+
+/// Largest angle of G + 1 per segment that still tells the way round.
+const TURN_LIMIT: f64 = 0.9 * std::f64::consts::PI;
+
+/// Deepest subdivision of one segment of the axis (2⁻⁶⁰ of it).
+const MAX_REFINE_DEPTH: u32 = 60;
+
+/// |G + 1| negligible against |G|: the curve passes through −1.
+fn tiny_about_minus_one(z: Complex64, g: Complex64) -> bool {
+    z.norm() <= 1e-10 * g.norm().max(1.0)
+}
+
+/// The turn of G + 1 along one segment of the contour from `za` to `zb`; `wa`, `wb` the ω of its
+/// ends when they lie on the imaginary axis (±∞ for the ends of the axis). `None` when it
+/// turns too far to tell the way round and cannot be refined.
+fn segment_turn(
+    wa: Option<f64>,
+    wb: Option<f64>,
+    za: Complex64,
+    zb: Complex64,
+    eval: &impl Fn(Complex64) -> Complex64,
+) -> Option<f64> {
+    let turn = (zb / za).arg();
+    if turn.abs() <= TURN_LIMIT {
+        return Some(turn);
+    }
+    match (wa, wb) {
+        (Some(a), Some(b)) if !(a.is_infinite() && b.is_infinite()) => {
+            refined_turn(a, b, za, zb, eval, 0)
+        }
+        _ => None,
+    }
+}
+
+/// The turn of G(jω) + 1 from ω = `wa` (value `za`) to `wb` (value `zb`), subdividing until
+/// each piece turns by less than [`TURN_LIMIT`]; one end may be ±∞ (then the split point
+/// moves out geometrically, ×16 per level).
+fn refined_turn(
+    wa: f64,
+    wb: f64,
+    za: Complex64,
+    zb: Complex64,
+    eval: &impl Fn(Complex64) -> Complex64,
+    depth: u32,
+) -> Option<f64> {
+    let turn = (zb / za).arg();
+    if turn.abs() <= TURN_LIMIT {
+        return Some(turn);
+    }
+    if depth >= MAX_REFINE_DEPTH {
+        return None;
+    }
+    let wm = if wa.is_infinite() || wb.is_infinite() {
+        let finite = if wa.is_infinite() { wb } else { wa };
+        let far = if wa.is_infinite() { wa } else { wb };
+        if finite == 0.0 {
+            far.signum()
+        } else if finite.signum() == far.signum() {
+            16.0 * finite
+        } else {
+            0.0
+        }
+    } else if wa * wb > 0.0 {
+        wa.signum() * (wa * wb).abs().sqrt()
+    } else {
+        0.5 * (wa + wb)
+    };
+    if !(wm != wa && wm != wb && wm.is_finite()) {
+        return None;
+    }
+    let gm = eval(Complex64::new(0.0, wm));
+    let zm = gm + Complex64::new(1.0, 0.0);
+    if !(zm.re.is_finite() && zm.im.is_finite()) || tiny_about_minus_one(zm, gm) {
+        return None;
+    }
+    Some(
+        refined_turn(wa, wm, za, zm, eval, depth + 1)?
+            + refined_turn(wm, wb, zm, zb, eval, depth + 1)?,
+    )
 }
 
 impl TransferFunction {
@@ -436,6 +527,22 @@ impl Factored {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_close_pass_by_minus_one_is_resolved_not_undefined() {
+        // 1e8/(s + 1)² passes about 2e-4 below −1 near ω = 1e4, beyond the sampled axis; the
+        // closed loop s² + 2s + 1 + 1e8 is stable: N = 0, Z = 0. Also with 1e12 (2e-6 below).
+        for k in [1e8, 1e12] {
+            let g = crate::TransferFunction::from_descending(&[k], &[1.0, 2.0, 1.0]).unwrap();
+            let n = g.nyquist().unwrap();
+            assert_eq!(n.encirclements, Some(0), "{k}");
+            assert_eq!(n.closed_loop_rhp_poles, Some(0), "{k}");
+        }
+        // −1e8/(s + 1)²: the curve starts at −1e8 and crosses the negative real axis once:
+        // one clockwise encirclement... the closed loop s² + 2s + 1 − 1e8 has one RHP root.
+        let g = crate::TransferFunction::from_descending(&[-1e8], &[1.0, 2.0, 1.0]).unwrap();
+        assert_eq!(g.nyquist().unwrap().closed_loop_rhp_poles, Some(1));
+    }
     use crate::analysis::stability::half_plane;
 
     fn tf(num: &[f64], den: &[f64]) -> TransferFunction {
