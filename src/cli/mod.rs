@@ -3,6 +3,7 @@
 
 mod analyze;
 mod batch;
+mod channels;
 mod demo;
 mod freq;
 mod linearize;
