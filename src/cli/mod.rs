@@ -6,6 +6,7 @@ mod batch;
 mod channels;
 mod demo;
 mod freq;
+mod input_file;
 mod linearize;
 mod margins;
 mod output;
@@ -16,6 +17,7 @@ mod pullin;
 mod residue;
 mod response;
 mod simulate;
+mod ss_response;
 mod text;
 
 use anyhow::Result;

@@ -148,7 +148,7 @@ impl Plant {
     /// use ltikit::lti::Plant;
     /// let p = Plant::from_model("lattice", &[("N".into(), 8.0), ("output".into(), 3.0)]).unwrap();
     /// assert_eq!((p.model.order(), p.model.dims()), (16, (1, 1)));
-    /// assert_eq!(p.signals.outputs, vec!["q3 (displacement of particle 3) [m]".to_string()]);
+    /// assert_eq!(p.signals.outputs, vec!["q3 [m]".to_string()]);
     /// assert!(Plant::from_model("lattice", &[("N".into(), 1.0)]).is_err());
     /// ```
     pub fn from_model(name: &str, params: &[(String, f64)]) -> Result<Plant> {
@@ -178,7 +178,7 @@ impl Plant {
             .join(", ");
         let mut p = Self::from_state_space(lat.state_space()?, Some(format!("lattice ({list})")))?;
         let n = lat.n();
-        let q = |j: usize| format!("q{j} (displacement of particle {j}) [m]");
+        let q = |j: usize| format!("q{j} [m]");
         let outputs = match lat.output() {
             Output::Particle(j) => vec![q(j)],
             Output::All => (1..=n).map(q).collect(),
@@ -189,12 +189,12 @@ impl Plant {
             .collect();
         p.signals = Signals::for_model(
             &p.model,
-            vec![format!("F{0} (force on particle {0}) [N]", lat.input())],
+            vec![format!("F{} [N]", lat.input())],
             outputs,
             states,
         )?;
         p.description = Some(format!(
-            "The linear lattice of seed §2.4: {n} particles, {} boundary, ω0 = {} rad/s.",
+            "The linear lattice of seed §2.4: {n} particles, {} boundary, ω0 = {} rad/s; input F = force on a particle, outputs q = displacements, states q then v = q̇.",
             lat.boundary().name(),
             fmt_num(lat.w0())
         ));
