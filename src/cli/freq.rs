@@ -99,7 +99,7 @@ pub fn run(a: &FreqArgs) -> Result<()> {
     } else {
         out.put(&format!(
             "{}\n\n{}",
-            super::text::g_text(&plant, &f),
+            super::text::g_text(&plant, f),
             table_header()
         ))?
     };

@@ -115,8 +115,11 @@ pub fn bode_grid_png(path: impl AsRef<Path>, grid: &BodeGrid, opts: &PlotOptions
     })
 }
 
+/// A closed interval (lo, hi).
+type Span = (f64, f64);
+
 /// The shared ranges: ω, magnitude (dB, at most 300 dB deep, padded), phase.
-fn ranges(grid: &BodeGrid) -> Result<((f64, f64), (f64, f64), (f64, f64))> {
+fn ranges(grid: &BodeGrid) -> Result<(Span, Span, Span)> {
     let pts = || {
         grid.cells.iter().flat_map(|(_, _, r)| {
             (0..r.w.len())
