@@ -35,7 +35,7 @@ pub struct Channels {
 }
 
 impl PlantArgs {
-    /// The channels of `plant` to analyse (see [`Channels`]).
+    /// The channels of `plant` to analyse (see `Channels`).
     pub fn channels(&self, plant: &Plant) -> Result<Channels> {
         if let Some((i, o)) = self.channel()? {
             return Ok(Channels {
