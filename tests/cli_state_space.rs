@@ -408,3 +408,25 @@ fn bad_input_is_one_line() {
     let (e, code) = error(&["response", "--plant", &p, "--input", "ramp"]);
     assert!(code == 1 && e.contains("step, impulse or none"), "{e}");
 }
+
+#[test]
+fn each_channel_is_factored_once() {
+    use ltikit::analysis::factorizations_on_this_thread;
+    let d = dir("counts");
+    let p = mimo_file(&d);
+    let png = d.join("count.png").display().to_string();
+    let count = |args: &[&str]| {
+        let before = factorizations_on_this_thread();
+        let mut argv = vec!["ltikit"];
+        argv.extend_from_slice(args);
+        ltikit::cli::run_from(argv).unwrap();
+        factorizations_on_this_thread() - before
+    };
+    // Four channels, each factored once; the state-space response factors nothing.
+    assert_eq!(count(&["analyze", "--plant", &p, "--json"]), 4);
+    assert_eq!(count(&["freq", "--plant", &p, "--json"]), 4);
+    assert_eq!(count(&["margins", "--plant", &p]), 4);
+    assert_eq!(count(&["bode", "--plant", &p, "-o", &png]), 4);
+    assert_eq!(count(&["response", "--plant", &p, "--json"]), 0);
+    assert_eq!(count(&["analyze", "--plant", &p, "--channel", "1,2"]), 1);
+}
