@@ -487,7 +487,8 @@ fn refined_turn(
     } else {
         0.5 * (wa + wb)
     };
-    if !(wm != wa && wm != wb && wm.is_finite()) {
+    // No split point strictly between the ends (they are adjacent doubles): give up.
+    if !(wm.is_finite() && (wa < wm && wm < wb || wb < wm && wm < wa)) {
         return None;
     }
     let gm = eval(Complex64::new(0.0, wm));

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::output::{finite, pair, print, print_json};
 use super::text::roots_text;
-use super::{Plant, PlantArgs};
+use super::{Plant, PlantArgs, channels};
 use crate::analysis::{Analysis, Factored, StepInfo};
 use crate::poly::{fmt_num, fmt_root, fmt_sig, roots::flatten};
 
@@ -29,12 +29,32 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         return super::batch::run(src);
     }
     let plant = a.plant.single()?;
-    let f = a.plant.factored(&plant)?;
-    let analysis = f.analyze()?;
+    let chans = a.plant.channels(&plant)?;
+    if !chans.per_channel {
+        let f = &chans.list[0].factored;
+        let analysis = f.analyze()?;
+        return if a.json {
+            print_json(&AnalyzeJson::from(&analysis))
+        } else {
+            print(&report(&plant, f, &analysis))
+        };
+    }
+    let mut docs = Vec::with_capacity(chans.list.len());
+    let mut text = channels::plant_header(&plant);
+    for ch in &chans.list {
+        let analysis = ch.factored.analyze()?;
+        if a.json {
+            docs.push((ch.input, ch.output, AnalyzeJson::from(&analysis)));
+        } else {
+            text.push_str(&channels::block_heading(&plant, ch));
+            text.push_str(&format!("G(s) = {}\n", ch.factored));
+            text.push_str(&body(&ch.factored, &analysis));
+        }
+    }
     if a.json {
-        print_json(&AnalyzeJson::from(&analysis))
+        print_json(&channels::mimo_json(&plant, &docs)?)
     } else {
-        print(&report(&plant, &f, &analysis))
+        print(&text)
     }
 }
 
@@ -142,7 +162,6 @@ impl From<&Analysis> for AnalyzeJson {
 
 /// The human-readable report.
 pub fn report(plant: &Plant, f: &Factored, a: &Analysis) -> String {
-    let pz = &a.pole_zero;
     let mut s = String::new();
     s.push_str(&format!("{}\n", super::text::g_text(plant, f)));
     if !plant.name.contains(" / ") {
@@ -151,6 +170,14 @@ pub fn report(plant: &Plant, f: &Factored, a: &Analysis) -> String {
     if let Some(d) = &plant.description {
         s.push_str(&format!("  {d}\n"));
     }
+    s.push_str(&body(f, a));
+    s
+}
+
+/// The report below the plant's name: order, poles and zeros, stability, modes, step metrics.
+pub fn body(f: &Factored, a: &Analysis) -> String {
+    let pz = &a.pole_zero;
+    let mut s = String::new();
     match a.relative_degree {
         Some(r) => s.push_str(&format!("  order {}, relative degree {r}\n\n", a.order)),
         None => s.push_str(&format!(

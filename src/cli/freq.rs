@@ -3,8 +3,9 @@
 use anyhow::{Result, bail};
 use clap::Args;
 
+use super::channels::{self, Channels};
 use super::output::Stream;
-use super::{PlantArgs, parse};
+use super::{Plant, PlantArgs, parse};
 use crate::analysis::grid::{MAX_POINTS, check_points};
 use crate::analysis::{FrequencyResponse, auto_frequency_grid};
 use crate::poly::fmt_sig;
@@ -58,7 +59,13 @@ const BLOCK: usize = 1 << 17;
 
 pub fn run(a: &FreqArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let f = a.plant.factored(&plant)?;
+    let chans = a.plant.channels(&plant)?;
+    if chans.per_channel {
+        return run_channels(a, &plant, &chans);
+    }
+    let Some(f) = chans.list.first().map(|c| &c.factored) else {
+        bail!("no channel to analyse");
+    };
     // The frequencies: a given list or an automatic grid (in memory: 8 bytes a point), or a
     // log grid generated block by block.
     let (list, n): (Option<Vec<f64>>, usize) = match (&a.w, a.wmin, a.wmax) {
@@ -72,7 +79,7 @@ pub fn run(a: &FreqArgs) -> Result<()> {
             (None, a.points)
         }
         _ => {
-            let w = auto_frequency_grid(&f, a.points)?;
+            let w = auto_frequency_grid(f, a.points)?;
             let n = w.len();
             (Some(w), n)
         }
@@ -92,7 +99,7 @@ pub fn run(a: &FreqArgs) -> Result<()> {
     } else {
         out.put(&format!(
             "{}\n\n{}",
-            super::text::g_text(&plant, &f),
+            super::text::g_text(&plant, f),
             table_header()
         ))?
     };
@@ -122,9 +129,102 @@ pub fn run(a: &FreqArgs) -> Result<()> {
     out.finish()
 }
 
+/// Most values (frequencies × channels) of a per-channel `freq` result, which is computed
+/// whole rather than streamed.
+pub const MAX_CHANNEL_VALUES: usize = 1_000_000;
+
+/// The frequencies of a per-channel result: the given list, the log grid, or a log grid over
+/// the union of the channels' automatic ranges.
+fn channel_grid(a: &FreqArgs, chans: &Channels) -> Result<Vec<f64>> {
+    let w = match (&a.w, a.wmin, a.wmax) {
+        (Some(w), _, _) => parse::numbers(w, "--w")?,
+        (None, Some(lo), Some(hi)) => logspace(lo, hi, a.points)?,
+        _ => {
+            let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+            for ch in &chans.list {
+                let g = auto_frequency_grid(&ch.factored, 2)?;
+                lo = lo.min(g.iter().copied().fold(f64::INFINITY, f64::min));
+                hi = hi.max(g.iter().copied().fold(0.0, f64::max));
+            }
+            logspace(lo, hi, a.points)?
+        }
+    };
+    crate::analysis::freq::check_frequencies(&w)?;
+    if w.len().saturating_mul(chans.list.len()) > MAX_CHANNEL_VALUES {
+        bail!(
+            "{} frequencies × {} channels exceeds {MAX_CHANNEL_VALUES} values: choose a channel \
+             (--channel) or fewer points",
+            w.len(),
+            chans.list.len()
+        );
+    }
+    Ok(w)
+}
+
+/// `freq` for every channel of a MIMO plant: a table with the channels as columns, or the
+/// per-channel JSON document with each channel's `points`.
+fn run_channels(a: &FreqArgs, plant: &Plant, chans: &Channels) -> Result<()> {
+    let w = channel_grid(a, chans)?;
+    let frs = chans
+        .list
+        .iter()
+        .map(|c| c.factored.freq_response(&w))
+        .collect::<crate::Result<Vec<_>>>()?;
+    if a.json {
+        let docs: Vec<(usize, usize, ChannelPoints)> = chans
+            .list
+            .iter()
+            .zip(&frs)
+            .map(|(c, fr)| {
+                let points = (0..fr.w.len()).map(|i| point_json(fr, i)).collect();
+                (c.input, c.output, ChannelPoints { points })
+            })
+            .collect();
+        return super::output::print_json(&channels::mimo_json(plant, &docs)?);
+    }
+    let mut s = channels::plant_header(plant);
+    s.push('\n');
+    for (k, c) in chans.list.iter().enumerate() {
+        s.push_str(&format!(
+            "  [{}] {}: G(s) = {}\n",
+            k + 1,
+            channels::heading(plant, c.input, c.output),
+            c.factored
+        ));
+    }
+    s.push_str(&format!("\n{:>14}", "w [rad/s]"));
+    for k in 1..=chans.list.len() {
+        s.push_str(&format!(
+            " {:>12} {:>10} {:>10}",
+            format!("M[{k}]"),
+            format!("dB[{k}]"),
+            format!("phi[{k}]")
+        ));
+    }
+    s.push('\n');
+    for (i, wi) in w.iter().enumerate() {
+        s.push_str(&format!("{:>14}", fmt_sig(*wi, 6)));
+        for fr in &frs {
+            s.push_str(&format!(
+                " {:>12} {:>10} {:>10}",
+                fmt_sig(fr.magnitude[i], 6),
+                fmt_sig(fr.magnitude_db[i], 5),
+                fmt_sig(fr.phase_deg[i], 5)
+            ));
+        }
+        s.push('\n');
+    }
+    super::output::print(&s)
+}
+
+/// One channel's points in the per-channel JSON document.
+#[derive(serde::Serialize)]
+struct ChannelPoints {
+    points: Vec<FreqPointJson>,
+}
+
 /// One point of the `freq` JSON contract:
 /// `{"points": [{"w", "magnitude", "magnitude_db", "phase_deg"}]}`.
-#[cfg(test)]
 #[derive(serde::Serialize)]
 struct FreqPointJson {
     w: f64,
@@ -148,7 +248,6 @@ fn point_text(f: &FrequencyResponse, i: usize, out: &mut String) {
     out.push_str("\n    }");
 }
 
-#[cfg(test)]
 fn point_json(f: &FrequencyResponse, i: usize) -> FreqPointJson {
     FreqPointJson {
         w: f.w[i],

@@ -7,10 +7,12 @@ use serde::Serialize;
 
 use super::output::{pair, print, print_json};
 use super::parse;
-use super::text::vector_text;
+use super::text::{roots_text, vector_text};
+use crate::analysis::Analysis;
+use crate::lti::StateSpace;
 use crate::nonlinear::{
-    EnergyCasimir, EquilibriumSearch, Linearization, LocalStability, build_model, linearize,
-    model_info,
+    ChannelTf, EnergyCasimir, EquilibriumSearch, Linearization, LocalStability, build_model,
+    linearize, model_info,
 };
 use crate::poly::{fmt_root, fmt_sig};
 
@@ -84,6 +86,9 @@ struct ChannelJson {
     output: String,
     num: Vec<f64>,
     den: Vec<f64>,
+    /// The channel's analysis (the `analyze` document), when it can be computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    analysis: Option<super::analyze::AnalyzeJson>,
 }
 
 #[derive(Serialize)]
@@ -135,6 +140,9 @@ impl From<&Linearization> for LinearizeJson {
                             output: c.output_name.clone(),
                             num: c.num.clone(),
                             den: c.den.clone(),
+                            analysis: channel_analysis(&e.ss, c)
+                                .ok()
+                                .map(|a| super::analyze::AnalyzeJson::from(&a)),
                         })
                         .collect(),
                     energy_casimir: e.energy_casimir.clone(),
@@ -195,6 +203,43 @@ pub(crate) fn eigenvalues_text(e: &[num_complex::Complex64], sig: usize) -> Stri
         .map(|(s, m)| if m > 1 { format!("{s} (×{m})") } else { s })
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// The analysis of one channel of a linearisation (the same per-channel analysis as
+/// `analyze` on a MIMO plant). It starts from the channel's transfer function with the
+/// rounding noise of the Jacobians removed (`reduced`: a gimbal term cos(π/2) = 6e-17 would
+/// otherwise leave a spurious zero near 0 that does not cancel the pole at 0); `ss` is the
+/// linearisation, kept for the state-space kernels.
+fn channel_analysis(_ss: &StateSpace, c: &ChannelTf) -> crate::Result<Analysis> {
+    c.reduced.factored()?.analyze()
+}
+
+/// One line of a channel's analysis: poles, zeros, dc gain, stability.
+fn channel_line(ss: &StateSpace, c: &ChannelTf) -> String {
+    match channel_analysis(ss, c) {
+        Ok(a) => {
+            let pz = &a.pole_zero;
+            format!(
+                "    poles {}; zeros {}{}; dc gain {}; {}\n",
+                roots_text(&pz.reduced_poles),
+                roots_text(&pz.reduced_zeros),
+                if pz.cancelled.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (cancelled {})", roots_text(&pz.cancelled))
+                },
+                a.dc_gain
+                    .map(|g| fmt_sig(g, 6))
+                    .unwrap_or_else(|| "infinite".into()),
+                if a.stability.bibo_stable {
+                    "BIBO stable"
+                } else {
+                    "not BIBO stable"
+                }
+            )
+        }
+        Err(e) => format!("    (no analysis: {e})\n"),
+    }
 }
 
 /// Human-readable report; `note` is the model's remark on its equilibria.
@@ -274,6 +319,9 @@ pub fn report(title: &str, l: &Linearization, note: Option<&str>) -> String {
                     c.reduced.to_string()
                 }
             ));
+            if !zero {
+                s.push_str(&channel_line(&e.ss, c));
+            }
         }
         if let Some(tf) = &e.tf {
             s.push_str(&format!("  linearised G(s) = {}\n", tf.g));

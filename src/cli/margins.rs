@@ -4,7 +4,6 @@ use anyhow::Result;
 use clap::Args;
 
 use super::PlantArgs;
-use super::output::{print, print_json};
 use crate::analysis::Margins;
 use crate::poly::fmt_sig;
 
@@ -19,17 +18,8 @@ pub struct MarginsArgs {
 
 pub fn run(a: &MarginsArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let f = a.plant.factored(&plant)?;
-    let m = f.margins()?;
-    if a.json {
-        print_json(&m)
-    } else {
-        print(&format!(
-            "{}\n\n{}",
-            super::text::g_text(&plant, &f),
-            report(&m)
-        ))
-    }
+    let chans = a.plant.channels(&plant)?;
+    super::channels::print_each(&plant, &chans, a.json, |f| f.margins(), report)
 }
 
 fn opt(x: Option<f64>, unit: &str) -> String {

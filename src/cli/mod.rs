@@ -3,8 +3,10 @@
 
 mod analyze;
 mod batch;
+mod channels;
 mod demo;
 mod freq;
+mod input_file;
 mod linearize;
 mod margins;
 mod output;
@@ -15,6 +17,7 @@ mod pullin;
 mod residue;
 mod response;
 mod simulate;
+mod ss_response;
 mod text;
 
 use anyhow::Result;

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
 use crate::plot::{
-    BodeSeries, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png, parse_size,
-    pzmap_png, step_png,
+    BodeGrid, BodeSeries, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_grid_png, bode_png,
+    nyquist_png, parse_size, pzmap_png, step_png,
 };
 
 /// Options common to every picture.
@@ -203,12 +203,95 @@ pub fn pzmap_figure(
     Ok(())
 }
 
-/// The plants with their names, each factored once (the chosen channel of a MIMO plant).
+/// The plants with their names, each factored once: the chosen channel of a MIMO plant, or
+/// without `--channel` each of its channels labelled "input → output".
 fn labelled(args: &PlantArgs) -> Result<Vec<(String, Factored)>> {
-    args.resolve()?
-        .into_iter()
-        .map(|p| Ok((p.name.clone(), args.factored(&p)?)))
-        .collect()
+    let plants = args.resolve()?;
+    let several = plants.len() > 1;
+    let mut out = Vec::new();
+    for p in plants {
+        let chans = args.channels(&p)?;
+        for ch in chans.list {
+            let label = if !chans.per_channel {
+                p.name.clone()
+            } else if several {
+                format!("{}: {}", p.name, channel_label(&p, ch.input, ch.output))
+            } else {
+                channel_label(&p, ch.input, ch.output)
+            };
+            out.push((label, ch.factored));
+        }
+    }
+    Ok(out)
+}
+
+/// "u1 → y2" with the plant's signal names.
+fn channel_label(p: &crate::lti::Plant, i: usize, o: usize) -> String {
+    let name = |v: &[String], k: usize, stem: &str| {
+        v.get(k)
+            .cloned()
+            .unwrap_or_else(|| format!("{stem}{}", k + 1))
+    };
+    format!(
+        "{} → {}",
+        name(&p.signals.inputs, i, "u"),
+        name(&p.signals.outputs, o, "y")
+    )
+}
+
+/// The automatic frequency range covering every plant.
+fn auto_range(plants: &[(String, Factored)]) -> Result<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi: f64 = 0.0;
+    for (_, g) in plants {
+        let w = auto_frequency_grid(g, 100)?;
+        lo = lo.min(w.first().copied().unwrap_or(lo));
+        hi = hi.max(w.last().copied().unwrap_or(hi));
+    }
+    Ok((lo, hi))
+}
+
+/// The Bode grid of one MIMO plant: rows = outputs, columns = inputs.
+fn bode_grid_figure(
+    path: &Path,
+    plant: &crate::lti::Plant,
+    chans: &super::channels::Channels,
+    range: Option<(f64, f64)>,
+    opts: &PlotOptions,
+) -> Result<()> {
+    let labelled: Vec<(String, Factored)> = chans
+        .list
+        .iter()
+        .map(|c| (String::new(), c.factored.clone()))
+        .collect();
+    let (lo, hi) = match range {
+        Some(r) => r,
+        None => auto_range(&labelled)?,
+    };
+    let frs = chans
+        .list
+        .iter()
+        .map(|c| {
+            Ok(c.factored
+                .freq_response(&merged_grid(&c.factored, lo, hi)?)?)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let grid = BodeGrid {
+        inputs: plant.signals.inputs.clone(),
+        outputs: plant.signals.outputs.clone(),
+        cells: chans
+            .list
+            .iter()
+            .zip(&frs)
+            .map(|(c, fr)| (c.input, c.output, fr))
+            .collect(),
+    };
+    let mut opts = opts.clone();
+    if opts.title.is_none() {
+        opts.title = Some(format!("Bode diagram of {}", plant.name));
+    }
+    bode_grid_png(path, &grid, &opts)?;
+    Ok(())
 }
 
 #[derive(Args, Debug)]
@@ -230,7 +313,6 @@ pub struct BodeArgs {
 
 pub fn bode(a: &BodeArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(&a.plant)?;
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
@@ -240,6 +322,14 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
         }
         _ => None,
     };
+    let mut list = a.plant.resolve()?;
+    if list.len() == 1 && !list[0].model.is_siso() && a.plant.channel.is_none() {
+        let plant = list.remove(0);
+        let chans = a.plant.channels(&plant)?;
+        return bode_grid_figure(&a.plot.output, &plant, &chans, range, &opts)
+            .with_context(|| format!("Bode plot {}", a.plot.output.display()));
+    }
+    let plants = labelled(&a.plant)?;
     bode_figure(&a.plot.output, &plants, range, a.asymptotes, true, &opts)
         .with_context(|| format!("Bode plot {}", a.plot.output.display()))
 }
@@ -283,14 +373,42 @@ pub struct PzmapArgs {
 pub fn pzmap(a: &PzmapArgs) -> Result<()> {
     let opts = a.plot.options()?;
     let p = a.plant.single()?;
-    pzmap_figure(
-        &a.plot.output,
-        &p.name,
-        &a.plant.factored(&p)?,
-        a.guides,
-        &opts,
-    )
-    .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
+    let chans = a.plant.channels(&p)?;
+    if !chans.per_channel {
+        let Some(ch) = chans.list.first() else {
+            bail!("no channel to draw");
+        };
+        return pzmap_figure(&a.plot.output, &p.name, &ch.factored, a.guides, &opts)
+            .with_context(|| format!("pole-zero map {}", a.plot.output.display()));
+    }
+    // A MIMO plant: one map per channel (the poles of A, the channel's transmission zeros),
+    // FILE-i-j.png for input i → output j.
+    let mut written = String::new();
+    for ch in &chans.list {
+        let path = channel_path(&a.plot.output, ch.input, ch.output);
+        let label = format!("{}, {}", p.name, channel_label(&p, ch.input, ch.output));
+        pzmap_figure(&path, &label, &ch.factored, a.guides, &opts)
+            .with_context(|| format!("pole-zero map {}", path.display()))?;
+        written.push_str(&format!(
+            "{}: {}\n",
+            path.display(),
+            super::channels::heading(&p, ch.input, ch.output)
+        ));
+    }
+    super::output::print(&written)
+}
+
+/// `FILE.png` → `FILE-i-j.png` (1-based input i, output j).
+fn channel_path(path: &Path, i: usize, o: usize) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "pzmap".into());
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!("{stem}-{}-{}{ext}", i + 1, o + 1))
 }
 
 #[derive(Args, Debug)]

@@ -5,7 +5,6 @@ use clap::Args;
 use num_complex::Complex64;
 
 use super::PlantArgs;
-use super::output::{print, print_json};
 use crate::analysis::pfe::PartialFractions;
 use crate::poly::{Poly, fmt_sig};
 
@@ -20,17 +19,8 @@ pub struct ResidueArgs {
 
 pub fn run(a: &ResidueArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let f = a.plant.factored(&plant)?;
-    let pf = f.partial_fractions()?;
-    if a.json {
-        print_json(&pf)
-    } else {
-        print(&format!(
-            "{}\n\n{}",
-            super::text::g_text(&plant, &f),
-            report(&pf)
-        ))
-    }
+    let chans = a.plant.channels(&plant)?;
+    super::channels::print_each(&plant, &chans, a.json, |f| f.partial_fractions(), report)
 }
 
 /// `a ± bj` with 7 significant digits.

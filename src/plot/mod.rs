@@ -30,6 +30,7 @@
 
 mod axes;
 mod bode;
+mod bode_grid;
 mod bode_margins;
 mod frame;
 mod heatmap;
@@ -49,6 +50,7 @@ mod xy;
 use std::path::Path;
 
 pub use bode::{BodeSeries, bode_png};
+pub use bode_grid::{BodeGrid, bode_grid_png};
 pub use heatmap::{ColorMap, HeatMap, MAX_HEATMAP_CELLS, heatmap_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
 pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};

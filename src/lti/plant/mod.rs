@@ -29,6 +29,7 @@ pub use text::{
 use nalgebra::DMatrix;
 
 use crate::error::{LtiError, Result};
+use crate::lti::lattice::{Lattice, Output};
 use crate::lti::{Model, Signals, StateSpace, TransferFunction, build_plant};
 use crate::poly::fmt_num;
 
@@ -137,10 +138,23 @@ impl Plant {
         }
     }
 
-    /// A textbook model ([`crate::lti::plant_specs`]) with parameter overrides.
+    /// A textbook model ([`crate::lti::plant_specs`]) with parameter overrides, or the seed's
+    /// linear lattice (`lattice`, parameters [`crate::lti::lattice::LATTICE_PARAMS`]), which
+    /// is a state-space plant.
     ///
     /// Errors: an unknown model or parameter, an invalid value.
+    ///
+    /// ```
+    /// use ltikit::lti::Plant;
+    /// let p = Plant::from_model("lattice", &[("N".into(), 8.0), ("output".into(), 3.0)]).unwrap();
+    /// assert_eq!((p.model.order(), p.model.dims()), (16, (1, 1)));
+    /// assert_eq!(p.signals.outputs, vec!["q3 [m]".to_string()]);
+    /// assert!(Plant::from_model("lattice", &[("N".into(), 1.0)]).is_err());
+    /// ```
     pub fn from_model(name: &str, params: &[(String, f64)]) -> Result<Plant> {
+        if name == "lattice" {
+            return Self::from_lattice(&Lattice::from_params(params)?);
+        }
         let (tf, used) = build_plant(name, params)?;
         let list = used
             .iter()
@@ -148,6 +162,43 @@ impl Plant {
             .collect::<Vec<_>>()
             .join(", ");
         Self::from_tf(tf, Some(format!("{name} ({list})")))
+    }
+
+    /// The seed's linear lattice (§2.4) as a state-space plant: states q1…qN, then
+    /// v1…vN (the velocities); the force on one particle in, one displacement (or all) out.
+    ///
+    /// Errors: a model beyond [`crate::lti::MAX_STATES`] states or
+    /// [`crate::lti::model::MAX_SIGNALS`] outputs.
+    pub fn from_lattice(lat: &Lattice) -> Result<Plant> {
+        let list = lat
+            .params()
+            .iter()
+            .map(|(k, v)| format!("{k}={}", fmt_num(*v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let mut p = Self::from_state_space(lat.state_space()?, Some(format!("lattice ({list})")))?;
+        let n = lat.n();
+        let q = |j: usize| format!("q{j} [m]");
+        let outputs = match lat.output() {
+            Output::Particle(j) => vec![q(j)],
+            Output::All => (1..=n).map(q).collect(),
+        };
+        let states = (1..=n)
+            .map(|j| format!("q{j}"))
+            .chain((1..=n).map(|j| format!("v{j}")))
+            .collect();
+        p.signals = Signals::for_model(
+            &p.model,
+            vec![format!("F{} [N]", lat.input())],
+            outputs,
+            states,
+        )?;
+        p.description = Some(format!(
+            "The linear lattice of seed §2.4: {n} particles, {} boundary, ω0 = {} rad/s; input F = force on a particle, outputs q = displacements, states q then v = q̇.",
+            lat.boundary().name(),
+            fmt_num(lat.w0())
+        ));
+        Ok(p)
     }
 
     /// From a plant record (see [`PlantFile`]).

@@ -1,0 +1,296 @@
+//! `ltikit response` for a state-space plant by exact discretisation
+//! ([`crate::analysis::ss`]): a step or impulse on each input with every output, the
+//! initial-state response (`--x0`), the states (`--states`), and `lsim` with an input signal
+//! from a CSV file (`--input-file`, `--hold zoh|foh`). Used for a MIMO plant without
+//! `--channel` and whenever one of those options is given; a SISO plant otherwise keeps the
+//! closed-form report.
+
+use anyhow::{Result, bail};
+use serde::Serialize;
+
+use super::output::{print, print_json};
+use super::response::ResponseArgs;
+use super::{Plant, parse};
+use crate::analysis::Input;
+use crate::analysis::ss::{Hold, SsTimeResponse};
+use crate::lti::StateSpace;
+use crate::numeric::tol::AXIS_REL_TOL;
+use crate::poly::fmt_sig;
+
+/// Most values (times × (outputs + states) × responses) of one state-space response.
+pub const MAX_RESPONSE_VALUES: usize = 10_000_000;
+
+/// One response of the JSON document.
+#[derive(Serialize)]
+struct ResponseJson {
+    /// The excited input (1-based), or None for the initial-state response and lsim.
+    input: Option<usize>,
+    input_name: Option<String>,
+    /// "step", "impulse", "initial" or "lsim".
+    kind: &'static str,
+    t: Vec<f64>,
+    /// `y[j]`: output j at every time.
+    y: Vec<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    x: Option<Vec<Vec<f64>>>,
+}
+
+/// The `response` JSON document of a state-space plant.
+#[derive(Serialize)]
+struct SsResponseJson {
+    model: &'static str,
+    name: String,
+    states: usize,
+    inputs: Vec<String>,
+    outputs: Vec<String>,
+    state_names: Vec<String>,
+    x0: Option<Vec<f64>>,
+    responses: Vec<ResponseJson>,
+}
+
+/// True when `response` goes the state-space way for this plant and these options.
+pub fn wanted(a: &ResponseArgs, plant: &Plant) -> bool {
+    let ss = matches!(plant.model, crate::lti::Model::Ss(_));
+    let mimo = !plant.model.is_siso() && a.plant.channel.is_none();
+    a.x0.is_some() || a.states || a.input_file.is_some() || (ss && mimo)
+}
+
+/// Runs `response` for a state-space plant.
+pub fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
+    if a.ic.is_some() {
+        bail!("--ic gives ODE initial conditions of a transfer function; for state space use --x0");
+    }
+    let ss = channel_model(a, plant)?;
+    let (inputs, outputs) = signal_names(a, plant);
+    let x0 = match &a.x0 {
+        Some(s) => Some(parse::numbers(s, "--x0")?),
+        None => None,
+    };
+    let hold = match a.hold.as_str() {
+        "zoh" => Hold::Zero,
+        "foh" => Hold::First,
+        other => bail!(
+            "--hold '{}': expected zoh or foh",
+            crate::error::abbreviate(other)
+        ),
+    };
+    let mut responses = Vec::new();
+    if let Some(path) = &a.input_file {
+        let sig = super::input_file::read(path, ss.n_inputs())?;
+        check_size(&ss, sig.t.len(), 1, a.states)?;
+        let r = ss.lsim(&sig, hold, x0.as_deref(), a.states)?;
+        let text = format!(
+            "lsim: {} samples from {} ({})",
+            sig.t.len(),
+            path.display(),
+            if hold == Hold::Zero {
+                "zero-order hold"
+            } else {
+                "first-order hold"
+            }
+        );
+        responses.push((None, "lsim", text, r));
+    } else {
+        let t = times(a, &ss)?;
+        let input: Input = a.input.parse()?;
+        let free = match &x0 {
+            Some(x) => Some(ss.initial_response(x, &t, a.states)?),
+            None => None,
+        };
+        let per_input = match input {
+            Input::Step | Input::Impulse => ss.n_inputs(),
+            Input::None => 0,
+            other => bail!(
+                "--input {other}: a state-space response takes step, impulse or none (use \
+                 --input-file for another signal)"
+            ),
+        };
+        check_size(&ss, t.len(), per_input.max(1), a.states)?;
+        for i in 0..per_input {
+            let mut r = if matches!(input, Input::Step) {
+                ss.step_response_from(i, &t, a.states)?
+            } else {
+                ss.impulse_response_from(i, &t, a.states)?
+            };
+            if let Some(f) = &free {
+                add(&mut r, f);
+            }
+            let kind = if matches!(input, Input::Step) {
+                "step"
+            } else {
+                "impulse"
+            };
+            let text = format!(
+                "unit {kind} on input {}{}",
+                inputs.get(i).map_or("?", |x| x),
+                if free.is_some() {
+                    ", from x(0) = x0"
+                } else {
+                    ""
+                }
+            );
+            responses.push((Some(i), kind, text, r));
+        }
+        if per_input == 0 {
+            let Some(f) = free else {
+                bail!("--input none needs --x0 (the initial state) for a state-space plant");
+            };
+            responses.push((None, "initial", "initial state x(0) = x0, u = 0".into(), f));
+        }
+    }
+    if a.json {
+        return print_json(&SsResponseJson {
+            model: "state-space",
+            name: plant.name.clone(),
+            states: ss.order(),
+            inputs: inputs.clone(),
+            outputs: outputs.clone(),
+            state_names: plant.signals.states.clone(),
+            x0,
+            responses: responses
+                .into_iter()
+                .map(|(i, kind, _, r)| ResponseJson {
+                    input: i.map(|i| i + 1),
+                    input_name: i.and_then(|i| inputs.get(i).cloned()),
+                    kind,
+                    t: r.t,
+                    y: r.y,
+                    x: r.x,
+                })
+                .collect(),
+        });
+    }
+    let mut s = super::channels::plant_header(plant);
+    for (_, _, head, r) in &responses {
+        s.push_str(&format!("\n── {head}\n"));
+        s.push_str(&table(r, &outputs, &plant.signals.states));
+    }
+    s.push_str(
+        "\nValues by exact discretisation (matrix exponential of the augmented matrix and a \
+         recursion).\n",
+    );
+    print(&s)
+}
+
+/// The model, or its chosen channel.
+fn channel_model(a: &ResponseArgs, plant: &Plant) -> Result<StateSpace> {
+    let ss = plant.state_space()?;
+    Ok(match a.plant.channel()? {
+        Some((i, o)) => ss.channel(i, o)?,
+        None => ss,
+    })
+}
+
+/// The input and output names (those of the chosen channel).
+fn signal_names(a: &ResponseArgs, plant: &Plant) -> (Vec<String>, Vec<String>) {
+    let sig = &plant.signals;
+    match a.plant.channel().ok().flatten() {
+        Some((i, o)) => (
+            sig.inputs.get(i).cloned().into_iter().collect(),
+            sig.outputs.get(o).cloned().into_iter().collect(),
+        ),
+        None => (sig.inputs.clone(), sig.outputs.clone()),
+    }
+}
+
+/// Adds the free response `f` (same times) to `r`.
+fn add(r: &mut SsTimeResponse, f: &SsTimeResponse) {
+    for (a, b) in r.y.iter_mut().zip(&f.y) {
+        a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+    }
+    if let (Some(rx), Some(fx)) = (&mut r.x, &f.x) {
+        for (a, b) in rx.iter_mut().zip(fx) {
+            a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+        }
+    }
+}
+
+fn check_size(ss: &StateSpace, times: usize, responses: usize, states: bool) -> Result<()> {
+    let per_time = ss.n_outputs() + if states { ss.order() } else { 0 };
+    let total = times.saturating_mul(per_time).saturating_mul(responses);
+    if total > MAX_RESPONSE_VALUES {
+        bail!(
+            "{times} times × {per_time} values × {responses} responses exceeds \
+             {MAX_RESPONSE_VALUES} values: give fewer times, a channel, or leave out --states"
+        );
+    }
+    Ok(())
+}
+
+/// The times: --t, or 11 points over a window from the eigenvalues of A.
+fn times(a: &ResponseArgs, ss: &StateSpace) -> Result<Vec<f64>> {
+    let t = match &a.t {
+        Some(s) => parse::numbers(s, "--t")?,
+        None => {
+            let span = auto_span(ss)?;
+            (0..=10).map(|i| span * i as f64 / 10.0).collect()
+        }
+    };
+    if t.is_empty() {
+        bail!("--t: no times given");
+    }
+    Ok(t)
+}
+
+/// A window that shows the response: five time constants of the slowest decaying mode, or
+/// four periods of the slowest oscillation when nothing decays (10 s when neither).
+pub fn auto_span(ss: &StateSpace) -> Result<f64> {
+    let eig = ss.eigenvalues()?;
+    let scale = eig.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    let small = AXIS_REL_TOL * scale;
+    let decay = eig
+        .iter()
+        .filter(|z| z.re < -small)
+        .map(|z| -z.re)
+        .fold(f64::INFINITY, f64::min);
+    let osc = eig
+        .iter()
+        .filter(|z| z.im.abs() > small)
+        .map(|z| z.im.abs())
+        .fold(f64::INFINITY, f64::min);
+    let span = if decay.is_finite() && eig.iter().all(|z| z.re < -small) {
+        5.0 / decay
+    } else if osc.is_finite() {
+        8.0 * std::f64::consts::PI / osc
+    } else if decay.is_finite() {
+        5.0 / decay
+    } else {
+        10.0
+    };
+    Ok(if span.is_finite() && span > 0.0 {
+        span
+    } else {
+        10.0
+    })
+}
+
+/// A table: t, every output, and the states when kept.
+fn table(r: &SsTimeResponse, outputs: &[String], states: &[String]) -> String {
+    let mut cols: Vec<(&str, &Vec<f64>)> =
+        outputs.iter().map(String::as_str).zip(r.y.iter()).collect();
+    let generated: Vec<String>;
+    if let Some(x) = &r.x {
+        let names = if states.len() == x.len() {
+            states
+        } else {
+            generated = (1..=x.len()).map(|k| format!("x{k}")).collect();
+            &generated
+        };
+        cols.extend(names.iter().map(String::as_str).zip(x.iter()));
+    }
+    let width = |name: &str| name.chars().count().max(14);
+    let mut s = format!("{:>12}", "t [s]");
+    for (name, _) in &cols {
+        s.push_str(&format!("  {:>w$}", name, w = width(name)));
+    }
+    s.push('\n');
+    for (k, t) in r.t.iter().enumerate() {
+        s.push_str(&format!("{:>12}", fmt_sig(*t, 6)));
+        for (name, v) in &cols {
+            let x = v.get(k).copied().unwrap_or(f64::NAN);
+            s.push_str(&format!("  {:>w$}", fmt_sig(x, 10), w = width(name)));
+        }
+        s.push('\n');
+    }
+    s
+}
