@@ -35,34 +35,9 @@ use super::factored::{Factored, close};
 use super::margins::local_maxima;
 use super::stability::classify;
 use crate::error::{LtiError, Result};
-use crate::lti::TransferFunction;
+pub use crate::lti::controller::LoopSystem;
+use crate::lti::{Controller, Plant, TransferFunction};
 use crate::poly::{HalfPlane, Poly, Root};
-
-/// Which transfer function of the loop to analyse.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LoopSystem {
-    /// The loop L = C·G.
-    Loop,
-    /// The closed loop T = L/(1 + L) (reference to output).
-    ClosedLoop,
-    /// The sensitivity S = 1/(1 + L) (reference to error; output disturbance to output).
-    Sensitivity,
-    /// The control sensitivity C·S (reference to control signal).
-    ControlSensitivity,
-}
-
-impl LoopSystem {
-    /// The usual formula, e.g. "T = L/(1 + L)".
-    pub fn formula(self) -> &'static str {
-        match self {
-            LoopSystem::Loop => "L = C·G",
-            LoopSystem::ClosedLoop => "T = L/(1 + L)",
-            LoopSystem::Sensitivity => "S = 1/(1 + L)",
-            LoopSystem::ControlSensitivity => "C·S = C/(1 + L)",
-        }
-    }
-}
 
 /// A controller and a plant in a unity negative feedback loop (see the [module docs](self)).
 #[derive(Debug, Clone)]
@@ -236,6 +211,41 @@ impl ClosedLoop {
             closed_loop_stable: self.internal_stability().stable,
         })
     }
+}
+
+/// What the analyses of `plant` read, given `g` (the plant, or its chosen channel, factored):
+/// `g` itself, or — with a loop selection ([`Plant::selection`]) — that transfer function of
+/// the loop with the plant's controller (C = 1, plain unity feedback, without one), with the
+/// loop.
+///
+/// Errors: those of [`ClosedLoop::new`]; an improper loop caused by an unfiltered derivative
+/// says to give the filter time constant.
+///
+/// ```
+/// use ltikit::lti::{Controller, Plant, controller::LoopSystem};
+/// use ltikit::analysis::closed_loop::select;
+/// let mut p = Plant::from_text(Some("4"), "1 0.8 4").unwrap();
+/// p.controller = Some(Controller::parse("pi:kp=1,ki=1").unwrap());
+/// p.selection = Some(LoopSystem::ClosedLoop);
+/// let (t, cl) = select(&p, p.factored().unwrap()).unwrap();
+/// assert_eq!(t.order(), 3);
+/// assert!(cl.unwrap().internal_stability().stable);
+/// ```
+pub fn select(plant: &Plant, g: Factored) -> Result<(Factored, Option<ClosedLoop>)> {
+    let Some(which) = plant.selection else {
+        return Ok((g, None));
+    };
+    let c = match &plant.controller {
+        Some(c) => c.clone(),
+        None => Controller::parse("p:kp=1")?,
+    };
+    let cl = ClosedLoop::new(&c.tf()?.factored()?, &g).map_err(|e| match e {
+        LtiError::Improper { .. } if c.is_improper() => LtiError::invalid(format!(
+            "{e}: the controller {c} has an unfiltered derivative; give its filter time constant (e.g. tf=0.01)"
+        )),
+        e => e,
+    })?;
+    Ok((cl.system(which)?, Some(cl)))
 }
 
 /// max over ω ≥ 0 of |F(jω)|: the local maxima (roots of d|F|²/dω², polished), the value at

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
+use crate::lti::controller::LoopSystem;
 use crate::plot::{
     BodeSeries, InputKind, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png,
     parse_size, pzmap_png, step_png,
@@ -208,9 +209,10 @@ pub fn pzmap_figure(
     Ok(())
 }
 
-/// The plants with their names, each factored once (the chosen channel of a MIMO plant).
-fn labelled(args: &PlantArgs) -> Result<Vec<(String, Factored)>> {
-    args.resolve()?
+/// The plants with their names, each factored once (the chosen channel of a MIMO plant; with
+/// a controller, the loop system — `default` unless an option chooses).
+fn labelled(args: &PlantArgs, default: LoopSystem) -> Result<Vec<(String, Factored)>> {
+    args.resolve_for(default)?
         .into_iter()
         .map(|p| Ok((p.name.clone(), args.factored(&p)?)))
         .collect()
@@ -235,7 +237,7 @@ pub struct BodeArgs {
 
 pub fn bode(a: &BodeArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(&a.plant)?;
+    let plants = labelled(&a.plant, LoopSystem::Loop)?;
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
@@ -269,7 +271,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if matches!(input, Input::None) {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
-    let plants = labelled(&a.plant)?;
+    let plants = labelled(&a.plant, LoopSystem::ClosedLoop)?;
     step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
         .with_context(|| format!("response plot {}", a.plot.output.display()))
 }
@@ -308,7 +310,7 @@ pub struct NyquistArgs {
 
 pub fn nyquist(a: &NyquistArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(&a.plant)?;
+    let plants = labelled(&a.plant, LoopSystem::Loop)?;
     let contours = plants
         .iter()
         .map(|(_, g)| g.nyquist())

@@ -27,11 +27,38 @@
 //! assert!(e.contains("kp, ki, kd, tf"), "{e}");
 //! ```
 
+use serde::Serialize;
 use std::fmt;
 
 use crate::error::{LtiError, Result, abbreviate};
 use crate::lti::TransferFunction;
 use crate::poly::{Poly, fmt_num};
+
+/// Which transfer function of the loop to analyse.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LoopSystem {
+    /// The loop L = C·G.
+    Loop,
+    /// The closed loop T = L/(1 + L) (reference to output).
+    ClosedLoop,
+    /// The sensitivity S = 1/(1 + L) (reference to error; output disturbance to output).
+    Sensitivity,
+    /// The control sensitivity C·S (reference to control signal).
+    ControlSensitivity,
+}
+
+impl LoopSystem {
+    /// The usual formula, e.g. "T = L/(1 + L)".
+    pub fn formula(self) -> &'static str {
+        match self {
+            LoopSystem::Loop => "L = C·G",
+            LoopSystem::ClosedLoop => "T = L/(1 + L)",
+            LoopSystem::Sensitivity => "S = 1/(1 + L)",
+            LoopSystem::ControlSensitivity => "C·S = C/(1 + L)",
+        }
+    }
+}
 
 /// The kinds of controller, with their parameter names.
 const KINDS: &[(&str, &[&str])] = &[
