@@ -57,8 +57,9 @@ pub fn feedback(g: &TransferFunction, h: &TransferFunction, sign: f64) -> Result
     TransferFunction::new(num, den)
 }
 
-fn check_sign(sign: f64) -> Result<()> {
-    if sign == 1.0 || sign == -1.0 {
+/// Errors unless `sign` is −1 or +1.
+pub(crate) fn check_sign(sign: f64) -> Result<()> {
+    if [1.0, -1.0].contains(&sign) {
         Ok(())
     } else {
         Err(LtiError::InvalidParameter {

@@ -93,13 +93,7 @@ impl Factored {
     /// assert!(fb.closed.stability().bibo_stable && !fb.closed.stability().internally_stable);
     /// ```
     pub fn feedback(&self, h: &Factored, sign: f64) -> Result<Feedback> {
-        if sign != 1.0 && sign != -1.0 {
-            return Err(LtiError::InvalidParameter {
-                name: "sign".into(),
-                value: sign,
-                reason: "the feedback sign must be -1 (negative) or +1 (positive)".into(),
-            });
-        }
+        crate::lti::interconnect::check_sign(sign)?;
         let (lz, lp, lk) = series_parts(self, h);
         let (characteristic, poles, hidden) = close(&lz, &lp, lk, sign)?;
         let mut zeros = self.zeros().to_vec();
