@@ -139,6 +139,7 @@ impl Controller {
             }
             out.push((n, *value));
         }
+        out.sort_by_key(|(n, _)| names.iter().position(|m| m == n));
         let c = Controller { kind, params: out };
         c.validate()?;
         Ok(c)
