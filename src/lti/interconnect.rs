@@ -7,8 +7,8 @@
 //! is negative feedback, T = G/(1 + G·H).
 //!
 //! Transfer functions given in factored form keep their factors under the same operations on
-//! [`crate::analysis::Factored`] (`series`, `parallel`, `feedback`), which also report the
-//! cancelled (hidden) modes.
+//! the factored form of the analysis layer (`Factored::{series, parallel, feedback}`), which
+//! also report the cancelled (hidden) modes.
 //!
 //! ```
 //! use ltikit::TransferFunction;
