@@ -247,7 +247,10 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
         }
         _ => None,
     };
-    bode_figure(&a.plot.output, &plants, range, a.asymptotes, true, &opts)
+    // stability margins belong to a loop: not drawn for T, S or C·S
+    let p = &a.plant;
+    let margins = !(p.closed_loop || p.sensitivity || p.control_sensitivity);
+    bode_figure(&a.plot.output, &plants, range, a.asymptotes, margins, &opts)
         .with_context(|| format!("Bode plot {}", a.plot.output.display()))
 }
 
