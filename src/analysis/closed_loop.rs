@@ -31,7 +31,7 @@
 use serde::Serialize;
 use std::f64::consts::PI;
 
-use super::factored::{Factored, close};
+use super::factored::{Factored, close, series_parts};
 use super::margins::local_maxima;
 use super::stability::classify;
 use crate::error::{LtiError, Result};
@@ -93,7 +93,7 @@ impl ClosedLoop {
     /// roll-off: give the filter time constant), a loop that is not well posed (1 + L(∞) = 0),
     /// the root finder's.
     pub fn new(c: &Factored, g: &Factored) -> Result<ClosedLoop> {
-        let l = c.series(g)?;
+        let l = loop_form(c, g)?;
         l.require_proper("the loop L = C·G", false)?;
         let (characteristic, poles, hidden) = close(l.zeros(), l.poles(), l.gain(), -1.0)?;
         Ok(ClosedLoop {
@@ -211,6 +211,20 @@ impl ClosedLoop {
             closed_loop_stable: self.internal_stability().stable,
         })
     }
+}
+
+/// L = C·G with every factor kept and, up to [`crate::MAX_ORDER`], its coefficients as the
+/// source (so the margins of L come from the polynomials in ω², like a plant typed by its
+/// coefficients); beyond that the factors alone ([`Factored::series`]).
+fn loop_form(c: &Factored, g: &Factored) -> Result<Factored> {
+    let (zeros, poles, k) = series_parts(c, g);
+    let n: usize = poles.iter().map(|r| r.multiplicity).sum();
+    if k == 0.0 || n > crate::MAX_ORDER {
+        return Factored::from_zpk(&zeros, &poles, k);
+    }
+    let num = Poly::from_root_list(&zeros)?.scale(k);
+    let tf = TransferFunction::new(num, Poly::from_root_list(&poles)?)?;
+    Factored::from_parts(tf, poles, zeros)
 }
 
 /// What the analyses of `plant` read, given `g` (the plant, or its chosen channel, factored):

@@ -46,7 +46,7 @@ use std::sync::OnceLock;
 use num_complex::Complex64;
 
 pub use interconnect::Feedback;
-pub(crate) use interconnect::close;
+pub(crate) use interconnect::{close, series_parts};
 pub use pole_zero::PoleZero;
 pub(crate) use pole_zero::count;
 pub(crate) use series::ScaledProduct;
