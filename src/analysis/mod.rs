@@ -8,6 +8,7 @@
 
 pub mod asymptotes;
 pub mod closed_form;
+pub mod closed_loop;
 pub mod factored;
 pub mod freq;
 pub mod grid;
@@ -26,7 +27,10 @@ pub mod time;
 
 pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm};
-pub use factored::{Factored, MAX_FACTORED_ORDER, PoleZero, factorizations_on_this_thread};
+pub use closed_loop::{ClosedLoop, InternalStability, LoopSystem, Peak, Robustness};
+pub use factored::{
+    Factored, Feedback, MAX_FACTORED_ORDER, PoleZero, factorizations_on_this_thread,
+};
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
 pub use input::Input;

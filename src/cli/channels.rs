@@ -37,6 +37,18 @@ pub struct Channels {
 impl PlantArgs {
     /// The channels of `plant` to analyse (see `Channels`).
     pub fn channels(&self, plant: &Plant) -> Result<Channels> {
+        if plant.selection.is_some() {
+            // A loop with a controller: one SISO system (the chosen channel of a MIMO plant).
+            let (input, output) = self.channel()?.unwrap_or((0, 0));
+            return Ok(Channels {
+                per_channel: false,
+                list: vec![Channel {
+                    input,
+                    output,
+                    factored: self.factored(plant)?,
+                }],
+            });
+        }
         if let Some((i, o)) = self.channel()? {
             return Ok(Channels {
                 per_channel: false,

@@ -8,7 +8,9 @@ use clap::Args;
 use std::path::PathBuf;
 
 use super::UsageError;
-use crate::lti::Plant;
+use crate::analysis::ClosedLoop;
+use crate::lti::controller::LoopSystem;
+use crate::lti::{Controller, Plant};
 
 /// Plant selection.
 #[derive(Args, Debug, Clone, Default)]
@@ -45,11 +47,74 @@ pub struct PlantArgs {
     /// The channel of a MIMO plant to analyse: INPUT,OUTPUT (1-based), e.g. --channel 1,2.
     #[arg(long, value_name = "INPUT,OUTPUT")]
     pub channel: Option<String>,
+    /// A controller C in front of the plant, unity negative feedback: KIND:NAME=VALUE,… with
+    /// p:kp | pi:kp,ki | pd:kp,kd,tf | pid:kp,ki,kd,tf (tf: derivative filter time constant,
+    /// 0 = none) | lead:k,z,p (0<z<p) | lag:k,z,p (0<p<z), e.g. "pid:kp=2,ki=1,kd=0.5,tf=0.01".
+    /// With a controller, margins, bode and nyquist read the loop L = C·G and the other
+    /// commands the closed loop T = L/(1+L) unless one of the options below is given.
+    #[arg(long, value_name = "KIND:PARAMS")]
+    pub controller: Option<String>,
+    /// Analyse the loop L = C·G (C = 1 without --controller).
+    #[arg(long = "loop", conflicts_with_all = ["closed_loop", "sensitivity", "control_sensitivity"])]
+    pub open_loop: bool,
+    /// Analyse the closed loop T = L/(1 + L).
+    #[arg(long, conflicts_with_all = ["sensitivity", "control_sensitivity"])]
+    pub closed_loop: bool,
+    /// Analyse the sensitivity S = 1/(1 + L).
+    #[arg(long, conflicts_with = "control_sensitivity")]
+    pub sensitivity: bool,
+    /// Analyse the control sensitivity C·S = C/(1 + L).
+    #[arg(long)]
+    pub control_sensitivity: bool,
 }
 
 impl PlantArgs {
-    /// All plants selected, in the order: coefficient pairs, files, model.
+    /// All plants selected, in the order: coefficient pairs, files, model; with a controller
+    /// (or a loop option) the closed loop T is selected unless an option says otherwise.
     pub fn resolve(&self) -> Result<Vec<Plant>> {
+        self.resolve_for(LoopSystem::ClosedLoop)
+    }
+
+    /// The loop option given, if any.
+    fn loop_flag(&self) -> Option<LoopSystem> {
+        [
+            (self.open_loop, LoopSystem::Loop),
+            (self.closed_loop, LoopSystem::ClosedLoop),
+            (self.sensitivity, LoopSystem::Sensitivity),
+            (self.control_sensitivity, LoopSystem::ControlSensitivity),
+        ]
+        .into_iter()
+        .find_map(|(on, s)| on.then_some(s))
+    }
+
+    /// [`PlantArgs::resolve`] with the command's default loop selection `default` (used when
+    /// a controller is given, on the command line or in a plant file, and no loop option).
+    pub fn resolve_for(&self, default: LoopSystem) -> Result<Vec<Plant>> {
+        let mut out = self.plants()?;
+        let controller = self
+            .controller
+            .as_deref()
+            .map(Controller::parse)
+            .transpose()?;
+        for p in &mut out {
+            if let Some(c) = &controller {
+                p.controller = Some(c.clone());
+            }
+            p.selection = self
+                .loop_flag()
+                .or_else(|| p.controller.is_some().then_some(default));
+            if let Some(which) = p.selection {
+                let c = p
+                    .controller
+                    .as_ref()
+                    .map_or_else(|| "1".to_string(), |c| c.to_string());
+                p.name = format!("{} with C = {c}, G = {}", which.formula(), p.name);
+            }
+        }
+        Ok(out)
+    }
+
+    fn plants(&self) -> Result<Vec<Plant>> {
         let mut out = Vec::new();
         if !self.num.is_empty() || !self.den.is_empty() {
             if self.den.is_empty() {
@@ -109,17 +174,41 @@ impl PlantArgs {
         Ok(Some((i - 1, o - 1)))
     }
 
-    /// The factored form of a plant: the chosen channel, or the plant itself when SISO.
+    /// The factored form of a plant: the chosen channel, or the plant itself when SISO; with
+    /// a loop selection, that transfer function of the loop (a note on stderr names the
+    /// system and any unstable hidden mode).
     pub fn factored(&self, plant: &Plant) -> Result<crate::analysis::Factored> {
-        Ok(match self.channel()? {
+        Ok(self.factored_with_loop(plant)?.0)
+    }
+
+    /// [`PlantArgs::factored`] and the loop, when one is selected.
+    pub fn factored_with_loop(
+        &self,
+        plant: &Plant,
+    ) -> Result<(crate::analysis::Factored, Option<ClosedLoop>)> {
+        let g = match self.channel()? {
             Some((i, o)) => plant.factored_channel(i, o)?,
             None => plant.factored()?,
-        })
+        };
+        let (f, cl) = crate::analysis::closed_loop::select(plant, g)?;
+        if let Some(cl) = &cl {
+            let st = cl.internal_stability();
+            if !st.unstable_hidden.is_empty() {
+                eprintln!("warning: {}", st.reason);
+            }
+        }
+        Ok((f, cl))
     }
 
     /// Exactly one plant.
     pub fn single(&self) -> Result<Plant> {
-        let mut v = self.resolve()?;
+        self.single_for(LoopSystem::ClosedLoop)
+    }
+
+    /// Exactly one plant, with the command's default loop selection (see
+    /// [`PlantArgs::resolve_for`]).
+    pub fn single_for(&self, default: LoopSystem) -> Result<Plant> {
+        let mut v = self.resolve_for(default)?;
         if v.len() != 1 {
             return Err(UsageError(format!(
                 "this command takes one plant, {} were given",

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
+use crate::lti::controller::LoopSystem;
 use crate::plot::{
     BodeGrid, BodeSeries, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_grid_png, bode_png,
     nyquist_png, parse_size, pzmap_png, step_png,
@@ -204,9 +205,10 @@ pub fn pzmap_figure(
 }
 
 /// The plants with their names, each factored once: the chosen channel of a MIMO plant, or
-/// without `--channel` each of its channels labelled "input → output".
-fn labelled(args: &PlantArgs) -> Result<Vec<(String, Factored)>> {
-    let plants = args.resolve()?;
+/// without `--channel` each of its channels labelled "input → output"; with a controller, the
+/// loop system (`default` unless an option chooses).
+fn labelled(args: &PlantArgs, default: LoopSystem) -> Result<Vec<(String, Factored)>> {
+    let plants = args.resolve_for(default)?;
     let several = plants.len() > 1;
     let mut out = Vec::new();
     for p in plants {
@@ -322,15 +324,22 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
         }
         _ => None,
     };
-    let mut list = a.plant.resolve()?;
-    if list.len() == 1 && !list[0].model.is_siso() && a.plant.channel.is_none() {
+    let mut list = a.plant.resolve_for(LoopSystem::Loop)?;
+    if list.len() == 1
+        && list[0].selection.is_none()
+        && !list[0].model.is_siso()
+        && a.plant.channel.is_none()
+    {
         let plant = list.remove(0);
         let chans = a.plant.channels(&plant)?;
         return bode_grid_figure(&a.plot.output, &plant, &chans, range, &opts)
             .with_context(|| format!("Bode plot {}", a.plot.output.display()));
     }
-    let plants = labelled(&a.plant)?;
-    bode_figure(&a.plot.output, &plants, range, a.asymptotes, true, &opts)
+    let plants = labelled(&a.plant, LoopSystem::Loop)?;
+    // stability margins belong to a loop: not drawn for T, S or C·S
+    let p = &a.plant;
+    let margins = !(p.closed_loop || p.sensitivity || p.control_sensitivity);
+    bode_figure(&a.plot.output, &plants, range, a.asymptotes, margins, &opts)
         .with_context(|| format!("Bode plot {}", a.plot.output.display()))
 }
 
@@ -354,7 +363,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if matches!(input, Input::None) {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
-    let plants = labelled(&a.plant)?;
+    let plants = labelled(&a.plant, LoopSystem::ClosedLoop)?;
     step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
         .with_context(|| format!("response plot {}", a.plot.output.display()))
 }
@@ -421,7 +430,7 @@ pub struct NyquistArgs {
 
 pub fn nyquist(a: &NyquistArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(&a.plant)?;
+    let plants = labelled(&a.plant, LoopSystem::Loop)?;
     let contours = plants
         .iter()
         .map(|(_, g)| g.nyquist())

@@ -39,6 +39,9 @@ pub fn vector_text(v: &[f64]) -> String {
 /// "G(s) = …" for a SISO plant: its coefficients, or for a state-space plant its factors and
 /// its size.
 pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
+    if let Some(which) = plant.selection {
+        return format!("{}\n{} = {f}", plant.name, which.formula());
+    }
     match &plant.model {
         crate::lti::Model::Tf(g) => format!("G(s) = {g}"),
         crate::lti::Model::Ss(ss) => format!("G(s) = {f}  (state space: {} states)", ss.order()),

@@ -1,5 +1,7 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod controller;
+pub mod interconnect;
 pub mod lattice;
 pub mod model;
 pub mod params;
@@ -9,6 +11,7 @@ pub mod realize;
 pub mod ss;
 pub mod tf;
 
+pub use controller::Controller;
 pub use model::{MAX_STATES, Model, Signals};
 pub use params::{Constraint, ModelParam};
 pub use plant::{Plant, PlantFile};

@@ -34,6 +34,7 @@
 //! from the factors.
 
 mod display;
+mod interconnect;
 mod plant;
 mod pole_zero;
 pub(crate) mod series;
@@ -44,6 +45,8 @@ use std::sync::OnceLock;
 
 use num_complex::Complex64;
 
+pub use interconnect::Feedback;
+pub(crate) use interconnect::{close, series_parts};
 pub use pole_zero::PoleZero;
 pub(crate) use pole_zero::count;
 pub(crate) use series::ScaledProduct;

@@ -1,6 +1,7 @@
 //! `ltikit demo`: the textbook tour. Analyses every textbook plant and the seed's nonlinear
 //! models, verifies the results at run time, and writes `report.md` with its PNGs.
 
+mod closed_loop;
 mod lattice;
 mod linear;
 mod md;
@@ -105,7 +106,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         figures: Vec::new(),
         checks: Checks::default(),
         step: 0,
-        steps: plants.len() + 12,
+        steps: plants.len() + 13,
         tty: std::io::stderr().is_terminal() && !a.json,
     };
     let mut md = Md::default();
@@ -134,6 +135,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         "{}. The linear lattice (seed §2.4)",
         plants.len() + 4
     ));
+    toc.push(format!("{}. Closing the loop", plants.len() + 5));
     toc.push("Verification".into());
     md.bullets(&toc);
 
@@ -169,6 +171,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     mechanics::sections(&mut ctx, &mut md, plants.len() + 3)?;
     ctx.progress("linear lattice");
     lattice::section(&mut ctx, &mut md, plants.len() + 4)?;
+    ctx.progress("closed loop");
+    closed_loop::section(&mut ctx, &mut md, plants.len() + 5)?;
 
     ctx.progress("verification");
     seed::analytic_checks(&mut ctx)?;

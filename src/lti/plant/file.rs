@@ -123,6 +123,21 @@ pub struct PlantFile {
     /// Names of the states.
     #[serde(default)]
     pub states: Vec<String>,
+    /// A controller in front of the plant (unity negative feedback), as a `[controller]`
+    /// section: `kind = "pid"` and the parameters of [`crate::lti::Controller`].
+    #[serde(default)]
+    pub controller: Option<ControllerSection>,
+}
+
+/// A plant file's `[controller]` section: the kind and its parameters
+/// (`kind = "pid"`, `kp = 2`, `ki = 1`, `kd = 0.5`, `tf = 0.01`).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct ControllerSection {
+    /// `p`, `pi`, `pd`, `pid`, `lead` or `lag`.
+    pub kind: String,
+    /// The parameters by name.
+    #[serde(flatten)]
+    pub params: BTreeMap<String, f64>,
 }
 
 /// Largest plant file or batch line accepted (bytes).

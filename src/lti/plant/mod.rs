@@ -20,7 +20,7 @@ mod text;
 
 use std::path::Path;
 
-pub use file::{CoeffList, MAX_RECORD_BYTES, MatrixSpec, PlantFile};
+pub use file::{CoeffList, ControllerSection, MAX_RECORD_BYTES, MatrixSpec, PlantFile};
 pub use text::{
     Coefficient, coefficients_of, matrix_of_rows, parse_list, parse_matrix, parse_number,
     parse_param, parse_params, parse_values,
@@ -29,8 +29,9 @@ pub use text::{
 use nalgebra::DMatrix;
 
 use crate::error::{LtiError, Result};
+use crate::lti::controller::LoopSystem;
 use crate::lti::lattice::{Lattice, Output};
-use crate::lti::{Model, Signals, StateSpace, TransferFunction, build_plant};
+use crate::lti::{Controller, Model, Signals, StateSpace, TransferFunction, build_plant};
 use crate::poly::fmt_num;
 
 /// A plant as the user gave it: a name, a description, the model (transfer function or state
@@ -47,6 +48,11 @@ pub struct Plant {
     pub signals: Signals,
     /// Numerator and denominator coefficients as typed (text kept), when given by them.
     pub typed: Option<(Vec<Coefficient>, Vec<Coefficient>)>,
+    /// A controller in front of the plant (unity negative feedback), from a plant file's
+    /// `[controller]` section or the command line.
+    pub controller: Option<Controller>,
+    /// Which transfer function of the loop the analyses read (`None`: the plant itself).
+    pub selection: Option<LoopSystem>,
 }
 
 impl Plant {
@@ -89,6 +95,8 @@ impl Plant {
             signals: Signals::for_model(&model, vec![], vec![], vec![])?,
             model,
             typed: None,
+            controller: None,
+            selection: None,
         })
     }
 
@@ -105,6 +113,8 @@ impl Plant {
             signals: Signals::for_model(&model, vec![], vec![], vec![])?,
             model,
             typed: None,
+            controller: None,
+            selection: None,
         })
     }
 
@@ -252,6 +262,11 @@ impl Plant {
             desc.push_str(&format!("Input: {i}; output: {o}."));
         }
         plant.description = (!desc.is_empty()).then_some(desc);
+        if let Some(c) = &f.controller {
+            let params: Vec<(String, f64)> =
+                c.params.iter().map(|(k, v)| (k.clone(), *v)).collect();
+            plant.controller = Some(Controller::new(&c.kind, &params)?);
+        }
         Ok(plant)
     }
 
