@@ -26,7 +26,9 @@ pub mod time;
 
 pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm};
-pub use factored::{Factored, MAX_FACTORED_ORDER, PoleZero, factorizations_on_this_thread};
+pub use factored::{
+    Factored, MAX_FACTORED_ORDER, PoleZero, StructurePath, factorizations_on_this_thread,
+};
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
 pub use input::Input;
