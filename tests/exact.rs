@@ -773,7 +773,7 @@ mod through_the_plant {
             .as_array()
             .unwrap()
             .iter()
-            .zip([-1.0, -1.00000000000000025])
+            .zip([-1.0, -(1.0 + 2.5e-16)])
         {
             let re = p[0].as_f64().unwrap();
             assert!((re - want).abs() <= f64::EPSILON, "{re} vs {want}");
