@@ -96,3 +96,23 @@ fn exact_clustered_degree12(bencher: Bencher) {
         certify(&one, &p).unwrap()
     });
 }
+
+/// The whole factored core on the numerical path: `TransferFunction::factored` of 1/p from
+/// f64 coefficients (what every command of a plant typed as f64 pays).
+#[divan::bench(args = [4, 10, 20, 50])]
+fn factored_numerical(bencher: Bencher, deg: usize) {
+    let g = ltikit::TransferFunction::from_descending(&[1.0], &coeffs(deg)).unwrap();
+    bencher.bench(|| black_box(&g).factored().unwrap());
+}
+
+/// The whole factored core on the exact path: 1/p typed as text, from the plant's tokens to
+/// the certified factored form (`Plant::factored`, parsing included).
+#[divan::bench(args = [4, 10, 20, 50])]
+fn factored_exact(bencher: Bencher, deg: usize) {
+    let p = ltikit::lti::Plant::from_text(None, &tokens(deg).join(" ")).unwrap();
+    assert_eq!(
+        p.factored().unwrap().structure_path(),
+        ltikit::analysis::StructurePath::Exact
+    );
+    bencher.bench(|| black_box(&p).factored().unwrap());
+}

@@ -50,11 +50,15 @@ fn analyze_contract() {
             "bibo_stable",
             "internally_stable",
             "stability_reason",
+            "structure",
+            "structure_note",
             "modes",
             "second_order",
             "step_info"
         ]
     );
+    // coefficients typed as text: the exact path decided (issue 11)
+    assert_eq!(v["structure"], "exact");
     assert_eq!(v["order"], 2);
     assert_eq!(v["zeros_at_infinity"], 2);
     assert_eq!(v["poles"].as_array().unwrap().len(), 2);

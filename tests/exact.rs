@@ -507,3 +507,358 @@ proptest! {
         prop_assert_eq!(s.reduced_denominator().degree(), 2 + md - mn.min(md));
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// Stage 2: the exact structure reaches the user — through `Plant` (coefficients as text),
+// `Factored::from_exact` and the command line.
+
+mod through_the_plant {
+    use super::{c, expand, text};
+    use dashu_int::IBig;
+    use ltikit::analysis::{Factored, StabilityClass, StructurePath};
+    use ltikit::lti::Plant;
+    use ltikit::poly::Root;
+    use ltikit::poly::exact::ExactPoly;
+    use num_complex::Complex64;
+    use proptest::prelude::*;
+    use std::process::Command;
+
+    fn plant(num: &str, den: &str) -> Factored {
+        let f = Plant::from_text(Some(num), den)
+            .unwrap()
+            .factored()
+            .unwrap();
+        assert_eq!(f.structure_path(), StructurePath::Exact, "{num} / {den}");
+        f
+    }
+
+    fn joined(factors: &[(&[&str], usize)]) -> String {
+        expand(factors).join(" ")
+    }
+
+    /// Same roots (to `ulps` relative), same multiplicities.
+    fn same(got: &[Root], want: &[(Complex64, usize)], ulps: f64) {
+        super::assert_roots(got, want, ulps);
+    }
+
+    #[test]
+    fn controlsystems_plant_is_marginally_stable_with_four_simple_poles() {
+        // zpk([1], [±j(1+1e-8), ±j], 1): (s − 1)/(s⁴ + 2.00000002 s² + 1.00000002).
+        let f = plant("1 -1", "1 0 2.00000002 0 1.00000002");
+        assert_eq!(f.poles().len(), 4);
+        assert!(f.poles().iter().all(|p| p.multiplicity == 1));
+        let st = f.stability();
+        assert_eq!(st.bibo, StabilityClass::MarginallyStable);
+        assert_eq!(st.internal, StabilityClass::MarginallyStable);
+        assert!(
+            st.reason.ends_with("marginally stable (decided exactly)"),
+            "{}",
+            st.reason
+        );
+        // The same through the library constructor from exact values.
+        let n = ExactPoly::parse_descending(&["1", "-1"]).unwrap();
+        let d = ExactPoly::parse_descending(&["1", "0", "2.00000002", "0", "1.00000002"]).unwrap();
+        let g = Factored::from_exact(&n, &d).unwrap();
+        assert_eq!(g.poles(), f.poles());
+        assert_eq!(g.stability(), st);
+    }
+
+    #[test]
+    fn close_real_poles_stay_apart() {
+        // (s + 1)(s + 1.0000001) = s² + 2.0000001 s + 1.0000001
+        let f = plant("1", "1 2.0000001 1.0000001");
+        same(
+            f.poles(),
+            &[(c(-1.0, 0.0), 1), (c(-1.0000001, 0.0), 1)],
+            1.0,
+        );
+        // 1e-12 relative apart on the real line and on the axis (closed forms).
+        let p = joined(&[(&["1", "1"], 1), (&["1", "1.000000000001"], 1)]);
+        same(
+            plant("1", &p).poles(),
+            &[(c(-1.0, 0.0), 1), (c(-1.000000000001, 0.0), 1)],
+            1.0,
+        );
+        let p = joined(&[
+            (&["1", "0", "1"], 1),
+            (&["1", "0", "1.000000000002000000000001"], 1),
+        ]);
+        let f = plant("1", &p);
+        assert_eq!(f.poles().len(), 4);
+        assert_eq!(f.stability().bibo, StabilityClass::MarginallyStable);
+    }
+
+    #[test]
+    fn clustered_sixfold_poles_are_exact() {
+        for b in ["3.03", "3.5"] {
+            let p = joined(&[(&["1", "3"], 6), (&["1", b], 6)]);
+            let f = plant("1", &p);
+            let want = -b.parse::<f64>().unwrap();
+            same(f.poles(), &[(c(-3.0, 0.0), 6), (c(want, 0.0), 6)], 0.0);
+            assert_eq!(f.modes().len(), 2);
+            assert!(f.stability().bibo_stable);
+        }
+    }
+
+    #[test]
+    fn axis_versus_1e20_off_it() {
+        // s² + 1: on the axis, marginally stable.
+        assert_eq!(
+            plant("1", "1 0 1").stability().bibo,
+            StabilityClass::MarginallyStable
+        );
+        // (s − 1e-20)(s + 1) = s² + 0.99999999999999999999 s − 1e-20: unstable.
+        let st = plant("1", "1 0.99999999999999999999 -1e-20").stability();
+        assert_eq!(st.bibo, StabilityClass::Unstable, "{}", st.reason);
+        // (s + 1e-20)(s + 1): stable.
+        let st = plant("1", "1 1.00000000000000000001 1e-20").stability();
+        assert_eq!(st.bibo, StabilityClass::Stable, "{}", st.reason);
+        // (s + 1e-20)² + 1 = s² + 2e-20 s + (1 + 1e-40): poles −1e-20 ± j, stable.
+        let st = plant("1", "1 2e-20 1.0000000000000000000000000000000000000001").stability();
+        assert_eq!(st.bibo, StabilityClass::Stable, "{}", st.reason);
+        // (s − 1e-20)² + 1: unstable, and (s² + 1)²: repeated axis poles, unstable.
+        let st = plant("1", "1 -2e-20 1.0000000000000000000000000000000000000001").stability();
+        assert_eq!(st.bibo, StabilityClass::Unstable, "{}", st.reason);
+        let st = plant("1", "1 0 2 0 1").stability();
+        assert!(
+            st.reason.contains("repeated imaginary-axis"),
+            "{}",
+            st.reason
+        );
+    }
+
+    #[test]
+    fn exact_cancellations_with_decimal_coefficients() {
+        // (s + 0.1)(s + 0.3) / ((s + 0.1)(s + 0.7))
+        let f = plant("1 0.4 0.03", "1 0.8 0.07");
+        assert_eq!(f.pole_zero().cancelled, vec![Root::new(c(-0.1, 0.0), 1)]);
+        assert_eq!(f.reduced_poles(), &[Root::new(c(-0.7, 0.0), 1)]);
+        assert_eq!(f.reduced_zeros(), &[Root::new(c(-0.3, 0.0), 1)]);
+        assert_eq!(f.reduced_tf().unwrap().num().coeffs(), &[1.0, 0.3]);
+        // (s − 0.1)(s + 0.3) / ((s − 0.1)(s + 0.7)): BIBO stable, internally unstable.
+        let st = plant("1 0.2 -0.03", "1 0.6 -0.07").stability();
+        assert!(st.bibo_stable && !st.internally_stable, "{}", st.reason);
+        assert!(st.reason.contains("decided exactly"), "{}", st.reason);
+        // The dc gain of the reduced G: 0.3/0.7.
+        let g = f.dc_gain().unwrap();
+        assert!((g - 0.3 / 0.7).abs() <= 2.0 * f64::EPSILON * g, "{g}");
+    }
+
+    #[test]
+    fn degree_50_products_of_decimal_factors() {
+        let roots = [
+            "0.1", "0.25", "0.5", "0.75", "1.1", "1.5", "2.25", "3", "4.5", "6.1",
+        ];
+        let f: Vec<[&str; 2]> = roots.iter().map(|r| ["1", *r]).collect();
+        let factors: Vec<(&[&str], usize)> = f.iter().map(|x| (&x[..], 5)).collect();
+        let fac = plant("1", &joined(&factors));
+        assert_eq!(fac.order(), 50);
+        let want: Vec<(Complex64, usize)> = roots
+            .iter()
+            .map(|r| (c(-r.parse::<f64>().unwrap(), 0.0), 5))
+            .collect();
+        same(fac.poles(), &want, 0.0);
+        assert!(fac.stability().bibo_stable);
+    }
+
+    #[test]
+    fn beyond_the_budget_falls_back_and_says_so() {
+        // s¹²⁰ + 1: degree above the exact budget (100), within MAX_ORDER (200).
+        let mut den = vec!["0"; 121];
+        den[0] = "1";
+        den[120] = "1";
+        let f = Plant::from_text(None, &den.join(" "))
+            .unwrap()
+            .factored()
+            .unwrap();
+        assert_eq!(f.structure_path(), StructurePath::Numerical);
+        let why = f.exact_fallback().unwrap();
+        assert!(why.contains("degree 120"), "{why}");
+        assert!(!f.stability().reason.contains("decided exactly"));
+        // f64 input keeps the numerical path: [1, 0.2, 0.01] is still (s + 0.1)².
+        let g = ltikit::TransferFunction::from_descending(&[1.0], &[1.0, 0.2, 0.01]).unwrap();
+        let f = g.factored().unwrap();
+        assert_eq!(f.structure_path(), StructurePath::Numerical);
+        assert_eq!(f.exact_fallback(), None);
+        assert_eq!(f.poles().len(), 1);
+        assert_eq!(f.poles()[0].multiplicity, 2);
+    }
+
+    #[test]
+    fn bad_tokens_are_named() {
+        let long = "1".repeat(1001);
+        for (tok, shown) in [
+            ("1/0", "'1/0'"),
+            ("1/", "'1/'"),
+            ("/2", "'/2'"),
+            ("1e999999", "'1e999999'"),
+            (long.as_str(), "'111"),
+        ] {
+            let e = Plant::from_text(None, &format!("1 {tok}"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(shown) && e.contains("--den"), "{tok}: {e}");
+            assert!(e.len() < 300, "{e}");
+        }
+    }
+
+    fn cli(args: &[&str], stdin: Option<&str>) -> (i32, String, String) {
+        use std::io::Write;
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_ltikit"));
+        cmd.args(args)
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped());
+        let mut child = cmd.spawn().unwrap();
+        if let Some(s) = stdin {
+            child.stdin.take().unwrap().write_all(s.as_bytes()).unwrap();
+        }
+        drop(child.stdin.take());
+        let out = child.wait_with_output().unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    }
+
+    #[test]
+    fn cli_reports_the_exact_path() {
+        let (code, out, _) = cli(
+            &[
+                "analyze",
+                "--num",
+                "1 -1",
+                "--den",
+                "1 0 2.00000002 0 1.00000002",
+                "--json",
+            ],
+            None,
+        );
+        assert_eq!(code, 0);
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["structure"], "exact");
+        assert_eq!(v["poles"].as_array().unwrap().len(), 4);
+        let r = v["stability_reason"].as_str().unwrap();
+        assert!(r.ends_with("marginally stable (decided exactly)"), "{r}");
+        let (code, out, _) = cli(&["analyze", "--den", "1 0.2 0.01"], None);
+        assert_eq!(code, 0);
+        assert!(out.contains("\nStructure: exact ("), "{out}");
+        // A model computed from parameters is numerical (its coefficients are f64 results).
+        let (_, out, _) = cli(
+            &["analyze", "--model", "spring-mass-damper", "--json"],
+            None,
+        );
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["structure"], "numerical");
+    }
+
+    #[test]
+    fn cli_batch_keeps_the_text_of_numbers() {
+        // (s + 1)(s + 1.00000000000000025) = s² + 2.00000000000000025 s + 1.00000000000000025.
+        // Rounded to f64 the coefficients are 2 + 2 ulp and 1 + 1 ulp, whose roots are
+        // −1 ± 1.5e-8; kept as text they give −1 and −1.00000000000000025 (to 1 ulp).
+        let lines = "{\"name\": \"a\", \"den\": [1, 2.00000000000000025, 1.00000000000000025]}\n\
+                     {\"name\": \"b\", \"den\": \"1 0 1e999999\"}\n\
+                     {\"name\": \"c\", \"den\": \"1 1/0\"}\n";
+        let (code, out, _) = cli(&["analyze", "--batch", "-"], Some(lines));
+        assert_eq!(code, 0, "{out}");
+        let v: Vec<serde_json::Value> = out
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        assert_eq!(v[0]["structure"], "exact");
+        assert_eq!(v[0]["poles"].as_array().unwrap().len(), 2);
+        for (p, want) in v[0]["poles"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip([-1.0, -(1.0 + 2.5e-16)])
+        {
+            let re = p[0].as_f64().unwrap();
+            assert!((re - want).abs() <= f64::EPSILON, "{re} vs {want}");
+        }
+        let e = v[1]["error"].as_str().unwrap();
+        assert!(e.contains("1e999999"), "{e}");
+        let e = v[2]["error"].as_str().unwrap();
+        assert!(e.contains("'1/0'"), "{e}");
+    }
+
+    #[test]
+    fn cli_bad_tokens_exit_1_with_one_line() {
+        for tok in ["1/0", "1/", "/2", "1e999999"] {
+            let (code, _, err) = cli(&["analyze", "--den", &format!("1 {tok}")], None);
+            assert_eq!(code, 1, "{tok}");
+            assert_eq!(err.trim().lines().count(), 1, "{err}");
+            assert!(err.contains(&format!("'{tok}'")), "{err}");
+        }
+    }
+
+    #[derive(Debug, Clone)]
+    enum F {
+        Real(i64),
+        Pair(i64, i64),
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// Random factor lists with random multiplicities, expanded exactly and typed as text
+        /// into a plant: the factored form lists exactly those poles with those multiplicities,
+        /// and its stability class is the one read off the factor list.
+        #[test]
+        fn plant_structure_equals_the_factor_list(
+            fs in prop::collection::vec((prop_oneof![
+                (-300i64..300).prop_map(F::Real),
+                ((-20i64..20), (1i64..300)).prop_map(|(b, e)| F::Pair(b, 25 * b * b + e)),
+            ], 1usize..4), 1..5)
+        ) {
+            let mut seen = std::collections::HashSet::new();
+            let fs: Vec<(F, usize)> =
+                fs.into_iter().filter(|(f, _)| seen.insert(format!("{f:?}"))).collect();
+            let texts: Vec<(Vec<String>, usize)> = fs.iter().map(|(f, m)| match f {
+                F::Real(k) => (vec!["1".into(), text(&IBig::from(*k), 2)], *m),
+                F::Pair(b, cc) => {
+                    (vec!["1".into(), text(&IBig::from(*b), 1), text(&IBig::from(*cc), 2)], *m)
+                }
+            }).collect();
+            let refs: Vec<Vec<&str>> =
+                texts.iter().map(|(t, _)| t.iter().map(String::as_str).collect()).collect();
+            let factors: Vec<(&[&str], usize)> =
+                refs.iter().zip(&texts).map(|(r, (_, m))| (&r[..], *m)).collect();
+            let f = Plant::from_text(None, &joined(&factors)).unwrap().factored().unwrap();
+            prop_assert_eq!(f.structure_path(), StructurePath::Exact);
+            let mut want = Vec::new();
+            let (mut rhp, mut axis_repeated, mut axis) = (false, false, false);
+            for (fa, m) in &fs {
+                let (re, im) = match fa {
+                    F::Real(k) => (-(*k as f64) / 100.0, 0.0),
+                    F::Pair(b, cc) => {
+                        let re = -(*b as f64) / 20.0;
+                        (re, ((*cc as f64) / 100.0 - re * re).sqrt())
+                    }
+                };
+                want.push((c(re, im), *m));
+                if im != 0.0 { want.push((c(re, -im), *m)); }
+                rhp |= re > 0.0;
+                axis |= re == 0.0;
+                axis_repeated |= re == 0.0 && *m > 1;
+            }
+            let got = f.poles();
+            prop_assert_eq!(got.len(), want.len());
+            for (z, m) in &want {
+                let hit = got.iter().find(|r| (r.value - z).norm() <= 1e-12 * z.norm().max(1e-3));
+                prop_assert!(hit.is_some(), "no pole near {} in {:?}", z, got);
+                prop_assert_eq!(hit.unwrap().multiplicity, *m);
+            }
+            let class = if rhp || axis_repeated {
+                StabilityClass::Unstable
+            } else if axis {
+                StabilityClass::MarginallyStable
+            } else {
+                StabilityClass::Stable
+            };
+            prop_assert_eq!(f.stability().bibo, class);
+        }
+    }
+}

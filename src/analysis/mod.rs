@@ -29,7 +29,7 @@ pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm};
 pub use closed_loop::{ClosedLoop, InternalStability, LoopSystem, Peak, Robustness};
 pub use factored::{
-    Factored, Feedback, MAX_FACTORED_ORDER, PoleZero, factorizations_on_this_thread,
+    Factored, Feedback, MAX_FACTORED_ORDER, PoleZero, StructurePath, factorizations_on_this_thread,
 };
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};

@@ -48,12 +48,18 @@ pub struct Stability {
 
 /// Classifies a set of roots and says why.
 pub fn classify(roots: &[Root]) -> (StabilityClass, String) {
+    classify_by(roots, &half_plane)
+}
+
+/// As [`classify`], with the half plane of each root decided by `side` (exactly, on the exact
+/// path).
+fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (StabilityClass, String) {
     if roots.is_empty() {
         return (StabilityClass::Stable, "no poles".into());
     }
     let rhp: Vec<&Root> = roots
         .iter()
-        .filter(|r| half_plane(r.value) == HalfPlane::Right && r.value.im >= 0.0)
+        .filter(|r| side(r.value) == HalfPlane::Right && r.value.im >= 0.0)
         .collect();
     if let Some(worst) = rhp.iter().max_by(|a, b| a.value.re.total_cmp(&b.value.re)) {
         let more = if rhp.len() > 1 {
@@ -76,7 +82,7 @@ pub fn classify(roots: &[Root]) -> (StabilityClass, String) {
     }
     let axis: Vec<&Root> = roots
         .iter()
-        .filter(|r| half_plane(r.value) == HalfPlane::Axis && r.value.im >= 0.0)
+        .filter(|r| side(r.value) == HalfPlane::Axis && r.value.im >= 0.0)
         .collect();
     // distinct poles once each, as printed (±1j and ±1.000000001j both read "±1j")
     let axis_list = |rs: &[&Root]| {
@@ -143,20 +149,41 @@ impl TransferFunction {
 impl Factored {
     /// BIBO stability of the reduced transfer function and internal stability of the
     /// characteristic roots, with the reasons.
+    ///
+    /// On the exact path (coefficients typed as text) the half planes come from the exact
+    /// counts, with no tolerance about the axis, and every reason ends "(decided exactly)".
     pub fn stability(&self) -> Stability {
         let pz = self.pole_zero();
-        stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled)
+        if !self.decided_exactly() {
+            return stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled);
+        }
+        let mut st = stability_by(&pz.poles, &pz.reduced_poles, &pz.cancelled, &|v| {
+            self.side_of(v)
+        });
+        for r in [&mut st.bibo_reason, &mut st.internal_reason, &mut st.reason] {
+            r.push_str(" (decided exactly)");
+        }
+        st
     }
 }
 
 /// Stability from the characteristic roots, the reduced poles and the cancelled roots.
 pub fn stability_of(poles: &[Root], reduced_poles: &[Root], cancelled: &[Root]) -> Stability {
-    let (bibo, bibo_reason) = classify(reduced_poles);
-    let (internal, internal_reason) = classify(poles);
+    stability_by(poles, reduced_poles, cancelled, &half_plane)
+}
+
+fn stability_by(
+    poles: &[Root],
+    reduced_poles: &[Root],
+    cancelled: &[Root],
+    side: &dyn Fn(Complex64) -> HalfPlane,
+) -> Stability {
+    let (bibo, bibo_reason) = classify_by(reduced_poles, side);
+    let (internal, internal_reason) = classify_by(poles, side);
     let reason = if bibo == internal {
         bibo_reason.clone()
     } else {
-        let (_, cancelled_reason) = classify(cancelled);
+        let (_, cancelled_reason) = classify_by(cancelled, side);
         format!(
             "BIBO {}: {bibo_reason}; internally {}: cancelled {}",
             if bibo == StabilityClass::Stable {

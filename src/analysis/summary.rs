@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use crate::analysis::{Factored, Mode, PoleZero, SecondOrder, Stability, StepInfo};
+use crate::analysis::{Factored, Mode, PoleZero, SecondOrder, Stability, StepInfo, StructurePath};
 use crate::error::Result;
 use crate::lti::TransferFunction;
 
@@ -25,6 +25,10 @@ pub struct Analysis {
     pub second_order: Option<SecondOrder>,
     /// Step metrics; `None` when the step response does not settle (or G is improper).
     pub step_info: Option<StepInfo>,
+    /// Which path decided the structure (exact for coefficients typed as text).
+    pub structure: StructurePath,
+    /// The same in one line, with the reason when exact input went the numerical way.
+    pub structure_note: String,
 }
 
 impl TransferFunction {
@@ -61,6 +65,8 @@ impl Factored {
             modes: self.modes(),
             second_order: self.second_order(),
             step_info,
+            structure: self.structure_path(),
+            structure_note: self.structure_note(),
         })
     }
 }

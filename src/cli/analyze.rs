@@ -71,6 +71,8 @@ pub struct AnalyzeJson {
     bibo_stable: bool,
     internally_stable: bool,
     stability_reason: String,
+    structure: &'static str,
+    structure_note: String,
     modes: Vec<ModeJson>,
     second_order: Option<SecondOrderJson>,
     step_info: Option<StepInfoJson>,
@@ -121,6 +123,8 @@ impl From<&Analysis> for AnalyzeJson {
             bibo_stable: a.stability.bibo_stable,
             internally_stable: a.stability.internally_stable,
             stability_reason: a.stability.reason.clone(),
+            structure: a.structure.as_str(),
+            structure_note: a.structure_note.clone(),
             modes: a
                 .modes
                 .iter()
@@ -210,7 +214,7 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
     ));
     let st = &a.stability;
     s.push_str(&format!(
-        "Stability: {}, {} — {}\n\n",
+        "Stability: {}, {} — {}\n",
         if st.bibo_stable {
             "BIBO stable"
         } else {
@@ -223,6 +227,7 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
         },
         st.reason
     ));
+    s.push_str(&format!("Structure: {}\n\n", a.structure_note));
     if !a.modes.is_empty() {
         s.push_str("Modes:\n");
         s.push_str(&format!(

@@ -146,6 +146,7 @@ impl Factored {
             pz,
             source: Source::coefficients_of(tf, reduced),
             bode: OnceLock::new(),
+            decision: super::exact::Decision::default(),
         })
     }
 }

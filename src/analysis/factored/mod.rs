@@ -34,6 +34,7 @@
 //! from the factors.
 
 mod display;
+mod exact;
 mod interconnect;
 mod plant;
 mod pole_zero;
@@ -45,6 +46,7 @@ use std::sync::OnceLock;
 
 use num_complex::Complex64;
 
+pub use exact::StructurePath;
 pub use interconnect::Feedback;
 pub(crate) use interconnect::{close, series_parts};
 pub use pole_zero::PoleZero;
@@ -55,7 +57,7 @@ pub(crate) use source::{LowFrequency, Source};
 use crate::analysis::freq::BodeForm;
 use crate::error::{LtiError, Result, check_finite};
 use crate::lti::TransferFunction;
-use crate::poly::{HalfPlane, Poly, Root, half_plane};
+use crate::poly::{HalfPlane, Poly, Root};
 
 /// Highest order (number of poles with multiplicity) of a factored plant. Polynomial
 /// coefficients stop at [`crate::MAX_ORDER`]; a factored plant (a state-space channel) may be
@@ -93,6 +95,8 @@ pub struct Factored {
     gain: f64,
     source: Source,
     bode: OnceLock<BodeForm>,
+    /// Which path decided the structure (exact or numerical).
+    decision: exact::Decision,
 }
 
 impl Clone for Factored {
@@ -106,6 +110,7 @@ impl Clone for Factored {
             gain: self.gain,
             source: self.source.clone(),
             bode,
+            decision: self.decision.clone(),
         }
     }
 }
@@ -175,6 +180,7 @@ impl Factored {
             pz,
             source: Source::coefficients_of(tf.clone(), reduced),
             bode: OnceLock::new(),
+            decision: exact::Decision::default(),
         })
     }
 
@@ -211,7 +217,20 @@ impl Factored {
             pz,
             source: Source::Factors,
             bode: OnceLock::new(),
+            decision: exact::Decision::default(),
         })
+    }
+
+    /// A factored plant from its parts (the structure decided numerically unless the caller
+    /// says otherwise).
+    pub(crate) fn with_source(pz: PoleZero, gain: f64, source: Source) -> Factored {
+        Factored {
+            pz,
+            gain,
+            source,
+            bode: OnceLock::new(),
+            decision: exact::Decision::default(),
+        }
     }
 
     /// Poles, zeros, cancellations and reduced root lists.
@@ -350,7 +369,7 @@ impl Factored {
         self.pz
             .reduced_poles
             .iter()
-            .any(|p| half_plane(p.value) != HalfPlane::Left)
+            .any(|p| self.side_of(p.value) != HalfPlane::Left)
     }
 }
 

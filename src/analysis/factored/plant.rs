@@ -3,7 +3,9 @@
 
 use super::Factored;
 use crate::error::{LtiError, Result};
-use crate::lti::{Model, Plant, StateSpace};
+use crate::lti::plant::Coefficient;
+use crate::lti::{Model, Plant, StateSpace, TransferFunction};
+use crate::poly::exact::ExactPoly;
 
 impl Plant {
     /// The factored form of a SISO plant (a transfer function, or a state-space model with
@@ -20,7 +22,10 @@ impl Plant {
     /// ```
     pub fn factored(&self) -> Result<Factored> {
         match &self.model {
-            Model::Tf(g) => g.factored(),
+            Model::Tf(g) => match &self.typed {
+                Some((num, den)) => Factored::from_typed(g, num, den),
+                None => g.factored(),
+            },
             Model::Ss(ss) => {
                 if ss.n_inputs() != 1 || ss.n_outputs() != 1 {
                     return Err(LtiError::invalid(format!(
@@ -37,7 +42,7 @@ impl Plant {
     /// The factored form of the channel from input `input` to output `output` (0-based).
     pub fn factored_channel(&self, input: usize, output: usize) -> Result<Factored> {
         match &self.model {
-            Model::Tf(g) => {
+            Model::Tf(_) => {
                 if input != 0 || output != 0 {
                     return Err(LtiError::invalid(format!(
                         "channel input {} → output {} does not exist: a transfer function has one input and one output",
@@ -45,7 +50,7 @@ impl Plant {
                         output + 1
                     )));
                 }
-                g.factored()
+                self.factored()
             }
             Model::Ss(ss) => Factored::from_state_space(&ss.channel(input, output)?),
         }
@@ -53,6 +58,24 @@ impl Plant {
 }
 
 impl Factored {
+    /// A transfer function whose coefficients arrived as text: factored on the exact path
+    /// from the text (see [`Factored::from_exact`]), numerically when the text is not exact
+    /// or the exact path is beyond its budget.
+    fn from_typed(
+        g: &TransferFunction,
+        num: &[Coefficient],
+        den: &[Coefficient],
+    ) -> Result<Factored> {
+        let exact = |c: &[Coefficient], what: &str| {
+            let texts: Vec<&str> = c.iter().map(|c| c.text.as_str()).collect();
+            ExactPoly::parse_descending_named(&texts, what)
+        };
+        match exact(num, "numerator").and_then(|n| Ok((n, exact(den, "denominator")?))) {
+            Ok((n, d)) => Factored::from_exact_tf(g, &n, &d),
+            Err(e) => Factored::numerical_fallback(g, &e),
+        }
+    }
+
     /// The factored form of a SISO state-space model.
     ///
     /// Errors: a model that is not SISO.

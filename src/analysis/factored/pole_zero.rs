@@ -66,6 +66,26 @@ impl PoleZero {
         }
     }
 
+    /// From lists decided elsewhere (the certified structure of exact input).
+    pub(crate) fn from_parts(
+        poles: Vec<Root>,
+        zeros: Vec<Root>,
+        cancelled: Vec<Root>,
+        reduced_poles: Vec<Root>,
+        reduced_zeros: Vec<Root>,
+        zero: bool,
+    ) -> PoleZero {
+        let zeros_at_infinity = (!zero).then(|| count(&poles).saturating_sub(count(&zeros)));
+        PoleZero {
+            poles,
+            zeros,
+            cancelled,
+            reduced_poles,
+            reduced_zeros,
+            zeros_at_infinity,
+        }
+    }
+
     /// Order: the number of characteristic roots (with multiplicity).
     pub fn order(&self) -> usize {
         count(&self.poles)

@@ -140,6 +140,28 @@ pub struct ControllerSection {
     pub params: BTreeMap<String, f64>,
 }
 
+/// The coefficient lists of a batch line as raw JSON text.
+#[derive(Deserialize)]
+struct RawCoeffs<'a> {
+    #[serde(default, borrow)]
+    num: Option<&'a serde_json::value::RawValue>,
+    #[serde(default, borrow)]
+    den: Option<&'a serde_json::value::RawValue>,
+}
+
+/// The number tokens of a JSON array of numbers as typed, separated by spaces (`None` for
+/// anything else).
+fn raw_tokens(raw: &serde_json::value::RawValue) -> Option<String> {
+    let inner = raw.get().trim().strip_prefix('[')?.strip_suffix(']')?;
+    let tokens: Vec<&str> = inner.split(',').map(str::trim).collect();
+    let numeric = |t: &&str| {
+        !t.is_empty()
+            && t.chars()
+                .all(|c| c.is_ascii_digit() || matches!(c, '-' | '+' | '.' | 'e' | 'E'))
+    };
+    tokens.iter().all(numeric).then(|| tokens.join(" "))
+}
+
 /// Largest plant file or batch line accepted (bytes).
 pub const MAX_RECORD_BYTES: u64 = 1 << 20;
 
@@ -182,8 +204,16 @@ impl PlantFile {
     /// assert!(PlantFile::parse_json(r#"{"den": [1], "typo": 2}"#).is_err());
     /// ```
     pub fn parse_json(text: &str) -> Result<PlantFile> {
-        let f: PlantFile = serde_json::from_str(text)
+        let mut f: PlantFile = serde_json::from_str(text)
             .map_err(|e| LtiError::invalid(format!("not a plant record: {e}")))?;
+        // Keep the numbers of `num`/`den` as typed (an f64 would lose 17-digit decimals).
+        if let Ok(raw) = serde_json::from_str::<RawCoeffs>(text) {
+            for (list, raw) in [(&mut f.num, raw.num), (&mut f.den, raw.den)] {
+                if let (Some(CoeffList::List(_)), Some(t)) = (&*list, raw.and_then(raw_tokens)) {
+                    *list = Some(CoeffList::Text(t));
+                }
+            }
+        }
         f.validated()
     }
 
@@ -238,5 +268,15 @@ mod tests {
         );
         assert!(PlantFile::parse_json(r#"{"a": [[-1]], "b": [[1]], "c": "1"}"#).is_ok());
         assert!(PlantFile::parse_json("[1, 2]").is_err());
+    }
+
+    #[test]
+    fn batch_numbers_keep_their_text() {
+        // 1.00000000000000001 is 1.0 as an f64; its text is kept for the exact path.
+        let f = PlantFile::parse_json(r#"{"den": [1, 2.00000000000000002, 1e-20]}"#).unwrap();
+        let c = f.den.unwrap().coefficients("den").unwrap();
+        let texts: Vec<&str> = c.iter().map(|c| c.text.as_str()).collect();
+        assert_eq!(texts, ["1", "2.00000000000000002", "1e-20"]);
+        assert_eq!(c[1].value.to_bits(), 2.0_f64.to_bits());
     }
 }

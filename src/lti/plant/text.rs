@@ -2,6 +2,7 @@
 //! `NAME=VALUE` parameters. One parser for the command line, plant files and batch lines.
 
 use crate::error::{LtiError, Result};
+use crate::poly::exact::Rational;
 
 /// A coefficient as typed: its text (kept for exact arithmetic) and its value.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,9 +29,34 @@ pub fn parse_number(token: &str, what: &str) -> Result<f64> {
         .map_err(|_| LtiError::bad_number(what, token.trim(), "is not a number"))
 }
 
-/// Splits a list on spaces, commas and semicolons and parses every token.
+/// The value of one coefficient token: a decimal, an exponent form or a fraction (`1/3`),
+/// checked by the exact reader ([`Rational`]) so that every token that reaches the exact path
+/// is valid; `nan`/`inf` pass here and are rejected later with a message naming the
+/// coefficient.
+fn coefficient_value(tok: &str, what: &str) -> Result<f64> {
+    let plain = tok.trim().parse::<f64>();
+    let word = !tok.trim().chars().any(|c| c.is_ascii_digit());
+    if let Ok(v) = plain {
+        if word && !v.is_finite() {
+            return Ok(v); // nan, inf, -inf as words
+        }
+    }
+    if plain.is_err() && !tok.contains('/') {
+        return parse_number(tok, what); // "is not a number"
+    }
+    let exact = Rational::parse_named(tok, what)?;
+    Ok(match plain {
+        Ok(v) => v,
+        Err(_) => exact.to_f64(),
+    })
+}
+
+/// Splits a list on spaces, commas and semicolons and parses every token: decimals,
+/// exponents (`1.5e-3`) and fractions (`1/3`), each kept as typed for the exact path.
 ///
-/// Errors: an empty list, a token that is not a number (named, abbreviated).
+/// Errors: an empty list, a token that is not a number (named, abbreviated), a malformed
+/// fraction (`1/0`, `1/`, `/2`), more than [`crate::poly::exact::MAX_DIGITS`] digits, an
+/// exponent beyond [`crate::poly::exact::MAX_EXPONENT`].
 ///
 /// ```
 /// use ltikit::lti::plant::parse_list;
@@ -38,6 +64,9 @@ pub fn parse_number(token: &str, what: &str) -> Result<f64> {
 /// assert_eq!(c.iter().map(|c| c.value).collect::<Vec<_>>(), vec![1.0, 0.8, 4.0]);
 /// assert_eq!(c[1].text, "0.8");
 /// assert!(parse_list("  ", "--den").is_err());
+/// assert_eq!(parse_list("1/4", "--num").unwrap()[0].value, 0.25);
+/// let e = parse_list("1 1/0", "--den").unwrap_err().to_string();
+/// assert!(e.contains("'1/0'"), "{e}");
 /// ```
 pub fn parse_list(text: &str, what: &str) -> Result<Vec<Coefficient>> {
     let mut out = Vec::new();
@@ -47,7 +76,7 @@ pub fn parse_list(text: &str, what: &str) -> Result<Vec<Coefficient>> {
     {
         out.push(Coefficient {
             text: tok.to_string(),
-            value: parse_number(tok, what)?,
+            value: coefficient_value(tok, what)?,
         });
     }
     if out.is_empty() {

@@ -146,12 +146,41 @@ impl std::ops::Sub for Cdd {
     }
 }
 
+/// Error-free product a·b = p + e by Dekker's splitting: no fused multiply-add, so no call
+/// into libm's `fma` on targets compiled without the `fma` feature (the hot loop of the root
+/// refinement is made of these). Exact while |a|, |b| < 2⁹⁹⁵ and the product does not
+/// underflow; beyond that the result is not finite or inexact, and the inclusion disks that
+/// follow reject it (their bounds come from the computed values and the exact coefficients).
+#[inline(always)]
+fn two_prod_split(a: f64, b: f64) -> (f64, f64) {
+    const SPLIT: f64 = 134_217_729.0; // 2^27 + 1
+    let p = a * b;
+    let ta = SPLIT * a;
+    let ah = ta - (ta - a);
+    let al = a - ah;
+    let tb = SPLIT * b;
+    let bh = tb - (tb - b);
+    let bl = b - bh;
+    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    (p, e)
+}
+
+/// Double-double product through [`two_prod_split`].
+#[inline(always)]
+fn dd_mul(x: Dd, y: Dd) -> Dd {
+    let (p, e) = two_prod_split(x.hi, y.hi);
+    let e = e + (x.hi * y.lo + x.lo * y.hi);
+    let (hi, lo) = two_sum(p, e);
+    Dd { hi, lo }
+}
+
 impl std::ops::Mul for Cdd {
     type Output = Cdd;
+    #[inline]
     fn mul(self, o: Cdd) -> Cdd {
         Cdd {
-            re: self.re * o.re - self.im * o.im,
-            im: self.re * o.im + self.im * o.re,
+            re: dd_mul(self.re, o.re) - dd_mul(self.im, o.im),
+            im: dd_mul(self.re, o.im) + dd_mul(self.im, o.re),
         }
     }
 }

@@ -35,6 +35,16 @@ use crate::poly::Poly;
 /// Most Aberth sweeps.
 const MAX_SWEEPS: usize = 80;
 
+/// Relative correction below which a root is left alone in the first, quick pass.
+const QUICK_STOP: f64 = 1e-14;
+
+/// Relative correction below which a root is left alone in the full pass.
+const FULL_STOP: f64 = 1e-28;
+
+/// Largest relative inclusion radius the quick pass accepts (2⁻⁷⁰ ≈ 8.5e-22: the doubles
+/// reported are then the roundings of points within 10⁻²¹ relative of the roots).
+const QUICK_RADIUS: f64 = 8.470329472543003e-22;
+
 /// u = 2⁻¹⁰⁴: the unit of the double-double error bounds (with slack for the sloppy
 /// double-double additions, whose error is a few u relative to the summands).
 const U_DD: f64 = 4.930380657631324e-32;
@@ -184,12 +194,25 @@ pub(crate) fn simple_roots(b: &ZPoly) -> Option<Vec<DiskRoot>> {
     let poly = DdPoly::new(c);
     // 2. Starting points.
     let mut z = starting_points(&poly)?;
-    // 3. Aberth iteration.
-    let steps = aberth(&poly, &mut z);
+    // 3. Aberth iteration: first until every correction is below 10⁻¹⁴ relative (from the
+    //    companion eigenvalues of a well-conditioned factor that is one double-double step,
+    //    after which the error is ~10⁻³⁰ by quadratic convergence) and certify with disks
+    //    small enough for the doubles; only when that fails iterate to 10⁻²⁸.
+    let mut steps = aberth(&poly, &mut z, QUICK_STOP);
+    let quick = certify(&poly, z.clone(), &steps).filter(|r| {
+        r.iter()
+            .all(|x| x.r <= QUICK_RADIUS * x.z.abs() && x.r.is_finite())
+    });
     // 4–5. Symmetrise, certify; at higher precision when double-double cannot separate.
-    let roots = match certify(&poly, z.clone(), &steps) {
+    let roots = match quick {
         Some(r) => r,
-        None => super::mp::refine(&scaled, &z)?,
+        None => {
+            steps = aberth(&poly, &mut z, FULL_STOP);
+            match certify(&poly, z.clone(), &steps) {
+                Some(r) => r,
+                None => super::mp::refine(&scaled, &z)?,
+            }
+        }
     };
     // Back to s.
     let out: Vec<DiskRoot> = roots
@@ -255,10 +278,10 @@ fn starting_points(p: &DdPoly) -> Option<Vec<Cdd>> {
     Some(pts.into_iter().map(Cdd::from_c64).collect())
 }
 
-/// Gauss–Seidel Aberth–Ehrlich sweeps until every correction is below 10⁻²⁸ relative (the
+/// Gauss–Seidel Aberth–Ehrlich sweeps until every correction is below `stop` relative (the
 /// doubles reported need 10⁻¹⁷; the disks certify whatever is reached) or
 /// stops decreasing. Returns the size of each root's last correction.
-fn aberth(p: &DdPoly, z: &mut [Cdd]) -> Vec<f64> {
+fn aberth(p: &DdPoly, z: &mut [Cdd], stop: f64) -> Vec<f64> {
     let d = z.len();
     let mut done = vec![false; d];
     let mut last = vec![f64::INFINITY; d];
@@ -290,7 +313,7 @@ fn aberth(p: &DdPoly, z: &mut [Cdd]) -> Vec<f64> {
             };
             z[k] = z[k] - w;
             let size = w.abs() / z[k].abs().max(1e-300);
-            if size <= 1e-28 || (size >= last[k] * 0.5 && size <= 1e-24) {
+            if size <= stop || (size >= last[k] * 0.5 && size <= 1e-24) {
                 done[k] = true;
             } else {
                 all = false;
