@@ -117,18 +117,27 @@ impl StateSpace {
 
     /// A diagonally similar realisation (D⁻¹AD, D⁻¹B, CD) with row and column norms of A
     /// balanced (Parlett–Reinsch, powers of two: exact). Improves the accuracy of `exp(A t)`
-    /// for companion matrices with coefficients of very different sizes.
+    /// for companion matrices with coefficients of very different sizes. Overflow-safe and
+    /// bounded ([`crate::numeric::balance`]): an entry of 1e200 is balanced like any other.
+    ///
+    /// ```
+    /// use ltikit::{StateSpace, TransferFunction};
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1e200, 0.0]).unwrap();
+    /// let b = StateSpace::from_tf(&g).unwrap().balanced();
+    /// assert!(b.a.iter().chain(b.b.iter()).chain(b.c.iter()).all(|x| x.is_finite()));
+    /// ```
     pub fn balanced(&self) -> StateSpace {
         let mut a = self.a.clone();
-        if a.nrows() == 0 {
-            return self.clone();
-        }
-        let d = nalgebra::linalg::balancing::balance_parlett_reinsch(&mut a);
+        let d = crate::numeric::balance(&mut a);
         let mut b = self.b.clone();
         let mut c = self.c.clone();
-        for i in 0..d.len() {
-            b.row_mut(i).scale_mut(1.0 / d[i]);
-            c.column_mut(i).scale_mut(d[i]);
+        for (i, &di) in d.iter().enumerate() {
+            b.row_mut(i).scale_mut(1.0 / di);
+            c.column_mut(i).scale_mut(di);
+        }
+        if b.iter().chain(c.iter()).any(|x| !x.is_finite()) {
+            // B or C would overflow with these factors (entries near f64::MAX): keep A as is.
+            return self.clone();
         }
         StateSpace {
             a,

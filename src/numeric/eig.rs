@@ -3,10 +3,16 @@
 //! nalgebra 0.35's `complex_eigenvalues()` runs an uncapped Schur iteration that never
 //! terminates on the companion matrix of sⁿ ± c for even n ≥ 6 (n ≥ 4 for sⁿ + c) — the
 //! controllable canonical `A` of 1/(s⁴+1) is that matrix. We therefore
-//! 1. balance the matrix (Parlett–Reinsch), which equalises row and column norms and makes the
-//!    eigenvalues of badly scaled companion matrices accurate;
-//! 2. run `Schur::try_new` with an iteration cap;
-//! 3. if that fails, retry once on H·M·H for a fixed Householder reflector H (an orthogonal
+//! 1. balance the matrix ([`balance`](crate::numeric::balance::balance): Parlett–Reinsch with
+//!    overflow-safe norms and capped loops — nalgebra's own balancing never returns once a
+//!    squared norm overflows), which equalises row and column norms and makes the eigenvalues
+//!    of badly scaled companion matrices accurate;
+//! 2. scale it by an exact power of two into a range where no intermediate of the Schur
+//!    iteration can overflow (entries within 2^±[`SAFE_EXP`] are left alone; otherwise the
+//!    range of magnitudes is centred, keeping the largest below 2^`SAFE_EXP`), and scale the
+//!    eigenvalues back — an eigenvalue beyond f64 is an error, not ∞;
+//! 3. run `Schur::try_new` with an iteration cap;
+//! 4. if that fails, retry once on H·M·H for a fixed Householder reflector H (an orthogonal
 //!    similarity, so the eigenvalues are unchanged) which breaks the cyclic structure that
 //!    stalls the unshifted-looking iteration.
 
@@ -14,9 +20,25 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use crate::error::{LtiError, Result};
+use crate::numeric::balance::{balance, exponent_range, ldexp};
 
 /// Iterations allowed per eigenvalue in the capped Schur iteration.
 const SCHUR_ITER_PER_DIM: usize = 60;
+
+/// Entries up to 2^`SAFE_EXP` in magnitude (and down to 2^−`SAFE_EXP`) go to the Schur
+/// iteration unscaled: its squares and products of two entries stay far from overflow.
+pub const SAFE_EXP: i32 = 400;
+
+/// The power of two 2^e by which a matrix with non-zero magnitudes in [2^lo, 2^(hi+1)) is
+/// divided before the eigenvalue iteration: 0 inside the safe range, otherwise the centre of
+/// the range, clamped so that the largest entry ends within 2^±`SAFE_EXP`.
+pub(crate) fn safe_scale_exponent(lo: i32, hi: i32) -> i32 {
+    if hi <= SAFE_EXP && lo >= -SAFE_EXP {
+        return 0;
+    }
+    let centre = (lo + hi).div_euclid(2);
+    centre.clamp(hi - SAFE_EXP, hi + SAFE_EXP)
+}
 
 /// Eigenvalues of a square real matrix (any order), complex conjugate pairs exact.
 ///
@@ -57,7 +79,32 @@ pub fn eigenvalues_checked(mut m: DMatrix<f64>) -> Result<Vec<Complex64>> {
         1 => return Ok(vec![Complex64::new(m[(0, 0)], 0.0)]),
         _ => {}
     }
-    nalgebra::linalg::balancing::balance_parlett_reinsch(&mut m);
+    balance(&mut m);
+    let e = exponent_range(m.iter().copied()).map_or(0, |(lo, hi)| safe_scale_exponent(lo, hi));
+    if e != 0 {
+        m.apply(|x| *x = ldexp(*x, -e));
+    }
+    let ev = schur_eigenvalues(m)?;
+    if e == 0 {
+        return Ok(ev);
+    }
+    let ev: Vec<Complex64> = ev
+        .into_iter()
+        .map(|z| Complex64::new(ldexp(z.re, e), ldexp(z.im, e)))
+        .collect();
+    if let Some(z) = ev.iter().find(|z| !(z.re.is_finite() && z.im.is_finite())) {
+        return Err(LtiError::NonFinite {
+            what: "an eigenvalue (its magnitude is beyond the range of f64)".into(),
+            value: z.norm(),
+        });
+    }
+    Ok(ev)
+}
+
+/// Eigenvalues from the capped real Schur iteration, with one retry after a fixed orthogonal
+/// similarity.
+fn schur_eigenvalues(m: DMatrix<f64>) -> Result<Vec<Complex64>> {
+    let n = m.nrows();
     let cap = SCHUR_ITER_PER_DIM * n;
     if let Some(schur) = nalgebra::linalg::Schur::try_new(m.clone(), f64::EPSILON, cap) {
         return Ok(conjugate_exact(

@@ -1,20 +1,108 @@
-//! Matrix exponential.
+//! Matrix exponential by scaling and squaring with a Padé approximant, overflow-safe.
 //!
-//! nalgebra's `exp()` (scaling and squaring with a Padé approximant) is accurate to
-//! 1e-16…1e-13 on rotations, Jordan blocks and stiff cases; this wrapper only adds the checks
-//! that keep bad input from reaching it (non-square, non-finite, empty).
+//! # Method
+//! Al-Mohy & Higham's 2009 algorithm ("A new scaling and squaring algorithm for the matrix
+//! exponential", SIAM J. Matrix Anal. Appl. 31(3), Algorithm 5.1, without balancing): the Padé
+//! degree m ∈ {3, 5, 7, 9, 13} and the number of squarings s are chosen from
+//! dₖ = ‖Aᵏ‖₁^(1/k) (exact norms of the powers the approximant needs anyway) and the
+//! backward-error correction ℓ(A, m) from ‖|A|^(2m+1)‖₁, then e^A = r₁₃(A/2ˢ)^(2ˢ).
+//!
+//! What is added to the published algorithm, and why (nalgebra 0.35's `exp()`, which follows
+//! the same paper, turns an overflowing ‖A⁸‖ into s = 2⁶⁴ squarings and panics on a singular
+//! denominator):
+//! - **Scaling front end.** When ‖A‖₁ exceeds 2¹⁶·θ₁₃, A is first divided by an exact power of
+//!   two 2^s₀ that brings the norm to ≤ 2¹⁶·θ₁₃; the powers A², …, A¹⁰ and the norms then
+//!   cannot overflow. Every norm is computed with a power-of-two scale as well.
+//! - **Bounded squarings.** s ≤ s₀ + 16 + ℓ, and s₀ ≤ 1035 because ‖A‖₁ < 200·f64::MAX; the
+//!   cap [`MAX_SQUARINGS`] makes the bound explicit. The squaring loop stops early when the
+//!   iterate is exactly zero or exactly idempotent (X·X = X bitwise: later squarings cannot
+//!   change it), and with an error at the first non-finite entry (e^A overflows).
+//! - **Errors, not panics**: a singular Padé denominator (impossible in exact arithmetic for
+//!   the chosen θ) is an [`LtiError::NoConvergence`].
+//!
+//! Accuracy (measured against 50-digit references; `tests/robust_numeric.rs`): rotations,
+//! Jordan blocks, stiff diagonals and the state-space matrices of the textbook plants to
+//! ~1e-15 relative, as nalgebra's `exp()` where that terminates.
 
 use nalgebra::DMatrix;
 
 use crate::error::{LtiError, Result};
+use crate::numeric::balance::{exponent_range, ldexp};
 
-/// e^M for a square, finite matrix.
+/// Upper bound on the number of squarings (never reached for finite input; see the module
+/// docs).
+pub const MAX_SQUARINGS: u32 = 1100;
+
+/// θₘ: the largest ‖A‖ (in the sense of the dₖ) for which the degree-m Padé approximant
+/// has backward error ≤ 2⁻⁵³ (Al-Mohy & Higham 2009, Table 3.1; θ₁₃ from §5).
+const THETA_3: f64 = 1.495_585_217_958_292e-2;
+const THETA_5: f64 = 2.539_398_330_063_23e-1;
+const THETA_7: f64 = 9.504_178_996_162_932e-1;
+const THETA_9: f64 = 2.097_847_961_257_068e0;
+const THETA_13: f64 = 4.25;
+
+/// log₂ of the norm headroom before the scaling front end divides A by a power of two.
+/// With ‖A‖₁ ≤ 2^98 the norms of A², …, A¹⁰ stay below 2^990: no overflow.
+const PRESCALE_BITS: i32 = 96;
+
+/// Padé coefficients b₀ … bₘ of r_m(x) = p_m(x)/p_m(−x) (Higham 2005, eq. 2.5: exact
+/// integers).
+const B3: [f64; 4] = [120.0, 60.0, 12.0, 1.0];
+const B5: [f64; 6] = [30240.0, 15120.0, 3360.0, 420.0, 30.0, 1.0];
+const B7: [f64; 8] = [
+    17_297_280.0,
+    8_648_640.0,
+    1_995_840.0,
+    277_200.0,
+    25_200.0,
+    1_512.0,
+    56.0,
+    1.0,
+];
+const B9: [f64; 10] = [
+    17_643_225_600.0,
+    8_821_612_800.0,
+    2_075_673_600.0,
+    302_702_400.0,
+    30_270_240.0,
+    2_162_160.0,
+    110_880.0,
+    3_960.0,
+    90.0,
+    1.0,
+];
+const B13: [f64; 14] = [
+    64_764_752_532_480_000.0,
+    32_382_376_266_240_000.0,
+    7_771_770_303_897_600.0,
+    1_187_353_796_428_800.0,
+    129_060_195_264_000.0,
+    10_559_470_521_600.0,
+    670_442_572_800.0,
+    33_522_128_640.0,
+    1_323_241_920.0,
+    40_840_800.0,
+    960_960.0,
+    16_380.0,
+    182.0,
+    1.0,
+];
+
+/// e^M for a square, finite matrix. See the [module docs](self) for the method.
+///
+/// Errors: a non-square or non-finite matrix, an exponential that overflows
+/// ([`LtiError::NonFinite`]).
 ///
 /// ```
 /// use nalgebra::DMatrix;
 /// let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -1.0, 0.0]);
 /// let e = ltikit::numeric::expm(&(a * std::f64::consts::FRAC_PI_2)).unwrap();
 /// assert!((e[(0, 1)] - 1.0).abs() < 1e-14);
+/// // A pole at −1e200 (nalgebra's exp() never returns on the 2×2 version of this).
+/// let stiff = DMatrix::from_row_slice(2, 2, &[-1e200, 0.0, 1.0, 0.0]);
+/// let e = ltikit::numeric::expm(&stiff).unwrap();
+/// assert_eq!(e[(0, 0)], 0.0);
+/// assert!((e[(1, 0)] - 1e-200).abs() < 1e-214);
 /// ```
 pub fn expm(m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     if !m.is_square() {
@@ -24,16 +112,21 @@ pub fn expm(m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
             m.ncols()
         )));
     }
-    if m.nrows() == 0 {
-        return Ok(m.clone());
-    }
     if let Some(x) = m.iter().find(|x| !x.is_finite()) {
         return Err(LtiError::NonFinite {
             what: "a matrix entry".into(),
             value: *x,
         });
     }
-    let e = m.exp();
+    let e = match m.nrows() {
+        0 => return Ok(m.clone()),
+        1 => m.map(f64::exp),
+        // e^A = (e^{Aᵀ})ᵀ: a lower triangular A gets the exact-diagonal treatment too.
+        _ if is_upper_triangular(&m.transpose()) && !is_upper_triangular(m) => {
+            scaling_and_squaring(&m.transpose())?.transpose()
+        }
+        _ => scaling_and_squaring(m)?,
+    };
     if let Some(x) = e.iter().find(|x| !x.is_finite()) {
         return Err(LtiError::NonFinite {
             what: "the matrix exponential (overflow: the time span is too long for this unstable system)".into(),
@@ -41,4 +134,335 @@ pub fn expm(m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
         });
     }
     Ok(e)
+}
+
+/// log₂ of the 1-norm (max column sum of magnitudes), computed without overflow; −∞ for 0.
+fn log2_one_norm(a: &DMatrix<f64>) -> f64 {
+    let Some((_, hi)) = exponent_range(a.iter().copied()) else {
+        return f64::NEG_INFINITY;
+    };
+    let max_sum = a
+        .column_iter()
+        .map(|c| c.iter().map(|x| ldexp(x.abs(), -hi)).sum::<f64>())
+        .fold(0.0, f64::max);
+    max_sum.log2() + f64::from(hi)
+}
+
+/// ‖A‖₁ of a matrix whose norm is known not to overflow.
+fn one_norm(a: &DMatrix<f64>) -> f64 {
+    a.column_iter()
+        .map(|c| c.iter().map(|x| x.abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// ℓ(A, m) = max(⌈log₂(α/u)/(2m)⌉, 0) with α = |c₂ₘ₊₁|·‖|A|^(2m+1)‖₁/‖A‖₁ (Al-Mohy & Higham
+/// 2009, eq. 5.1): the extra squarings that keep the backward error ≤ u for a non-normal A.
+/// ‖|A|ᵏ‖₁ = ‖1ᵀ|A|ᵏ‖_∞ exactly, from k vector–matrix products.
+fn ell(a: &DMatrix<f64>, m: usize) -> u32 {
+    let norm = one_norm(a);
+    if norm == 0.0 {
+        return 0;
+    }
+    let n = a.nrows();
+    let abs = a.abs();
+    // Row vector 1ᵀ|A|ᵏ, rescaled by powers of two as it grows (exact).
+    let mut v = nalgebra::RowDVector::from_element(n, 1.0);
+    let mut log2_scale = 0i32;
+    for _ in 0..2 * m + 1 {
+        v = &v * &abs;
+        if let Some((_, hi)) = exponent_range(v.iter().copied()) {
+            v.apply(|x| *x = ldexp(*x, -hi));
+            log2_scale += hi;
+        }
+    }
+    let vmax = v.iter().copied().fold(0.0, f64::max);
+    if vmax == 0.0 {
+        return 0;
+    }
+    // |c_{2m+1}| = (m!)² / ((2m)!·(2m+1)!), as a log to stay finite.
+    let ln_fact = |k: usize| (1..=k).map(|i| (i as f64).ln()).sum::<f64>();
+    let log2_c = (2.0 * ln_fact(m) - ln_fact(2 * m) - ln_fact(2 * m + 1)) / std::f64::consts::LN_2;
+    let log2_alpha = log2_c + vmax.log2() + f64::from(log2_scale) - norm.log2();
+    let value = ((log2_alpha + 53.0) / (2.0 * m as f64)).ceil();
+    if value > 0.0 {
+        (value as u32).min(MAX_SQUARINGS)
+    } else {
+        0
+    }
+}
+
+/// A and its powers A², A⁴, A⁶ (every approximant and every dₖ test needs them), with the
+/// norms ‖A⁸‖₁, ‖A¹⁰‖₁ computed on demand.
+struct Powers {
+    a: DMatrix<f64>,
+    a2: DMatrix<f64>,
+    a4: DMatrix<f64>,
+    a6: DMatrix<f64>,
+    d8: Option<f64>,
+    d10: Option<f64>,
+}
+
+impl Powers {
+    fn new(a: DMatrix<f64>) -> Self {
+        let a2 = &a * &a;
+        let a4 = &a2 * &a2;
+        let a6 = &a4 * &a2;
+        Powers {
+            a,
+            a2,
+            a4,
+            a6,
+            d8: None,
+            d10: None,
+        }
+    }
+    /// dₖ = ‖Aᵏ‖₁^(1/k), k ∈ {4, 6, 8, 10}, from exact products.
+    fn d(&mut self, k: u32) -> f64 {
+        let norm = match k {
+            4 => one_norm(&self.a4),
+            6 => one_norm(&self.a6),
+            8 => *self
+                .d8
+                .get_or_insert_with(|| one_norm(&(&self.a4 * &self.a4))),
+            _ => *self
+                .d10
+                .get_or_insert_with(|| one_norm(&(&self.a4 * &self.a6))),
+        };
+        norm.powf(1.0 / f64::from(k))
+    }
+}
+
+/// True when every entry below the diagonal is zero.
+fn is_upper_triangular(m: &DMatrix<f64>) -> bool {
+    (0..m.ncols()).all(|j| m.column(j).iter().skip(j + 1).all(|x| *x == 0.0))
+}
+
+/// The scaling-and-squaring core for n ≥ 2 (finite input).
+fn scaling_and_squaring(m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    let (x, squarings) = approximant(m)?;
+    let triangular = is_upper_triangular(m).then_some(m);
+    square(x, squarings, triangular)
+}
+
+/// r_m(A/2ˢ) and s (see the module docs).
+fn approximant(m: &DMatrix<f64>) -> Result<(DMatrix<f64>, u32)> {
+    let log2_norm = log2_one_norm(m);
+    if log2_norm == f64::NEG_INFINITY {
+        return Ok((DMatrix::identity(m.nrows(), m.ncols()), 0));
+    }
+    // Scaling front end: A = 2^s0·B with ‖B‖₁ ≤ 2^PRESCALE_BITS·θ₁₃.
+    let excess = (log2_norm - THETA_13.log2()).ceil() as i32 - PRESCALE_BITS;
+    let s0 = excess.max(0);
+    let b = if s0 > 0 {
+        m.map(|x| ldexp(x, -s0))
+    } else {
+        m.clone()
+    };
+    let mut pw = Powers::new(b);
+    if s0 == 0 {
+        let eta1 = pw.d(4).max(pw.d(6));
+        if eta1 <= THETA_3 && ell(&pw.a, 3) == 0 {
+            return Ok((pade_solve(&pade_low(&pw, &B3))?, 0));
+        }
+        if eta1 <= THETA_5 && ell(&pw.a, 5) == 0 {
+            return Ok((pade_solve(&pade_low(&pw, &B5))?, 0));
+        }
+        let eta3 = pw.d(6).max(pw.d(8));
+        if eta3 <= THETA_7 && ell(&pw.a, 7) == 0 {
+            return Ok((pade_solve(&pade_low(&pw, &B7))?, 0));
+        }
+        if eta3 <= THETA_9 && ell(&pw.a, 9) == 0 {
+            return Ok((pade_solve(&pade_low(&pw, &B9))?, 0));
+        }
+    }
+    let eta3 = pw.d(6).max(pw.d(8));
+    let eta4 = pw.d(8).max(pw.d(10));
+    let eta5 = eta3.min(eta4);
+    let s1 = if eta5 == 0.0 {
+        0
+    } else {
+        (eta5 / THETA_13).log2().ceil().max(0.0) as u32
+    };
+    let scaled = pw.a.map(|x| ldexp(x, -(s1 as i32)));
+    let s = s1 + ell(&scaled, 13);
+    let total = s0 as u32 + s;
+    if total > MAX_SQUARINGS {
+        return Err(LtiError::NoConvergence {
+            what: "matrix exponential (scaling and squaring)".into(),
+            iterations: total as usize,
+        });
+    }
+    let a = if s == 0 {
+        pw
+    } else {
+        Powers::new(pw.a.map(|x| ldexp(x, -(s as i32))))
+    };
+    Ok((pade_solve(&pade13(a))?, total))
+}
+
+/// Squares `x` = r(A/2ˢ) s times. For an upper triangular A the diagonal and the first
+/// superdiagonal of each iterate are replaced by their exact values (Al-Mohy & Higham 2009,
+/// Code Fragment 2.1): a stiff diagonal then comes out exact instead of losing ~2ˢ·eps.
+/// Otherwise the loop stops early when the iterate is exactly zero or exactly idempotent.
+fn square(
+    mut x: DMatrix<f64>,
+    squarings: u32,
+    triangular: Option<&DMatrix<f64>>,
+) -> Result<DMatrix<f64>> {
+    let total = squarings as i32;
+    if let Some(a) = triangular {
+        exact_triangle_entries(&mut x, a, -total);
+    }
+    for j in 1..=total {
+        let mut next = &x * &x;
+        if let Some(v) = next.iter().find(|v| !v.is_finite()) {
+            return Err(LtiError::NonFinite {
+                what: "the matrix exponential (overflow: the time span is too long for this unstable system)".into(),
+                value: *v,
+            });
+        }
+        let done = match triangular {
+            Some(a) => {
+                exact_triangle_entries(&mut next, a, j - total);
+                false
+            }
+            None => next == x || next.iter().all(|v| *v == 0.0),
+        };
+        x = next;
+        if done {
+            break;
+        }
+    }
+    Ok(x)
+}
+
+/// Sets the diagonal and first superdiagonal of `x` ≈ e^{2^e·A} (A upper triangular) to
+/// their exact values: e^{λᵢ} and t·(e^{λ₂} − e^{λ₁})/(λ₂ − λ₁), the latter as
+/// t·e^{(λ₁+λ₂)/2}·sinh(δ)/δ, δ = (λ₂ − λ₁)/2, when the two are close (no cancellation).
+fn exact_triangle_entries(x: &mut DMatrix<f64>, a: &DMatrix<f64>, e: i32) {
+    let n = a.nrows();
+    for i in 0..n {
+        x[(i, i)] = ldexp(a[(i, i)], e).exp();
+    }
+    for i in 0..n - 1 {
+        let t = ldexp(a[(i, i + 1)], e);
+        let (l1, l2) = (ldexp(a[(i, i)], e), ldexp(a[(i + 1, i + 1)], e));
+        let d = l2 - l1;
+        x[(i, i + 1)] = if d.abs() <= 1.0 {
+            let half = 0.5 * d;
+            let sinhc = if half == 0.0 { 1.0 } else { half.sinh() / half };
+            t * (0.5 * (l1 + l2)).exp() * sinhc
+        } else {
+            t * (l2.exp() - l1.exp()) / d
+        };
+    }
+}
+
+/// (U, V) of the degree-m Padé approximant for m ≤ 9: U = A·Σ b_{2k+1} A^{2k},
+/// V = Σ b_{2k} A^{2k}.
+fn pade_low(pw: &Powers, b: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) {
+    let n = pw.a.nrows();
+    let id = DMatrix::<f64>::identity(n, n);
+    let mut u = &id * b[1];
+    let mut v = &id * b[0];
+    // Even powers A^{2k} for 2k ≤ m − 1, built on the cached A², A⁴, A⁶.
+    for k in 1..b.len() / 2 {
+        let a8;
+        let even = match k {
+            1 => &pw.a2,
+            2 => &pw.a4,
+            3 => &pw.a6,
+            _ => {
+                a8 = &pw.a6 * &pw.a2;
+                &a8
+            }
+        };
+        u += even * b[2 * k + 1];
+        v += even * b[2 * k];
+    }
+    (&pw.a * u, v)
+}
+
+/// (U, V) of the degree-13 approximant with six matrix products (Higham 2005, eq. 2.6).
+fn pade13(pw: Powers) -> (DMatrix<f64>, DMatrix<f64>) {
+    let n = pw.a.nrows();
+    let id = DMatrix::<f64>::identity(n, n);
+    let b = &B13;
+    let (a2, a4, a6) = (&pw.a2, &pw.a4, &pw.a6);
+    let inner_u = a6 * b[13] + a4 * b[11] + a2 * b[9];
+    let u = &pw.a * (a6 * inner_u + a6 * b[7] + a4 * b[5] + a2 * b[3] + &id * b[1]);
+    let inner_v = a6 * b[12] + a4 * b[10] + a2 * b[8];
+    let v = a6 * inner_v + a6 * b[6] + a4 * b[4] + a2 * b[2] + &id * b[0];
+    (u, v)
+}
+
+/// r = (V − U)⁻¹(V + U).
+fn pade_solve((u, v): &(DMatrix<f64>, DMatrix<f64>)) -> Result<DMatrix<f64>> {
+    let p = v + u;
+    let q = v - u;
+    q.lu().solve(&p).ok_or_else(|| LtiError::NoConvergence {
+        what: "matrix exponential (singular Padé denominator)".into(),
+        iterations: 0,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::float_cmp)] // exact values where stated
+    use super::*;
+
+    #[test]
+    fn rotation_and_jordan_closed_forms() {
+        // e^{[[0, θ], [−θ, 0]]} = [[cos θ, sin θ], [−sin θ, cos θ]].
+        for &th in &[1e-8, 0.3, 1.0, 10.0, 100.0] {
+            let a = DMatrix::from_row_slice(2, 2, &[0.0, th, -th, 0.0]);
+            let e = expm(&a).unwrap();
+            let want = DMatrix::from_row_slice(2, 2, &[th.cos(), th.sin(), -th.sin(), th.cos()]);
+            let err = (&e - &want).abs().max();
+            assert!(err <= 1e-14 * th.max(1.0), "θ = {th}: {err:e}");
+        }
+        // Jordan block λI + N (4×4): e^{λ}·Σ Nᵏ/k!.
+        let lam = -2.0;
+        let a = DMatrix::from_fn(4, 4, |i, j| {
+            if i == j {
+                lam
+            } else if j == i + 1 {
+                1.0
+            } else {
+                0.0
+            }
+        });
+        let e = expm(&a).unwrap();
+        let fact = [1.0, 1.0, 2.0, 6.0];
+        for i in 0..4 {
+            for j in 0..4 {
+                let want = if j >= i { lam.exp() / fact[j - i] } else { 0.0 };
+                assert!((e[(i, j)] - want).abs() <= 2e-16, "({i},{j})");
+            }
+        }
+    }
+
+    #[test]
+    fn huge_norms_are_bounded_and_exact_in_the_limit() {
+        // Stable: e^{-1e300} = 0 and the integrator column keeps 1/a.
+        let a = DMatrix::from_row_slice(2, 2, &[-1e300, 0.0, 1.0, 0.0]);
+        let e = expm(&a).unwrap();
+        assert_eq!(e[(0, 0)], 0.0);
+        assert!((e[(1, 0)] - 1e-300).abs() <= 1e-315);
+        assert_eq!(e[(1, 1)], 1.0);
+        // Unstable: a clear overflow error, not 2⁶⁴ squarings.
+        let a = DMatrix::from_row_slice(2, 2, &[1e50, 0.0, 1.0, 0.0]);
+        assert!(matches!(expm(&a), Err(LtiError::NonFinite { .. })));
+        let a = DMatrix::from_element(3, 3, f64::MAX);
+        assert!(expm(&a).is_err());
+    }
+
+    #[test]
+    fn zero_and_rejections() {
+        let z = DMatrix::<f64>::zeros(3, 3);
+        assert_eq!(expm(&z).unwrap(), DMatrix::identity(3, 3));
+        assert!(expm(&DMatrix::<f64>::zeros(2, 3)).is_err());
+        let nan = DMatrix::from_row_slice(2, 2, &[1.0, f64::NAN, 0.0, 1.0]);
+        assert!(expm(&nan).is_err());
+    }
 }

@@ -1,9 +1,11 @@
-//! Numerical building blocks shared by the upper layers: tolerances, safe eigenvalues,
-//! scalar root bracketing, the matrix exponential and the Dormand–Prince integrator.
+//! Numerical building blocks shared by the upper layers: tolerances, overflow-safe balancing
+//! and power-of-two scaling, safe eigenvalues, scalar root bracketing, the matrix exponential
+//! and the Dormand–Prince integrator.
 //!
 //! Nothing here knows about transfer functions; everything works on plain `f64`,
 //! [`Complex64`](num_complex::Complex64) and nalgebra matrices.
 
+pub mod balance;
 pub mod dd;
 pub mod eig;
 pub mod expm;
@@ -11,6 +13,7 @@ pub mod rk45;
 pub mod scalar;
 pub mod tol;
 
+pub use balance::balance;
 pub use eig::{eigenvalues, eigenvalues_checked};
 pub use expm::expm;
 pub use scalar::{Bracket, brent};

@@ -1,0 +1,153 @@
+//! Newton's method for the acceptance test (an m-fold root is a simple root of p^(m−1), at which
+//! p … p^(m−2) vanish to rounding level) and the guarded polish of simple roots.
+
+use num_complex::Complex64;
+
+use crate::numeric::tol::EPS;
+use crate::poly::Poly;
+
+/// γ in the acceptance test |p^(j)(c)| ≤ γ·(deg + 1)·eps·Σ|aᵢ^(j)||c|ⁱ.
+pub(super) const GAMMA: f64 = 8.0;
+
+/// Acceptance bound for |p^(j)(c)|.
+pub(super) fn bound(d: &Poly, r: f64) -> f64 {
+    GAMMA * (d.degree() + 1) as f64 * EPS * d.eval_abs(r)
+}
+
+pub(super) fn confirm_real(q: &Poly, x0: f64, m: usize, reach: f64) -> Option<f64> {
+    let dm = q.nth_derivative(m - 1);
+    let x = newton_real(&dm, x0, reach)?;
+    let mut d = q.clone();
+    for _ in 0..m - 1 {
+        if d.eval(x).abs() > bound(&d, x.abs()) {
+            return None;
+        }
+        d = d.derivative();
+    }
+    Some(x)
+}
+
+pub(super) fn confirm_complex(q: &Poly, z0: Complex64, m: usize, reach: f64) -> Option<Complex64> {
+    let dm = q.nth_derivative(m - 1);
+    let z = newton_complex(&dm, z0, reach)?;
+    if z.im <= 0.0 {
+        return None;
+    }
+    let mut d = q.clone();
+    for _ in 0..m - 1 {
+        if d.eval_complex(z).norm() > bound(&d, z.norm()) {
+            return None;
+        }
+        d = d.derivative();
+    }
+    Some(z)
+}
+
+/// Newton on a polynomial expected to have a simple root near x0; None if it leaves the
+/// neighbourhood or does not settle.
+pub(super) fn newton_real(p: &Poly, x0: f64, reach: f64) -> Option<f64> {
+    let dp = p.derivative();
+    let mut x = x0;
+    for _ in 0..50 {
+        let f = p.eval(x);
+        if f == 0.0 {
+            return Some(x);
+        }
+        let d = dp.eval(x);
+        if d == 0.0 || !d.is_finite() {
+            return None;
+        }
+        let step = f / d;
+        x -= step;
+        if !x.is_finite() || (x - x0).abs() > reach {
+            return None;
+        }
+        if step.abs() <= 4.0 * EPS * x.abs() {
+            return Some(x);
+        }
+    }
+    // Converged to rounding noise without meeting the step test: accept if tiny.
+    Some(x)
+}
+
+pub(super) fn newton_complex(p: &Poly, z0: Complex64, reach: f64) -> Option<Complex64> {
+    let dp = p.derivative();
+    let mut z = z0;
+    for _ in 0..50 {
+        let f = p.eval_complex(z);
+        if f.norm() == 0.0 {
+            return Some(z);
+        }
+        let d = dp.eval_complex(z);
+        if d.norm() == 0.0 || !d.norm().is_finite() {
+            return None;
+        }
+        let step = f / d;
+        z -= step;
+        if !z.norm().is_finite() || (z - z0).norm() > reach {
+            return None;
+        }
+        if step.norm() <= 4.0 * EPS * z.norm() {
+            return Some(z);
+        }
+    }
+    Some(z)
+}
+
+/// Guarded Newton polish of a simple real root: steps are taken only while |p| decreases and
+/// the iterate stays within `reach` of the start.
+pub(super) fn polish_real(p: &Poly, x0: f64, reach: f64) -> f64 {
+    let dp = p.derivative();
+    let mut x = x0;
+    let mut fx = p.eval(x).abs();
+    for _ in 0..20 {
+        if fx == 0.0 {
+            break;
+        }
+        let d = dp.eval(x);
+        if d == 0.0 {
+            break;
+        }
+        let xn = x - p.eval(x) / d;
+        let fn_ = p.eval(xn).abs();
+        let improved = fn_ < fx;
+        if !improved || (xn - x0).abs() > reach || !xn.is_finite() {
+            break;
+        }
+        let done = (xn - x).abs() <= 2.0 * EPS * xn.abs();
+        x = xn;
+        fx = fn_;
+        if done {
+            break;
+        }
+    }
+    x
+}
+
+pub(super) fn polish_complex(p: &Poly, z0: Complex64, reach: f64) -> Complex64 {
+    let dp = p.derivative();
+    let mut z = z0;
+    let mut fz = p.eval_complex(z).norm();
+    for _ in 0..20 {
+        if fz == 0.0 {
+            break;
+        }
+        let d = dp.eval_complex(z);
+        if d.norm() == 0.0 {
+            break;
+        }
+        let zn = z - p.eval_complex(z) / d;
+        let fn_ = p.eval_complex(zn).norm();
+        let improved = fn_ < fz;
+        if !improved || (zn - z0).norm() > reach || !zn.norm().is_finite() {
+            break;
+        }
+        let done = (zn - z).norm() <= 2.0 * EPS * zn.norm();
+        z = zn;
+        fz = fn_;
+        if done {
+            break;
+        }
+    }
+    z
+}
