@@ -9,6 +9,7 @@ pub mod balance;
 pub mod dd;
 pub mod eig;
 pub mod expm;
+pub mod linalg;
 pub mod rk45;
 pub mod scalar;
 pub mod tol;
