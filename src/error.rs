@@ -159,6 +159,23 @@ pub enum LtiError {
     /// A plot could not be drawn.
     #[error("plot: {0}")]
     Plot(String),
+    /// A result exceeds the largest f64 (≈ 1.8e308).
+    #[error("{what} overflows the largest floating-point number (≈ 1.8e308){reason}")]
+    Overflow {
+        /// What overflows ("the matrix exponential", "the response at t = 2 s").
+        what: String,
+        /// Why, when known (", the unstable mode at s = 3 grows as e^(3t)"), with a leading
+        /// separator, or empty.
+        reason: String,
+    },
+    /// Exact input is too large or too ill-separated for the exact path (degree, coefficient
+    /// size, or roots closer than its refinement separates); the caller falls back to the
+    /// numerical path.
+    #[error("beyond the exact budget: {reason}")]
+    BeyondExactBudget {
+        /// Which limit was hit, with the numbers.
+        reason: String,
+    },
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]
     BadNumber {

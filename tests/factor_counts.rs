@@ -60,11 +60,10 @@ fn every_command_factors_each_plant_once() {
 fn the_demo_factors_each_plant_a_handful_of_times() {
     let dir = out("demo");
     let n = count(&["demo", "--out", &dir]);
-    // 6 textbook plants + 4 damping cases factored once each; the analytic checks factor
-    // their 6 second-order plants once each; the linearised nonlinear models factor each
-    // equilibrium's transfer function (pendulum 2, MEMS 3 + the pull-in sweep, Lorenz/van der
-    // Pol have no input; the pull-in sweep needs eigenvalues only). Measured 21; before the
-    // factored core: 1 740.
-    println!("demo factorisations: {n}");
-    assert!(n <= 25, "{n}");
+    // Each plant of the tour is factored once: 6 textbook plants, 4 damping cases, 6 analytic
+    // checks; each linearised equilibrium with an input twice (its transfer function, and the
+    // display form with the rounding noise of the linearisation removed): pendulum, MEMS,
+    // rigid body, heavy top, gyroscope channels, double pendulum. Measured 33 (1 740 before
+    // the factored core, with fewer models).
+    assert!(n <= 40, "{n}");
 }

@@ -336,7 +336,7 @@ fn mems_simulation_below_and_above_pull_in() {
     let below = simulate(
         &m,
         &x0,
-        &Input::Constant(vec![1.5]),
+        &InputSignal::constant(vec![1.5]),
         &t,
         &Rk45Options::default(),
     )
@@ -351,7 +351,7 @@ fn mems_simulation_below_and_above_pull_in() {
     let above = simulate(
         &m,
         &x0,
-        &Input::Constant(vec![3.2]),
+        &InputSignal::constant(vec![3.2]),
         &t,
         &Rk45Options::default(),
     )
@@ -407,7 +407,14 @@ fn linear_simulation_matches_the_matrix_exponential() {
     let model = LinearModel::from_plant("spring-mass-damper", &[("C".into(), 0.1)]).unwrap();
     let t = sample_times(30.0, 301).unwrap();
     let x0 = [1.0, -0.5];
-    let sim = simulate(sys.as_ref(), &x0, &Input::Constant(vec![0.0]), &t, &tight()).unwrap();
+    let sim = simulate(
+        sys.as_ref(),
+        &x0,
+        &InputSignal::constant(vec![0.0]),
+        &t,
+        &tight(),
+    )
+    .unwrap();
     let a = &model.ss().a;
     let mut worst: f64 = 0.0;
     for (ti, x) in t.iter().zip(&sim.states) {
@@ -428,11 +435,7 @@ fn step_input_restarts_at_the_jump() {
     let sys = build_model("tank", &[]).unwrap();
     let (area, r) = (2.0, 0.5);
     let t = sample_times(20.0, 201).unwrap();
-    let input = Input::Step {
-        t_step: 2.0,
-        before: vec![0.0],
-        after: vec![1.0],
-    };
+    let input = InputSignal::step(2.0, vec![0.0], vec![1.0]);
     let sim = simulate(sys.as_ref(), &[0.0], &input, &t, &tight()).unwrap();
     for (ti, y) in t.iter().zip(&sim.outputs) {
         let exact = if *ti < 2.0 {
@@ -448,6 +451,40 @@ fn step_input_restarts_at_the_jump() {
     }
     // No rejected steps hunting for the discontinuity.
     assert!(sim.stats.rejections <= 2, "{:?}", sim.stats);
+}
+
+#[test]
+fn shaped_inputs_match_the_closed_form_of_the_linear_analysis() {
+    // One input enum: the tank A h' + r h = q (A = 2, r = 0.5) simulated under q(t) =
+    // 0.3 + s(t − 1)·(1.3 − 0.3) for s = sin:2, ramp and exp:-0.7, against the exact closed
+    // form of 1/(2 s + 0.5) for the same analysis::Input, shifted by 1 s, plus the response to
+    // the constant 0.3 from h(0) = 0.
+    use ltikit::analysis::Input;
+    let sys = build_model("tank", &[]).unwrap();
+    let g = TransferFunction::from_descending(&[1.0], &[2.0, 0.5]).unwrap();
+    let t = sample_times(12.0, 121).unwrap();
+    for shape in [
+        Input::Sin(2.0),
+        Input::Ramp,
+        Input::Exp(-0.7),
+        Input::Cos(3.0),
+    ] {
+        let u = InputSignal::shaped(vec![0.3], vec![1.3], shape, 1.0);
+        let sim = simulate(sys.as_ref(), &[0.0], &u, &t, &tight()).unwrap();
+        let shifted: Vec<f64> = t.iter().map(|x| (x - 1.0).max(0.0)).collect();
+        let forced = g.response(&shape, &[], &shifted).unwrap();
+        let base = g.response(&Input::Step, &[], &t).unwrap();
+        let mut worst: f64 = 0.0;
+        for (k, ti) in t.iter().enumerate() {
+            let exact =
+                0.3 * base.samples.y[k] + if *ti >= 1.0 { forced.samples.y[k] } else { 0.0 };
+            worst = worst.max((sim.outputs[k][0] - exact).abs());
+        }
+        assert!(worst < 1e-10, "{shape}: worst {worst:e}");
+    }
+    // An impulse cannot be integrated.
+    let imp = InputSignal::shaped(vec![0.0], vec![1.0], Input::Impulse, 0.0);
+    assert!(simulate(sys.as_ref(), &[0.0], &imp, &t, &tight()).is_err());
 }
 
 // ---------------------------------------------------------------- pendulum period, van der Pol
@@ -481,7 +518,7 @@ fn van_der_pol_follows_the_polar_closed_form() {
     let t = sample_times(15.0, 151).unwrap();
     let mut worst: f64 = 0.0;
     for (x1, x2) in [(0.001, 0.0), (2.0, 0.0), (0.3, -0.4), (-1.5, 1.5)] {
-        let sim = simulate(&VanDerPol, &[x1, x2], &Input::none(), &t, &tight()).unwrap();
+        let sim = simulate(&VanDerPol, &[x1, x2], &InputSignal::none(), &t, &tight()).unwrap();
         let s0: f64 = x1 * x1 + x2 * x2;
         let phi0 = f64::atan2(x2, x1);
         for (ti, x) in t.iter().zip(&sim.states) {
@@ -713,7 +750,7 @@ fn bad_input_gives_errors() {
     }
     let p = Pendulum::default();
     let o = Rk45Options::default();
-    let c = Input::Constant(vec![0.0]);
+    let c = InputSignal::constant(vec![0.0]);
     for t_end in [0.0, -1.0] {
         assert!(matches!(
             simulate(&p, &[0.1, 0.0], &c, &[0.0, t_end], &o),
@@ -722,7 +759,7 @@ fn bad_input_gives_errors() {
         assert!(sample_times(t_end, 10).is_err());
     }
     assert!(simulate(&p, &[0.1], &c, &[1.0], &o).is_err());
-    assert!(simulate(&p, &[0.1, 0.0], &Input::none(), &[1.0], &o).is_err());
+    assert!(simulate(&p, &[0.1, 0.0], &InputSignal::none(), &[1.0], &o).is_err());
     assert!(simulate(&p, &[f64::INFINITY, 0.0], &c, &[1.0], &o).is_err());
     assert!(simulate(&p, &[0.1, 0.0], &c, &[], &o).is_err());
     assert!(jacobians(&p, &[0.0, f64::NAN], &[0.0]).is_err());
@@ -757,7 +794,13 @@ impl NonlinearSystem for Blowup {
 #[test]
 fn simulation_blow_up_and_step_limit() {
     let t = sample_times(2.0, 21).unwrap();
-    match simulate(&Blowup, &[1.0], &Input::none(), &t, &Rk45Options::default()) {
+    match simulate(
+        &Blowup,
+        &[1.0],
+        &InputSignal::none(),
+        &t,
+        &Rk45Options::default(),
+    ) {
         Err(LtiError::Diverged { t, norm }) => {
             assert!(
                 (t - 1.0).abs() < 1e-6 && norm > 1e6,
@@ -774,7 +817,7 @@ fn simulation_blow_up_and_step_limit() {
     let r = simulate(
         &Lorenz::default(),
         &[1.0, 0.0, 0.0],
-        &Input::none(),
+        &InputSignal::none(),
         &t,
         &opts,
     );
@@ -808,7 +851,7 @@ fn phase_portrait_of_the_undamped_pendulum_conserves_energy() {
         .chain([vec![-PI, 2.5 * w]])
         .collect();
     let t = sample_times(10.0, 501).unwrap();
-    let tr = trajectories(&p, &starts, &Input::Constant(vec![0.0]), &t, &tight()).unwrap();
+    let tr = trajectories(&p, &starts, &InputSignal::constant(vec![0.0]), &t, &tight()).unwrap();
     for sim in &tr {
         let e0 = pendulum_energy(w, sim.states[0][0], sim.states[0][1]);
         for x in &sim.states {

@@ -1,14 +1,22 @@
-//! Plot tests: every kind of PNG is written to /tmp/ltikit-plots/, decoded, and checked for
-//! signature, size and content (not blank); error cases leave no file behind.
+//! Plot tests: every kind of PNG is written under the target directory's scratch space
+//! (`CARGO_TARGET_TMPDIR/plots`), decoded, and checked for signature, size and content (not
+//! blank); error cases leave no file behind.
 
 use std::path::PathBuf;
 
 use ltikit::plot::*;
 
-fn out(name: &str) -> PathBuf {
-    let dir = PathBuf::from("/tmp/ltikit-plots");
+/// The scratch directory of these tests (`sub` below it), created if needed.
+fn scratch(sub: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("plots")
+        .join(sub);
     std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    dir
+}
+
+fn out(name: &str) -> PathBuf {
+    scratch("").join(name)
 }
 
 /// Decodes the PNG and returns (width, height, RGB pixels).
@@ -48,7 +56,7 @@ fn count_color(px: &[u8], c: Color) -> usize {
 #[test]
 fn phase_portrait_of_a_damped_pendulum() {
     let mut trajectories = Vec::new();
-    for (k, th0) in [0.5f64, 1.5, 2.5, 3.0].iter().enumerate() {
+    for th0 in [0.5f64, 1.5, 2.5, 3.0] {
         // Linearised damped oscillator from θ0 (a picture, not a simulation).
         let pts: Vec<(f64, f64)> = (0..600)
             .map(|i| {
@@ -58,7 +66,6 @@ fn phase_portrait_of_a_damped_pendulum() {
             })
             .collect();
         trajectories.push(Curve::new(pts).label(format!("θ(0) = {th0}")));
-        let _ = k;
     }
     let sep: Vec<(f64, f64)> = (0..=100)
         .map(|i| {
@@ -359,7 +366,7 @@ fn impulse_and_ramp_responses() {
         &path,
         &[StepSeries::new(&r)
             .label("4 / (s^2 + 1.2 s + 4)")
-            .input(InputKind::Impulse)],
+            .input(ltikit::analysis::Input::Impulse)],
         &PlotOptions::default(),
     )
     .unwrap();
@@ -371,7 +378,7 @@ fn impulse_and_ramp_responses() {
         &path,
         &[StepSeries::new(&r)
             .label("1 / (s + 1)")
-            .input(InputKind::Ramp)],
+            .input(ltikit::analysis::Input::Ramp)],
         &PlotOptions::default(),
     )
     .unwrap();
@@ -677,8 +684,7 @@ fn leftovers(dir: &std::path::Path, stem: &str) -> usize {
 
 #[test]
 fn bad_options_and_empty_data_are_errors_without_files() {
-    let dir = PathBuf::from("/tmp/ltikit-plots/errors");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("errors");
     let fr = response(
         logspace(0.1, 10.0, 50),
         |w| 1.0 / (1.0 + w * w).sqrt(),
@@ -767,8 +773,7 @@ fn bad_options_and_empty_data_are_errors_without_files() {
 
 #[test]
 fn unwritable_paths_are_io_errors_and_leave_nothing() {
-    let dir = PathBuf::from("/tmp/ltikit-plots/errors");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("errors");
     let fr = response(
         logspace(0.1, 10.0, 50),
         |w| 1.0 / (1.0 + w * w).sqrt(),
@@ -776,12 +781,7 @@ fn unwritable_paths_are_io_errors_and_leave_nothing() {
     );
     let s = [BodeSeries::new(&fr)];
     // Missing directory.
-    let e = bode_png(
-        "/tmp/ltikit-plots/no/such/dir/b.png",
-        &s,
-        &PlotOptions::default(),
-    )
-    .unwrap_err();
+    let e = bode_png(dir.join("no/such/dir/b.png"), &s, &PlotOptions::default()).unwrap_err();
     assert!(matches!(e, ltikit::LtiError::Io { .. }), "{e}");
     // A parent that is a file.
     let file = dir.join("a_file.txt");
@@ -838,9 +838,92 @@ fn small_and_large_images_and_long_titles() {
             ..Default::default()
         };
         bode_png(&path, &[BodeSeries::new(&fr)], &o).unwrap();
-        let (w, h, _) = decode(&path);
+        let (w, h, px) = decode(&path);
         assert_eq!((w, h), size);
+        // The title was shrunk and cut to fit: the outer columns of the title band stay white.
+        let band = (h / 12) as usize;
+        for y in 0..band {
+            for x in [0, 1, w as usize - 2, w as usize - 1] {
+                let i = 3 * (y * w as usize + x);
+                assert_eq!(&px[i..i + 3], [255, 255, 255], "{size:?}: pixel ({x}, {y})");
+            }
+        }
     }
+}
+
+#[test]
+fn text_length_limit_is_enforced_on_both_sides() {
+    let fr = response(
+        logspace(0.1, 10.0, 50),
+        |w| 1.0 / (1.0 + w * w).sqrt(),
+        |w| -w.atan().to_degrees(),
+    );
+    // Characters, not bytes: 'é' is two bytes.
+    let at_limit = "é".repeat(MAX_TEXT_CHARS);
+    let over = "é".repeat(MAX_TEXT_CHARS + 1);
+    let path = out("title_at_limit.png");
+    let o = PlotOptions {
+        title: Some(at_limit.clone()),
+        ..Default::default()
+    };
+    bode_png(&path, &[BodeSeries::new(&fr).label(&at_limit)], &o).unwrap();
+    check_png(&path, (1000, 700));
+
+    let dir = scratch("limit");
+    let path = dir.join("over.png");
+    let too_long = |e: ltikit::LtiError| {
+        let m = e.to_string();
+        assert!(matches!(e, ltikit::LtiError::Plot(_)), "{m}");
+        assert!(
+            m.contains(&format!("{} characters", MAX_TEXT_CHARS + 1))
+                && m.contains("MAX_TEXT_CHARS"),
+            "{m}"
+        );
+    };
+    let o = PlotOptions {
+        title: Some(over.clone()),
+        ..Default::default()
+    };
+    too_long(o.validate().unwrap_err());
+    too_long(bode_png(&path, &[BodeSeries::new(&fr)], &o).unwrap_err());
+    let d = PlotOptions::default();
+    too_long(bode_png(&path, &[BodeSeries::new(&fr).label(&over)], &d).unwrap_err());
+    let r = TimeResponse {
+        t: vec![0.0, 1.0],
+        y: vec![0.0, 1.0],
+        final_value: None,
+    };
+    too_long(step_png(&path, &[StepSeries::new(&r).label(&over)], &d).unwrap_err());
+    let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    let pz = g.pole_zero().unwrap();
+    too_long(pzmap_png(&path, &PzMap::new(&pz).label(&over), &d).unwrap_err());
+    let n = g.nyquist().unwrap();
+    too_long(nyquist_png(&path, &[NyquistSeries::new(&n).label(&over)], &d).unwrap_err());
+    let line = || Curve::new([(0.0, 0.0), (1.0, 1.0)]);
+    let plots = [
+        XyPlot {
+            curves: vec![line().label(over.clone())],
+            ..Default::default()
+        },
+        XyPlot {
+            curves: vec![line()],
+            y_label: over.clone(),
+            ..Default::default()
+        },
+        XyPlot {
+            curves: vec![line()],
+            notes: vec![over.clone()],
+            ..Default::default()
+        },
+        XyPlot {
+            markers: vec![Marker::new((0.0, 0.0), MarkerShape::Disc).label(over.clone())],
+            ..Default::default()
+        },
+    ];
+    for p in &plots {
+        too_long(xy_png(&path, p, &d).unwrap_err());
+    }
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "no file left");
 }
 
 mod never_panics {
@@ -863,9 +946,25 @@ mod never_panics {
         fn xy_plots_of_arbitrary_data(pts in prop::collection::vec((value(), value()), 0..40), equal in any::<bool>()) {
             let plot = XyPlot { curves: vec![Curve::new(pts.clone()).arrows(2)], markers: pts.iter().take(3).map(|p| Marker::new(*p, MarkerShape::Circle).label("m")).collect(), equal_aspect: equal, ..Default::default() };
             let path = out("proptest_xy.png");
+            let _ = std::fs::remove_file(&path);
             let o = PlotOptions { size: (240, 160), ..Default::default() };
-            if xy_png(&path, &plot, &o).is_ok() {
-                decode(&path);
+            // Drawn exactly when some point is finite and the finite points span a range whose
+            // width is finite (with room); otherwise a clean error and no file.
+            let finite: Vec<(f64, f64)> = pts.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+            let span = |v: Vec<f64>| v.iter().copied().fold(f64::NEG_INFINITY, f64::max) - v.iter().copied().fold(f64::INFINITY, f64::min);
+            let drawable = !finite.is_empty()
+                && (2.0 * span(finite.iter().map(|p| p.0).collect())).is_finite()
+                && (2.0 * span(finite.iter().map(|p| p.1).collect())).is_finite();
+            match xy_png(&path, &plot, &o) {
+                Ok(()) => {
+                    prop_assert!(!finite.is_empty());
+                    prop_assert_eq!(decode(&path).0, 240);
+                }
+                Err(e) => {
+                    prop_assert!(!drawable, "{}", e);
+                    prop_assert!(matches!(e, ltikit::LtiError::Plot(_)), "{}", e);
+                    prop_assert!(!path.exists());
+                }
             }
         }
 
@@ -875,8 +974,26 @@ mod never_panics {
             let w: Vec<f64> = (0..n).map(|k| 10f64.powf(w0 + k as f64 * 0.1)).collect();
             let fr = FrequencyResponse { magnitude: mags.clone(), magnitude_db: mags.clone(), phase_deg: mags.iter().map(|m| m * 100.0).collect(), w };
             let path = out("proptest_bode.png");
+            let _ = std::fs::remove_file(&path);
             let o = PlotOptions { size: (240, 160), ..Default::default() };
-            let _ = bode_png(&path, &[BodeSeries::new(&fr)], &o);
+            // Drawn when two points have a finite magnitude and phase (ω > 0 here); refused
+            // with a message when there are fewer, or when the values span a range too wide.
+            let good = fr.magnitude_db.iter().zip(&fr.phase_deg).filter(|(m, p)| m.is_finite() && p.is_finite()).count();
+            match bode_png(&path, &[BodeSeries::new(&fr)], &o) {
+                Ok(()) => {
+                    prop_assert!(good >= 2);
+                    prop_assert_eq!(decode(&path).0, 240);
+                }
+                Err(e) => {
+                    let m = e.to_string();
+                    prop_assert!(
+                        (good < 2 && m.contains("fewer than two finite points"))
+                            || (good >= 2 && m.contains("too wide to draw")),
+                        "{}", m
+                    );
+                    prop_assert!(!path.exists());
+                }
+            }
         }
     }
 }
@@ -925,4 +1042,112 @@ fn nyquist_edge_plants() {
         .unwrap();
         decode(&path);
     }
+}
+
+#[test]
+fn extreme_values_are_drawn_or_refused_cleanly() {
+    // Data over ±1e307 is drawn (axis factor ×10^306); over ±1.5e308 its span overflows f64
+    // and it is refused with a message, not drawn as garbage.
+    let line = |a: f64| XyPlot {
+        curves: vec![
+            Curve::new((0..=100).map(|k| {
+                let x = a * (k as f64 / 50.0 - 1.0);
+                (x, x * 0.9)
+            }))
+            .label("y = 0.9 x"),
+        ],
+        markers: vec![Marker::new((0.0, 0.0), MarkerShape::Disc).label("origin")],
+        x_label: "x".into(),
+        y_label: "y".into(),
+        ..Default::default()
+    };
+    let path = out("xy_huge.png");
+    xy_png(&path, &line(1e307), &PlotOptions::default()).unwrap();
+    let px = check_png(&path, (1000, 700));
+    assert!(count_color(&px, PALETTE[0]) > 500, "the diagonal is drawn");
+    let path = out("xy_too_wide.png");
+    let _ = std::fs::remove_file(&path);
+    let e = xy_png(&path, &line(1.5e308), &PlotOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("too wide to draw"), "{e}");
+    assert!(!path.exists());
+    let tiny = XyPlot {
+        curves: vec![
+            Curve::new((0..=100).map(|k| {
+                let x = 1e-300 * k as f64;
+                (x, (x * 1e299).sin() * 1e-305)
+            }))
+            .label("tiny"),
+        ],
+        equal_aspect: false,
+        ..Default::default()
+    };
+    let path = out("xy_tiny.png");
+    xy_png(&path, &tiny, &PlotOptions::default()).unwrap();
+    let px = check_png(&path, (1000, 700));
+    // The ±1e-305 sine fills the plot's height (a floor of 1e-300 on the padding squashed it
+    // to a flat line).
+    let rows: Vec<usize> = px
+        .chunks(3 * 1000)
+        .enumerate()
+        .filter(|(_, row)| count_color(row, PALETTE[0]) > 0)
+        .map(|(y, _)| y)
+        .collect();
+    let extent = rows.last().unwrap() - rows.first().unwrap();
+    assert!(extent > 450, "curve spans {extent} rows");
+    // A Bode diagram over 600 decades down to −6000 dB.
+    let fr = response(
+        logspace(1e-300, 1e300, 601),
+        |w| 1.0 / (1.0 + w),
+        |w| -w.atan().to_degrees(),
+    );
+    let path = out("bode_600_decades.png");
+    bode_png(
+        &path,
+        &[BodeSeries::new(&fr).label("1/(s + 1)")],
+        &PlotOptions::default(),
+    )
+    .unwrap();
+    check_png(&path, (1000, 700));
+    // A step response of size 1e300.
+    let r = sampled(|t| 1e300 * (1.0 - (-t).exp()), 5.0, 200, Some(1e300));
+    let unit = metrics(|t| 1.0 - (-t).exp(), 5.0);
+    let info = StepInfo {
+        peak: 1e300 * unit.peak,
+        steady_state: 1e300,
+        ..unit
+    };
+    let path = out("step_huge.png");
+    step_png(
+        &path,
+        &[StepSeries::new(&r).info(&info)],
+        &PlotOptions::default(),
+    )
+    .unwrap();
+    check_png(&path, (1000, 700));
+}
+
+#[test]
+fn labels_of_the_highest_order_plants_fit_the_text_limit() {
+    // The CLI labels a plant with its transfer function: with MAX_ORDER numerator and
+    // denominator terms of the widest coefficient format (sign, 6 digits, 3-digit exponent),
+    // the label and the default title built from it stay within MAX_TEXT_CHARS.
+    let n = ltikit::MAX_ORDER;
+    let coef = |k: usize| {
+        if k % 2 == 0 {
+            -1.234567e-123
+        } else {
+            9.876543e-201
+        }
+    };
+    let num: Vec<f64> = (0..n).map(coef).collect();
+    let den: Vec<f64> = (0..=n).map(coef).collect();
+    let g = TransferFunction::from_descending(&num, &den).unwrap();
+    let label = g.to_string();
+    let title = format!("Bode diagram of G(s) = {label}");
+    assert!(label.chars().count() > 5_000, "{}", label.len());
+    assert!(
+        title.chars().count() < MAX_TEXT_CHARS,
+        "{}",
+        title.chars().count()
+    );
 }

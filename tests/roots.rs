@@ -244,3 +244,52 @@ fn very_high_multiplicities() {
         assert!((r[0].value.re - root).abs() <= 1e-12 * root.abs());
     }
 }
+
+#[test]
+fn extreme_ranges_split_at_the_tropical_gaps() {
+    // s³ − 1e308 s² + 1e100 (issue 14): the roots are 1e308 (1 + 1e-516·…) and ±1e-104·(1 + …)
+    // to far below rounding: s = 1e308 + δ with δ ≈ −1e100/1e616, and s² ≈ 1e100/1e308 for the
+    // small pair (the s³ term is 1e-312 relative there).
+    let r = poly(&[1.0, -1e308, 0.0, 1e100]).roots().unwrap();
+    assert_eq!(r.len(), 3, "{r:?}");
+    let big = r.iter().find(|x| x.value.re > 1.0).unwrap();
+    assert!((big.value.re - 1e308).abs() <= 2.0 * f64::EPSILON * 1e308);
+    for want in [1e-104, -1e-104] {
+        let (e, m) = closest(&r, C::new(want, 0.0));
+        let rel = e * 1.0 / 1e-104; // closest() divides by max(|z|, 1)
+        assert!(m == 1 && rel <= 4.0 * f64::EPSILON, "{want}: {rel:e}");
+    }
+    // s² + 1e200 s + 1: −1e200 and −1e-200 (product 1, sum −1e200, exactly to rounding).
+    let r = poly(&[1.0, 1e200, 1.0]).roots().unwrap();
+    assert_eq!(r.len(), 2);
+    assert!(
+        (r[0].value.re + 1e-200).abs() <= 4.0 * f64::EPSILON * 1e-200,
+        "{r:?}"
+    );
+    assert!(
+        (r[1].value.re + 1e200).abs() <= 4.0 * f64::EPSILON * 1e200,
+        "{r:?}"
+    );
+    // Tiny coefficients: (s + 1)(s + 2)·1e-300 and a subnormal scale.
+    for k in [1e-300, 1e-310] {
+        let r = poly(&[k, 3.0 * k, 2.0 * k]).roots().unwrap();
+        assert_eq!(r.len(), 2);
+        for want in [-1.0, -2.0] {
+            let (e, m) = closest(&r, C::new(want, 0.0));
+            assert!(m == 1 && e <= 1e-15, "k = {k:e}: {r:?}");
+        }
+    }
+    // A double root at −1e150 next to a simple one at −1 (tropical roots 2^498 and 2^0).
+    let d =
+        Poly::from_roots(&[C::new(-1e150, 0.0), C::new(-1e150, 0.0), C::new(-1.0, 0.0)]).unwrap();
+    let r = d.roots().unwrap();
+    assert_eq!(r.len(), 2, "{r:?}");
+    let (e, m) = closest(&r, C::new(-1e150, 0.0));
+    assert!(m == 2 && e / 1e150 <= 1e-14, "{r:?}");
+}
+
+#[test]
+fn roots_beyond_f64_are_an_error_not_infinity() {
+    // 1e-300 s + 1e300: the root −1e600 is not a double.
+    assert!(poly(&[1e-300, 1e300]).roots().is_err());
+}

@@ -24,12 +24,23 @@ pub struct TimeSpan {
     pub reason: String,
 }
 
-fn check_points(points: usize) -> Result<()> {
-    if points < 2 {
+/// Most points an automatic grid (or any sampled response) may have: 10⁷ (80 MB of
+/// frequencies; the outputs are streamed).
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// Checks 2 ≤ `points` ≤ [`MAX_POINTS`] before anything is allocated.
+///
+/// ```
+/// use ltikit::analysis::grid::check_points;
+/// assert!(check_points(2).is_ok() && check_points(1).is_err());
+/// assert!(check_points(usize::MAX).is_err());
+/// ```
+pub fn check_points(points: usize) -> Result<()> {
+    if !(2..=MAX_POINTS).contains(&points) {
         return Err(LtiError::InvalidParameter {
             name: "points".into(),
             value: points as f64,
-            reason: "at least 2 points are needed".into(),
+            reason: format!("need 2 ≤ points ≤ {MAX_POINTS}"),
         });
     }
     Ok(())

@@ -112,6 +112,28 @@ impl Input {
     }
 }
 
+impl Input {
+    /// A human name for titles and legends: `Step`, `Impulse`, `Ramp`, `e^(-3 t)`,
+    /// `sin(2 t)`, `cos(2 t)`, `No input`.
+    ///
+    /// ```
+    /// use ltikit::analysis::Input;
+    /// assert_eq!(Input::Sin(2.0).title(), "sin(2 t)");
+    /// assert_eq!(Input::Step.title(), "Step");
+    /// ```
+    pub fn title(&self) -> String {
+        match *self {
+            Input::Impulse => "Impulse".into(),
+            Input::Step => "Step".into(),
+            Input::Ramp => "Ramp".into(),
+            Input::Exp(a) => format!("e^({a} t)"),
+            Input::Sin(w) => format!("sin({w} t)"),
+            Input::Cos(w) => format!("cos({w} t)"),
+            Input::None => "No input".into(),
+        }
+    }
+}
+
 impl fmt::Display for Input {
     /// The form [`Input::from_str`] parses (`step`, `exp:-3`, `sin:2`, …), exact: it parses
     /// back to the same input.

@@ -129,6 +129,12 @@ impl Part {
                 if r.is_zero() {
                     return Ok(None);
                 }
+                if stiff(&self.poles) {
+                    // The companion matrix of poles 1e8 and more apart in size is too badly
+                    // scaled for the exponential; the cascade of sections is triangular.
+                    let gain = r.leading() / den.leading();
+                    return Ok(Some(StateSpace::from_zpk(&r.roots()?, &self.poles, gain)?));
+                }
                 let g = TransferFunction::new(r, den.clone())?;
                 Ok(Some(StateSpace::from_tf(&g)?))
             }
@@ -137,6 +143,18 @@ impl Part {
             }
         }
     }
+}
+
+/// Pole magnitudes (non-zero) spread over more than this ratio make a part stiff.
+const STIFF_RATIO: f64 = 1e8;
+
+/// True when the non-zero pole magnitudes spread over more than [`STIFF_RATIO`].
+fn stiff(poles: &[Root]) -> bool {
+    let mags = poles.iter().map(|p| p.value.norm()).filter(|&m| m > 0.0);
+    let (lo, hi) = mags.fold((f64::INFINITY, 0.0f64), |(lo, hi), m| {
+        (lo.min(m), hi.max(m))
+    });
+    hi > STIFF_RATIO * lo
 }
 
 /// Y(s) = forced + initial-condition part, and which poles are the input's.

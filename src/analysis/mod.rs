@@ -18,6 +18,7 @@ pub mod modes;
 pub mod nyquist;
 pub mod pfe;
 pub mod response;
+pub mod ss;
 pub mod stability;
 pub mod step_info;
 pub mod summary;

@@ -238,7 +238,9 @@ pub(crate) fn direct_factored(gain: f64, zeros: &[Root], poles: &[Root]) -> Vec<
     }
     let d = nz - np;
     // (1 − r x) = (1 + x/a) with a = −1/r
-    let term = |r: &Root| (!r.is_origin()).then(|| (-r.value.inv(), r.multiplicity));
+    let term = |r: &Root| {
+        (!r.is_origin()).then(|| (-crate::numeric::complex::recip(r.value), r.multiplicity))
+    };
     let up: Vec<(Complex64, usize)> = zeros.iter().filter_map(term).collect();
     let down: Vec<(Complex64, usize)> = poles.iter().filter_map(term).collect();
     normalised_series(&up, &down, d + 1)
@@ -266,28 +268,27 @@ fn terms_of_upper(terms: &[PfTerm], upper: Complex64, m: usize) -> Option<Vec<Pf
 fn laurent_head(num: &Poly, lead: f64, poles: &[Root], i: usize) -> Result<Vec<Complex64>> {
     let p = poles[i].value;
     let m = poles[i].multiplicity;
-    let zero = Complex64::new(0.0, 0.0);
-    // Series of 1/D_p(p + h), truncated to m terms.
-    let mut inv = vec![zero; m];
-    inv[0] = Complex64::new(1.0 / lead, 0.0);
-    let mut factor = vec![zero; m];
+    // 1/D_p(p + h) = S·Π(1 + h/a)^(−k), a = p − q, S = Π a^(−k)/lead kept in scaled form
+    let mut scalar = ScaledProduct::new(Complex64::new(1.0 / lead, 0.0));
+    let mut down = Vec::with_capacity(poles.len());
     for (j, q) in poles.iter().enumerate() {
         if j == i || q.multiplicity == 0 {
             continue;
         }
         let a = p - q.value;
-        let k = q.multiplicity;
-        // (a + h)^(−k) = a^(−k) Σ_l C(k + l − 1, l) (−h/a)^l
-        let ratio = -a.inv();
-        let mut coef = a.powi(-(k as i32));
-        for (l, f) in factor.iter_mut().enumerate() {
-            *f = coef;
-            coef = coef * ratio * ((k + l) as f64 / (l + 1) as f64);
-        }
-        inv = series_mul(&inv, &factor);
+        scalar.div_pow(a, q.multiplicity);
+        down.push((a, q.multiplicity));
     }
+    let inv = normalised_series(&[], &down, m);
     let n = num.taylor_at(p, m);
-    let c = series_mul(&n, &inv);
+    let c: Vec<Complex64> = series_mul(&n, &inv)
+        .into_iter()
+        .map(|x| {
+            let mut v = scalar;
+            v.mul(x);
+            v.value()
+        })
+        .collect();
     check_residues(&c, p, m)?;
     Ok(c)
 }

@@ -92,7 +92,7 @@ fn impulse_samples(part: &Part, t: &[f64], order: &[usize], out: &mut [f64]) -> 
         if dt > 0.0 {
             let tol = 8.0 * f64::EPSILON * ti.max(dt);
             if h == 0.0 || (dt - h).abs() > tol {
-                let e = expm(&(&ss.a * dt))?;
+                let e = expm(&(&ss.a * dt)).map_err(|e| overflow_reason(e, part, ti))?;
                 for r in 0..n {
                     for k in 0..n {
                         phi[r * n + k] = e[(r, k)];
@@ -118,6 +118,30 @@ fn impulse_samples(part: &Part, t: &[f64], order: &[usize], out: &mut [f64]) -> 
         out[i] += yi;
     }
     Ok(())
+}
+
+/// An overflowing exponential named by its cause: the fastest-growing mode of the part.
+fn overflow_reason(e: LtiError, part: &Part, t: f64) -> LtiError {
+    let LtiError::Overflow { .. } = e else {
+        return e;
+    };
+    let worst = part
+        .poles
+        .iter()
+        .map(|p| p.value)
+        .max_by(|a, b| a.re.total_cmp(&b.re));
+    match worst {
+        Some(p) if p.re > 0.0 => LtiError::Overflow {
+            what: format!("the response at t = {t} s"),
+            reason: format!(
+                ": the unstable mode at s = {} grows as e^({} t) and passes it after t ≈ {} s",
+                crate::poly::fmt_root(p, 6),
+                crate::poly::fmt_sig(p.re, 6),
+                crate::poly::fmt_sig(f64::MAX.ln() / p.re, 3)
+            ),
+        },
+        _ => e,
+    }
 }
 
 impl Factored {

@@ -29,7 +29,7 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         return super::batch::run(src);
     }
     let plant = a.plant.single()?;
-    let f = plant.tf.factored()?;
+    let f = a.plant.factored(&plant)?;
     let analysis = f.analyze()?;
     if a.json {
         print_json(&AnalyzeJson::from(&analysis))
@@ -144,7 +144,7 @@ impl From<&Analysis> for AnalyzeJson {
 pub fn report(plant: &Plant, f: &Factored, a: &Analysis) -> String {
     let pz = &a.pole_zero;
     let mut s = String::new();
-    s.push_str(&format!("G(s) = {}\n", plant.tf));
+    s.push_str(&format!("{}\n", super::text::g_text(plant, f)));
     if !plant.name.contains(" / ") {
         s.push_str(&format!("  {}\n", plant.name));
     }

@@ -7,11 +7,12 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde_json::{Value, json};
-use std::io::{BufRead, IsTerminal, Write};
+use std::io::{BufRead, IsTerminal, Read, Write};
 
 use super::analyze::AnalyzeJson;
 use super::output::json_value;
 use crate::lti::Plant;
+use crate::lti::plant::MAX_RECORD_BYTES;
 
 /// The record for one input line (1-based `line`).
 fn record(line: usize, text: &str) -> Value {
@@ -20,7 +21,7 @@ fn record(line: usize, text: &str) -> Value {
         Err(e) => return json!({"line": line, "error": super::one_line(&e.into())}),
     };
     let result = (|| -> Result<Value> {
-        let f = plant.tf.factored()?;
+        let f = plant.factored()?;
         let a = f.analyze()?;
         let m = f.margins()?;
         let mut v = json_value(&AnalyzeJson::from(&a))?;
@@ -50,60 +51,93 @@ fn record(line: usize, text: &str) -> Value {
     Value::Object(out)
 }
 
-/// Runs a batch from a file, or from stdin for "-".
+/// Lines computed in parallel at a time (memory stays that of one chunk).
+const CHUNK: usize = 1024;
+
+/// Reads one line of at most [`MAX_RECORD_BYTES`] into `buf` (without the newline); `false`
+/// at the end of the input. A longer line or a NUL byte (not text: `/dev/zero`) stops the
+/// batch with an error naming the line.
+fn read_line(r: &mut impl BufRead, buf: &mut Vec<u8>, line: usize) -> Result<bool> {
+    buf.clear();
+    let n = r
+        .by_ref()
+        .take(MAX_RECORD_BYTES + 1)
+        .read_until(b'\n', buf)
+        .with_context(|| format!("reading line {line}"))?;
+    if n == 0 {
+        return Ok(false);
+    }
+    if buf.last() == Some(&b'\n') {
+        buf.pop();
+    } else if buf.len() as u64 > MAX_RECORD_BYTES {
+        anyhow::bail!(
+            "line {line} is longer than the {} MiB a plant record may have",
+            MAX_RECORD_BYTES >> 20
+        );
+    }
+    if buf.contains(&0) {
+        anyhow::bail!("line {line} holds a NUL byte: the batch input is not text");
+    }
+    Ok(true)
+}
+
+/// Runs a batch from a file, or from stdin for "-": read line by line (bounded), computed a
+/// chunk at a time on all cores, written in input order.
 pub fn run(source: &str) -> Result<()> {
-    let lines: Vec<String> = if source == "-" {
-        std::io::stdin()
-            .lock()
-            .lines()
-            .collect::<std::io::Result<_>>()
-            .context("reading plants from stdin")?
+    let mut reader: Box<dyn BufRead> = if source == "-" {
+        Box::new(std::io::BufReader::new(std::io::stdin().lock()))
     } else {
         let f = std::fs::File::open(source).with_context(|| format!("cannot open {source}"))?;
-        std::io::BufReader::new(f)
-            .lines()
-            .collect::<std::io::Result<_>>()
-            .with_context(|| format!("reading {source}"))?
+        Box::new(std::io::BufReader::new(f))
     };
-    let work: Vec<(usize, &str)> = lines
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(i, l)| (i + 1, l.as_str()))
-        .collect();
     let bar = if std::io::stderr().is_terminal() {
-        let b = ProgressBar::new(work.len() as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} plants ({per_sec}, eta {eta})")
-        {
+        let b = ProgressBar::new_spinner();
+        if let Ok(style) = ProgressStyle::with_template("{spinner} {pos} plants ({per_sec})") {
             b.set_style(style);
         }
         Some(b)
     } else {
         None
     };
-    let out: Vec<String> = work
-        .par_iter()
-        .map(|(line, text)| {
-            let s = serde_json::to_string(&record(*line, text))
-                .unwrap_or_else(|e| format!("{{\"line\":{line},\"error\":\"{e}\"}}"));
-            if let Some(b) = &bar {
-                b.inc(1);
+    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut buf = Vec::new();
+    let mut line = 0usize;
+    let mut done = false;
+    while !done {
+        let mut work: Vec<(usize, String)> = Vec::with_capacity(CHUNK);
+        while work.len() < CHUNK {
+            line += 1;
+            if !read_line(&mut reader, &mut buf, line)? {
+                done = true;
+                break;
             }
-            s
-        })
-        .collect();
+            let text = String::from_utf8_lossy(&buf);
+            if !text.trim().is_empty() {
+                work.push((line, text.into_owned()));
+            }
+        }
+        let out: Vec<String> = work
+            .par_iter()
+            .map(|(line, text)| {
+                let s = serde_json::to_string(&record(*line, text))
+                    .unwrap_or_else(|e| format!("{{\"line\":{line},\"error\":\"{e}\"}}"));
+                if let Some(b) = &bar {
+                    b.inc(1);
+                }
+                s
+            })
+            .collect();
+        for l in out {
+            if let Err(e) = writeln!(stdout, "{l}") {
+                if e.kind() == std::io::ErrorKind::BrokenPipe {
+                    return Ok(());
+                }
+                return Err(e.into());
+            }
+        }
+    }
     if let Some(b) = bar {
         b.finish_and_clear();
-    }
-    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
-    for l in out {
-        if let Err(e) = writeln!(stdout, "{l}") {
-            if e.kind() == std::io::ErrorKind::BrokenPipe {
-                return Ok(());
-            }
-            return Err(e.into());
-        }
     }
     match stdout.flush() {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),

@@ -2,10 +2,10 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use serde::Serialize;
 
-use super::output::{finite, print, print_json};
+use super::output::Stream;
 use super::{PlantArgs, parse};
+use crate::analysis::grid::{MAX_POINTS, check_points};
 use crate::analysis::{FrequencyResponse, auto_frequency_grid};
 use crate::poly::fmt_sig;
 
@@ -32,49 +32,100 @@ pub struct FreqArgs {
 
 /// Log-spaced frequencies from `lo` to `hi` inclusive.
 pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
+    check_range(lo, hi, n)?;
+    Ok((0..n).map(|i| log_point(lo, hi, n, i)).collect())
+}
+
+fn check_range(lo: f64, hi: f64, n: usize) -> Result<()> {
     if !(lo.is_finite() && hi.is_finite()) || lo <= 0.0 || hi <= lo {
         bail!("--wmin/--wmax: need 0 < wmin < wmax (finite), got {lo} and {hi}");
     }
-    if n < 2 {
-        bail!("--points must be at least 2");
-    }
-    let (a, b) = (lo.log10(), hi.log10());
-    Ok((0..n)
-        .map(|i| {
-            if i + 1 == n {
-                hi
-            } else {
-                10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64)
-            }
-        })
-        .collect())
+    check_points(n).map_err(|_| anyhow::anyhow!("--points must lie in 2…{MAX_POINTS}, got {n}"))
 }
+
+/// The i-th of n log-spaced points from lo to hi (the last exactly hi).
+fn log_point(lo: f64, hi: f64, n: usize, i: usize) -> f64 {
+    if i + 1 == n {
+        hi
+    } else {
+        let (a, b) = (lo.log10(), hi.log10());
+        10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64)
+    }
+}
+
+/// Frequencies per computed block: the output is written block by block.
+const BLOCK: usize = 1 << 17;
 
 pub fn run(a: &FreqArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let f = plant.tf.factored()?;
-    let w = match (&a.w, a.wmin, a.wmax) {
-        (Some(w), _, _) => parse::numbers(w, "--w")?,
-        (None, Some(lo), Some(hi)) => logspace(lo, hi, a.points)?,
-        _ => auto_frequency_grid(&f, a.points)?,
+    let f = a.plant.factored(&plant)?;
+    // The frequencies: a given list or an automatic grid (in memory: 8 bytes a point), or a
+    // log grid generated block by block.
+    let (list, n): (Option<Vec<f64>>, usize) = match (&a.w, a.wmin, a.wmax) {
+        (Some(w), _, _) => {
+            let w = parse::numbers(w, "--w")?;
+            let n = w.len();
+            (Some(w), n)
+        }
+        (None, Some(lo), Some(hi)) => {
+            check_range(lo, hi, a.points)?;
+            (None, a.points)
+        }
+        _ => {
+            let w = auto_frequency_grid(&f, a.points)?;
+            let n = w.len();
+            (Some(w), n)
+        }
     };
-    let fr = f.freq_response(&w)?;
-    if a.json {
-        print_json(&FreqJson::from(&fr))
+    crate::analysis::freq::check_frequencies(list.as_deref().unwrap_or(&[]))?;
+    let block_of = |k: usize| -> Vec<f64> {
+        let r = k * BLOCK..((k + 1) * BLOCK).min(n);
+        match (&list, a.wmin, a.wmax) {
+            (Some(w), _, _) => w[r].to_vec(),
+            (None, Some(lo), Some(hi)) => r.map(|i| log_point(lo, hi, n, i)).collect(),
+            _ => Vec::new(),
+        }
+    };
+    let mut out = Stream::stdout();
+    let mut open = if a.json {
+        out.put("{\n  \"points\": [")?
     } else {
-        let mut s = format!("G(s) = {}\n\n", plant.tf);
-        s.push_str(&table(&fr));
-        print(&s)
+        out.put(&format!(
+            "{}\n\n{}",
+            super::text::g_text(&plant, &f),
+            table_header()
+        ))?
+    };
+    for k in 0..n.div_ceil(BLOCK) {
+        if !open {
+            break;
+        }
+        let fr = f.freq_response(&block_of(k))?;
+        let mut text = String::new();
+        for i in 0..fr.w.len() {
+            if a.json {
+                text.push_str(if k == 0 && i == 0 {
+                    "\n    "
+                } else {
+                    ",\n    "
+                });
+                point_text(&fr, i, &mut text);
+            } else {
+                text.push_str(&table_row(&fr, i));
+            }
+        }
+        open = out.put(&text)?;
     }
+    if open && a.json {
+        out.put(if n == 0 { "]\n}\n" } else { "\n  ]\n}\n" })?;
+    }
+    out.finish()
 }
 
-/// The `freq` JSON contract: `{"points": [{"w", "magnitude", "magnitude_db", "phase_deg"}]}`.
-#[derive(Serialize)]
-pub struct FreqJson {
-    points: Vec<FreqPointJson>,
-}
-
-#[derive(Serialize)]
+/// One point of the `freq` JSON contract:
+/// `{"points": [{"w", "magnitude", "magnitude_db", "phase_deg"}]}`.
+#[cfg(test)]
+#[derive(serde::Serialize)]
 struct FreqPointJson {
     w: f64,
     magnitude: Option<f64>,
@@ -82,35 +133,67 @@ struct FreqPointJson {
     phase_deg: Option<f64>,
 }
 
-impl From<&FrequencyResponse> for FreqJson {
-    fn from(f: &FrequencyResponse) -> Self {
-        FreqJson {
-            points: (0..f.w.len())
-                .map(|i| FreqPointJson {
-                    w: f.w[i],
-                    magnitude: finite(f.magnitude[i]),
-                    magnitude_db: finite(f.magnitude_db[i]),
-                    phase_deg: finite(f.phase_deg[i]),
-                })
-                .collect(),
-        }
+/// One point as the pretty printer writes it (the same text as [`point_json`] through
+/// `print_json`, without building a JSON tree per point).
+fn point_text(f: &FrequencyResponse, i: usize, out: &mut String) {
+    use super::output::json_number;
+    out.push_str("{\n      \"w\": ");
+    out.push_str(&json_number(f.w[i]));
+    out.push_str(",\n      \"magnitude\": ");
+    out.push_str(&json_number(f.magnitude[i]));
+    out.push_str(",\n      \"magnitude_db\": ");
+    out.push_str(&json_number(f.magnitude_db[i]));
+    out.push_str(",\n      \"phase_deg\": ");
+    out.push_str(&json_number(f.phase_deg[i]));
+    out.push_str("\n    }");
+}
+
+#[cfg(test)]
+fn point_json(f: &FrequencyResponse, i: usize) -> FreqPointJson {
+    FreqPointJson {
+        w: f.w[i],
+        magnitude: super::output::finite(f.magnitude[i]),
+        magnitude_db: super::output::finite(f.magnitude_db[i]),
+        phase_deg: super::output::finite(f.phase_deg[i]),
     }
 }
 
-/// A text table of the response.
-pub fn table(f: &FrequencyResponse) -> String {
-    let mut s = format!(
+fn table_header() -> String {
+    format!(
         "{:>14} {:>14} {:>12} {:>12}\n",
         "w [rad/s]", "M(w)", "M [dB]", "phi [deg]"
-    );
-    for i in 0..f.w.len() {
-        s.push_str(&format!(
-            "{:>14} {:>14} {:>12} {:>12}\n",
-            fmt_sig(f.w[i], 6),
-            fmt_sig(f.magnitude[i], 6),
-            fmt_sig(f.magnitude_db[i], 6),
-            fmt_sig(f.phase_deg[i], 6)
-        ));
+    )
+}
+
+fn table_row(f: &FrequencyResponse, i: usize) -> String {
+    format!(
+        "{:>14} {:>14} {:>12} {:>12}\n",
+        fmt_sig(f.w[i], 6),
+        fmt_sig(f.magnitude[i], 6),
+        fmt_sig(f.magnitude_db[i], 6),
+        fmt_sig(f.phase_deg[i], 6)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn streamed_points_match_the_pretty_printer() {
+        let f = FrequencyResponse {
+            w: vec![0.5, 2.0],
+            magnitude: vec![1.25, f64::INFINITY],
+            magnitude_db: vec![-0.0, f64::INFINITY],
+            phase_deg: vec![-90.0, 1e-300],
+        };
+        for i in 0..2 {
+            let mut fast = String::new();
+            point_text(&f, i, &mut fast);
+            let mut slow = String::new();
+            let v = super::super::output::json_value(&point_json(&f, i)).unwrap();
+            super::super::output::pretty(&v, 2, &mut slow);
+            assert_eq!(fast, slow);
+        }
     }
-    s
 }

@@ -9,13 +9,15 @@ use super::output::{pair, print, print_json};
 use super::parse;
 use super::text::vector_text;
 use crate::nonlinear::{
-    EquilibriumSearch, Linearization, LocalStability, build_model, linearize, model_info,
+    EnergyCasimir, EquilibriumSearch, Linearization, LocalStability, build_model, linearize,
+    model_info,
 };
 use crate::poly::{fmt_root, fmt_sig};
 
 #[derive(Args, Debug)]
 pub struct LinearizeArgs {
-    /// Model: pendulum, mems, lorenz, vanderpol, or a linear plant (spring-mass-damper, …).
+    /// Model: pendulum, mems, lorenz, vanderpol, rigid-body, heavy-top, gyroscope,
+    /// double-pendulum, or a linear plant (spring-mass-damper, …).
     pub model: String,
     /// A model parameter, NAME=VALUE (repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
@@ -40,7 +42,7 @@ pub fn run(a: &LinearizeArgs) -> Result<()> {
         print_json(&LinearizeJson::from(&lin))
     } else {
         let title = model_info(&a.model).map(|i| i.title).unwrap_or("model");
-        print(&report(title, &lin))
+        print(&report(title, &lin, sys.equilibria_note().as_deref()))
     }
 }
 
@@ -69,6 +71,19 @@ struct EquilibriumJson {
     stability: &'static str,
     physical: bool,
     tf: Option<TfJson>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    channels: Vec<ChannelJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    energy_casimir: Option<EnergyCasimir>,
+}
+
+/// One input→output channel of a multi-input or multi-output linearisation.
+#[derive(Serialize)]
+struct ChannelJson {
+    input: String,
+    output: String,
+    num: Vec<f64>,
+    den: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -112,6 +127,17 @@ impl From<&Linearization> for LinearizeJson {
                         num: t.num.clone(),
                         den: t.den.clone(),
                     }),
+                    channels: e
+                        .channels
+                        .iter()
+                        .map(|c| ChannelJson {
+                            input: c.input_name.clone(),
+                            output: c.output_name.clone(),
+                            num: c.num.clone(),
+                            den: c.den.clone(),
+                        })
+                        .collect(),
+                    energy_casimir: e.energy_casimir.clone(),
                 })
                 .collect(),
         }
@@ -143,8 +169,36 @@ fn matrix(name: &str, m: &[Vec<f64>], out: &mut String) {
     }
 }
 
-/// Human-readable report.
-pub fn report(title: &str, l: &Linearization) -> String {
+/// Eigenvalues for display: one per conjugate pair, repeated ones as (×m); real or
+/// imaginary parts below 1e-13 of the largest |λ| are rounding noise (a zero computed as
+/// 6.6e-33, a centre as −1.9e-32 ± 12.7j) and shown as 0.
+pub(crate) fn eigenvalues_text(e: &[num_complex::Complex64], sig: usize) -> String {
+    let scale = e.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    let t = 1e-13 * scale;
+    let mut groups: Vec<(String, usize)> = Vec::new();
+    for z in e {
+        let z = num_complex::Complex64::new(
+            if z.re.abs() <= t { 0.0 } else { z.re },
+            if z.im.abs() <= t { 0.0 } else { z.im },
+        );
+        if z.im < 0.0 {
+            continue;
+        }
+        let s = fmt_root(z, sig);
+        match groups.iter_mut().find(|g| g.0 == s) {
+            Some(g) => g.1 += 1,
+            None => groups.push((s, 1)),
+        }
+    }
+    groups
+        .into_iter()
+        .map(|(s, m)| if m > 1 { format!("{s} (×{m})") } else { s })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Human-readable report; `note` is the model's remark on its equilibria.
+pub fn report(title: &str, l: &Linearization, note: Option<&str>) -> String {
     let mut s = format!("{title} ({})\n", l.model);
     if !l.params.is_empty() {
         s.push_str(&format!(
@@ -161,6 +215,9 @@ pub fn report(title: &str, l: &Linearization) -> String {
         l.equilibria.len(),
         if l.equilibria.len() == 1 { "um" } else { "a" }
     ));
+    if let Some(note) = note {
+        s.push_str(&format!("  note: {note}\n"));
+    }
     for (i, e) in l.equilibria.iter().enumerate() {
         s.push_str(&format!(
             "\nEquilibrium {}: x = {}{}{}\n",
@@ -181,13 +238,7 @@ pub fn report(title: &str, l: &Linearization) -> String {
         if !e.d.is_empty() && !e.d[0].is_empty() {
             matrix("D", &e.d, &mut s);
         }
-        let ev = e
-            .eigenvalues
-            .iter()
-            .filter(|z| z.im >= 0.0)
-            .map(|z| fmt_root(*z, 6))
-            .collect::<Vec<_>>()
-            .join(", ");
+        let ev = eigenvalues_text(&e.eigenvalues, 6);
         s.push_str(&format!("  eigenvalues: {ev}\n"));
         s.push_str(&format!(
             "  {}; {}\n",
@@ -198,6 +249,32 @@ pub fn report(title: &str, l: &Linearization) -> String {
             },
             e.stability_reason
         ));
+        if let Some(ec) = &e.energy_casimir {
+            s.push_str(&format!("  {}\n", ec.reason));
+            if !ec.hessian_eigenvalues.is_empty() {
+                s.push_str(&format!(
+                    "    restricted Hessian eigenvalues: {}\n",
+                    ec.hessian_eigenvalues
+                        .iter()
+                        .map(|v| fmt_sig(*v, 6))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            }
+        }
+        for c in &e.channels {
+            let zero = c.reduced.num().coeffs().iter().all(|v| *v == 0.0);
+            s.push_str(&format!(
+                "  {} → {}: G(s) = {}\n",
+                c.input_name,
+                c.output_name,
+                if zero {
+                    "0".to_string()
+                } else {
+                    c.reduced.to_string()
+                }
+            ));
+        }
         if let Some(tf) = &e.tf {
             s.push_str(&format!("  linearised G(s) = {}\n", tf.g));
             for m in tf.modes.iter().filter(|m| m.pole.im >= 0.0) {

@@ -19,11 +19,16 @@ pub struct MarginsArgs {
 
 pub fn run(a: &MarginsArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let m = plant.tf.margins()?;
+    let f = a.plant.factored(&plant)?;
+    let m = f.margins()?;
     if a.json {
         print_json(&m)
     } else {
-        print(&format!("G(s) = {}\n\n{}", plant.tf, report(&m)))
+        print(&format!(
+            "{}\n\n{}",
+            super::text::g_text(&plant, &f),
+            report(&m)
+        ))
     }
 }
 

@@ -89,10 +89,14 @@ pub fn main() -> i32 {
     install_panic_hook();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
+        Err(e) if e.use_stderr() => {
+            eprintln!("error: {}", usage_line(&e.to_string()));
+            return 2;
+        }
         Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
+            // --help, --version
             let _ = e.print();
-            return code;
+            return 0;
         }
     };
     match run(cli) {
@@ -141,8 +145,41 @@ fn run(cli: Cli) -> Result<()> {
     }
 }
 
+/// A usage error of the argument parser on one line: its first line, its tip if it has one,
+/// and where to look, with offending text abbreviated.
+fn usage_line(text: &str) -> String {
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let first = lines
+        .next()
+        .unwrap_or("invalid arguments")
+        .trim_start_matches("error:")
+        .trim();
+    let mut out = abbreviate_quoted(first);
+    if let Some(tip) = lines.find(|l| l.starts_with("tip:")) {
+        out.push_str(&format!(" ({})", abbreviate_quoted(tip)));
+    }
+    out.push_str("; see --help");
+    out
+}
+
+/// `text` with every quoted part cut to [`crate::error::TOKEN_SHOWN`] characters.
+fn abbreviate_quoted(text: &str) -> String {
+    let mut out = String::new();
+    for (i, part) in text.split('\'').enumerate() {
+        if i > 0 {
+            out.push('\'');
+        }
+        if i % 2 == 1 {
+            out.push_str(&crate::error::abbreviate(part));
+        } else {
+            out.push_str(part);
+        }
+    }
+    out
+}
+
 /// The error and its causes on one line.
-fn one_line(e: &anyhow::Error) -> String {
+pub(crate) fn one_line(e: &anyhow::Error) -> String {
     let mut parts: Vec<String> = Vec::new();
     for cause in e.chain() {
         let s = cause.to_string();
@@ -168,4 +205,25 @@ fn install_panic_hook() {
             .unwrap_or_default();
         eprintln!("error: internal error (a bug, please report it): {msg}{at}");
     }));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn usage_errors_fit_on_one_line() {
+        let e = Cli::try_parse_from(["ltikit", "analyze", "--bogus"]).unwrap_err();
+        let l = usage_line(&e.to_string());
+        assert!(
+            !l.contains('\n') && l.contains("--bogus") && l.ends_with("see --help"),
+            "{l}"
+        );
+        let long = format!("--{}", "x".repeat(10_000));
+        let e = Cli::try_parse_from(["ltikit", "analyze", &long]).unwrap_err();
+        let l = usage_line(&e.to_string());
+        assert!(l.len() < 300, "{l}");
+        let e = Cli::try_parse_from(["ltikit", "analyze", "--den"]).unwrap_err();
+        assert!(usage_line(&e.to_string()).contains("--den"));
+    }
 }

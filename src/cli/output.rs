@@ -15,6 +15,47 @@ pub fn print(text: &str) -> Result<()> {
     }
 }
 
+/// Output written as it is computed (large `freq`, `response` and `simulate` results), so the
+/// memory stays that of one block. A closed pipe ends the output quietly: [`Stream::put`]
+/// then returns `Ok(false)` and the caller stops computing.
+pub struct Stream {
+    out: std::io::BufWriter<std::io::StdoutLock<'static>>,
+    closed: bool,
+}
+
+impl Stream {
+    /// A stream to stdout.
+    pub fn stdout() -> Stream {
+        Stream {
+            out: std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock()),
+            closed: false,
+        }
+    }
+
+    /// Writes `text`; `Ok(false)` once the reader has gone.
+    pub fn put(&mut self, text: &str) -> Result<bool> {
+        if self.closed {
+            return Ok(false);
+        }
+        match self.out.write_all(text.as_bytes()) {
+            Ok(()) => Ok(true),
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                self.closed = true;
+                Ok(false)
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// Flushes (a closed pipe is not an error).
+    pub fn finish(mut self) -> Result<()> {
+        match self.out.flush() {
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Serialises `value` as JSON (serde_json writes non-finite floats as `null`) and prints it
 /// with a trailing newline: objects indented, arrays of numbers on one line (`[re, im]`
 /// pairs, matrix rows, sample vectors).
@@ -53,7 +94,7 @@ fn is_scalar(v: &serde_json::Value) -> bool {
     )
 }
 
-fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
+pub fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
     use serde_json::Value;
     let pad = |n: usize| "  ".repeat(n);
     match v {
@@ -98,6 +139,15 @@ fn pretty(v: &serde_json::Value, indent: usize, out: &mut String) {
         }
         scalar => out.push_str(&scalar.to_string()),
     }
+}
+
+/// A number as the JSON writer prints it: `null` when not finite, never `-0.0`.
+pub fn json_number(x: f64) -> String {
+    if !x.is_finite() {
+        return "null".into();
+    }
+    let x = if x == 0.0 { 0.0 } else { x };
+    serde_json::Value::from(x).to_string()
 }
 
 /// A finite number or `None` (JSON null).

@@ -29,6 +29,21 @@ pub struct PlantArgs {
     /// A model parameter, NAME=VALUE (repeatable), e.g. --param M=1 --param C=0.4.
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub params: Vec<String>,
+    /// State matrix A of a state-space plant, rows separated by ';': --a "0 1; -4 -0.8".
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires_all = ["b", "c"])]
+    pub a: Option<String>,
+    /// Input matrix B (n × m): --b "0; 1".
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
+    pub b: Option<String>,
+    /// Output matrix C (p × n): --c "1 0".
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
+    pub c: Option<String>,
+    /// Feedthrough D (p × m; zero when absent).
+    #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
+    pub d: Option<String>,
+    /// The channel of a MIMO plant to analyse: INPUT,OUTPUT (1-based), e.g. --channel 1,2.
+    #[arg(long, value_name = "INPUT,OUTPUT")]
+    pub channel: Option<String>,
 }
 
 impl PlantArgs {
@@ -51,6 +66,9 @@ impl PlantArgs {
                 out.push(Plant::from_text(self.num.get(i).map(String::as_str), d)?);
             }
         }
+        if let (Some(a), Some(b), Some(c)) = (&self.a, &self.b, &self.c) {
+            out.push(Plant::from_matrices_text(a, b, c, self.d.as_deref())?);
+        }
         for path in &self.plant {
             out.push(Plant::from_file(path)?);
         }
@@ -62,11 +80,40 @@ impl PlantArgs {
         }
         if out.is_empty() {
             return Err(UsageError(
-                "no plant given: use --num/--den, --plant FILE.toml or --model NAME".into(),
+                "no plant given: use --num/--den, --a/--b/--c, --plant FILE.toml or --model NAME"
+                    .into(),
             )
             .into());
         }
         Ok(out)
+    }
+
+    /// The channel chosen with `--channel` (0-based input, output), if any.
+    pub fn channel(&self) -> Result<Option<(usize, usize)>> {
+        let Some(text) = &self.channel else {
+            return Ok(None);
+        };
+        let bad = || {
+            UsageError(format!(
+                "--channel '{}': expected INPUT,OUTPUT with 1-based indices, e.g. --channel 1,2",
+                crate::error::abbreviate(text)
+            ))
+        };
+        let (i, o) = text.split_once(',').ok_or_else(bad)?;
+        let i: usize = i.trim().parse().map_err(|_| bad())?;
+        let o: usize = o.trim().parse().map_err(|_| bad())?;
+        if i == 0 || o == 0 {
+            return Err(bad().into());
+        }
+        Ok(Some((i - 1, o - 1)))
+    }
+
+    /// The factored form of a plant: the chosen channel, or the plant itself when SISO.
+    pub fn factored(&self, plant: &Plant) -> Result<crate::analysis::Factored> {
+        Ok(match self.channel()? {
+            Some((i, o)) => plant.factored_channel(i, o)?,
+            None => plant.factored()?,
+        })
     }
 
     /// Exactly one plant.

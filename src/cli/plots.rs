@@ -4,11 +4,11 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
-use super::{Plant, PlantArgs};
+use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
 use crate::plot::{
-    BodeSeries, InputKind, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png,
-    parse_size, pzmap_png, step_png,
+    BodeSeries, NyquistSeries, PlotOptions, PzMap, StepSeries, bode_png, nyquist_png, parse_size,
+    pzmap_png, step_png,
 };
 
 /// Options common to every picture.
@@ -128,12 +128,7 @@ pub fn step_figure(
         }
     };
     let t: Vec<f64> = (0..=1000).map(|i| t_end * i as f64 / 1000.0).collect();
-    let kind = match input {
-        Input::Step => InputKind::Step,
-        Input::Impulse => InputKind::Impulse,
-        Input::Ramp => InputKind::Ramp,
-        other => InputKind::Other(other.to_string()),
-    };
+    let kind = input;
     let mut data: Vec<(
         &String,
         TimeResponse,
@@ -159,7 +154,7 @@ pub fn step_figure(
         .map(|(label, r, info, unstable)| {
             let mut s = StepSeries::new(r)
                 .label(label)
-                .input(kind.clone())
+                .input(*kind)
                 .unstable(*unstable);
             if let Some(i) = info {
                 s = s.info(i);
@@ -208,11 +203,11 @@ pub fn pzmap_figure(
     Ok(())
 }
 
-/// The plants with their names, each factored once.
-fn labelled(plants: Vec<Plant>) -> Result<Vec<(String, Factored)>> {
-    plants
+/// The plants with their names, each factored once (the chosen channel of a MIMO plant).
+fn labelled(args: &PlantArgs) -> Result<Vec<(String, Factored)>> {
+    args.resolve()?
         .into_iter()
-        .map(|p| Ok((p.name, p.tf.factored()?)))
+        .map(|p| Ok((p.name.clone(), args.factored(&p)?)))
         .collect()
 }
 
@@ -235,7 +230,7 @@ pub struct BodeArgs {
 
 pub fn bode(a: &BodeArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(a.plant.resolve()?)?;
+    let plants = labelled(&a.plant)?;
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
@@ -269,7 +264,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if matches!(input, Input::None) {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
-    let plants = labelled(a.plant.resolve()?)?;
+    let plants = labelled(&a.plant)?;
     step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
         .with_context(|| format!("response plot {}", a.plot.output.display()))
 }
@@ -288,8 +283,14 @@ pub struct PzmapArgs {
 pub fn pzmap(a: &PzmapArgs) -> Result<()> {
     let opts = a.plot.options()?;
     let p = a.plant.single()?;
-    pzmap_figure(&a.plot.output, &p.name, &p.tf.factored()?, a.guides, &opts)
-        .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
+    pzmap_figure(
+        &a.plot.output,
+        &p.name,
+        &a.plant.factored(&p)?,
+        a.guides,
+        &opts,
+    )
+    .with_context(|| format!("pole-zero map {}", a.plot.output.display()))
 }
 
 #[derive(Args, Debug)]
@@ -302,7 +303,7 @@ pub struct NyquistArgs {
 
 pub fn nyquist(a: &NyquistArgs) -> Result<()> {
     let opts = a.plot.options()?;
-    let plants = labelled(a.plant.resolve()?)?;
+    let plants = labelled(&a.plant)?;
     let contours = plants
         .iter()
         .map(|(_, g)| g.nyquist())

@@ -45,10 +45,14 @@ pub fn pullin_figure(
     opts: &PlotOptions,
 ) -> Result<(f64, f64)> {
     let v_pi = m.pull_in_voltage();
-    let vmax = vmax.unwrap_or(1.25 * v_pi);
-    if !(vmax.is_finite() && vmax > 0.0) {
-        bail!("--vmax must be > 0, got {vmax}");
-    }
+    let vmax = match vmax {
+        Some(v) if v.is_finite() && v > 0.0 => v,
+        Some(v) => bail!("--vmax must be a finite number > 0, got {v}"),
+        None if v_pi.is_finite() && v_pi > 0.0 && (1.25 * v_pi).is_finite() => 1.25 * v_pi,
+        None => bail!(
+            "the pull-in voltage √(8 k l0³/(27 ε A)) = {v_pi:e} is not a usable number for these parameters (it under- or overflows); give --vmax or change the parameters"
+        ),
+    };
     let d = mems_pullin(m, vmax, 401)?;
     let stable = Curve::new(d.stable.iter().map(|p| (p[0], p[1])))
         .label("stable equilibrium")

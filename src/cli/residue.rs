@@ -20,11 +20,16 @@ pub struct ResidueArgs {
 
 pub fn run(a: &ResidueArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let pf = plant.tf.partial_fractions()?;
+    let f = a.plant.factored(&plant)?;
+    let pf = f.partial_fractions()?;
     if a.json {
         print_json(&pf)
     } else {
-        print(&format!("G(s) = {}\n\n{}", plant.tf, report(&pf)))
+        print(&format!(
+            "{}\n\n{}",
+            super::text::g_text(&plant, &f),
+            report(&pf)
+        ))
     }
 }
 

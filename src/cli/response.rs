@@ -54,7 +54,7 @@ fn input_words(i: &Input) -> String {
 
 pub fn run(a: &ResponseArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    let f = plant.tf.factored()?;
+    let f = a.plant.factored(&plant)?;
     let input: Input = a.input.parse()?;
     let ics = match &a.ic {
         Some(s) => parse::numbers(s, "--ic")?,
@@ -81,7 +81,7 @@ pub fn run(a: &ResponseArgs) -> Result<()> {
             steady_state: samples.steady_state.clone(),
         });
     }
-    let mut s = format!("G(s) = {}\n", plant.tf);
+    let mut s = format!("{}\n", super::text::g_text(&plant, &f));
     s.push_str(&format!("Input: {}", input_words(&input)));
     if !ics.is_empty() {
         let names: Vec<String> = (0..ics.len())

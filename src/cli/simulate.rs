@@ -6,27 +6,34 @@ use serde::Serialize;
 
 use super::output::{print, print_json};
 use super::parse;
-use crate::nonlinear::{Input, Simulation, build_model, sample_times, simulate};
+use crate::analysis::Input;
+use crate::error::abbreviate;
+use crate::nonlinear::{
+    ConservedDrift, InputSignal, Simulation, build_model, sample_times, simulate,
+};
 use crate::numeric::rk45::Rk45Options;
 
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
-    /// Model: pendulum, mems, lorenz, vanderpol, or a linear plant (spring-mass-damper, …).
+    /// Model: pendulum, mems, lorenz, vanderpol, rigid-body, heavy-top, gyroscope,
+    /// double-pendulum, or a linear plant (spring-mass-damper, …).
     pub model: String,
     /// A model parameter, NAME=VALUE (repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub params: Vec<String>,
     /// Initial state, e.g. --x0 "0.5 0" (state order as in `ltikit linearize MODEL`).
+    /// Default: the model's own start (Lorenz [1, 0, 0], the pendulum released from 1 rad, …).
     #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
-    pub x0: String,
-    /// End time (s), > 0.
+    pub x0: Option<String>,
+    /// End time (s), > 0. Default: the model's own horizon (Lorenz 50 s, …).
     #[arg(long = "t-end", value_name = "SECONDS", allow_hyphen_values = true)]
-    pub t_end: f64,
+    pub t_end: Option<f64>,
     /// Number of output samples, uniform from 0 to the end time.
     #[arg(long, default_value_t = 1001)]
     pub points: usize,
-    /// Input: constant values ("0.5"), or a step "step:T:BEFORE:AFTER" (single input).
-    /// Default: the model's operating input (e.g. the MEMS voltage v).
+    /// Input: constant values ("0.5"), a step "step:T:BEFORE:AFTER", or a signal added to the
+    /// operating input (step, ramp, exp:A, sin:W, cos:W; single input). Default: the model's
+    /// operating input (e.g. the MEMS voltage v).
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     pub input: Option<String>,
     /// Relative tolerance.
@@ -134,45 +141,79 @@ fn picture(
     Ok(())
 }
 
-/// Parses the `--input` value for a model with `nu` inputs.
-pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<Input> {
+/// Parses the `--input` value for a model whose operating input is `operating`.
+///
+/// - absent: the operating input, constant;
+/// - numbers ("0.5", "0.3 -0.1 0.05"): constant;
+/// - `step:T:BEFORE:AFTER` (single input): a jump at T;
+/// - a standard signal (`step`, `ramp`, `exp:A`, `sin:W`, `cos:W`, as in `response`) added to
+///   the operating input with unit amplitude from t = 0 (single input).
+pub fn parse_input(text: Option<&str>, operating: &[f64]) -> Result<InputSignal> {
     let Some(text) = text else {
-        return Ok(Input::Constant(operating.to_vec()));
+        return Ok(InputSignal::constant(operating.to_vec()));
     };
-    if let Some(rest) = text.strip_prefix("step:") {
-        let parts: Vec<&str> = rest.split(':').collect();
-        if parts.len() != 3 {
-            bail!("--input '{text}': a step is step:T:BEFORE:AFTER, e.g. step:1:0:0.5");
+    let single = || -> Result<()> {
+        if operating.is_empty() {
+            bail!("--input '{}': this model has no input", abbreviate(text));
         }
-        let num = |s: &str, what: &str| -> Result<f64> {
-            s.trim()
-                .parse::<f64>()
-                .map_err(|_| anyhow::anyhow!("--input '{text}': {what} '{s}' is not a number"))
-        };
         if operating.len() != 1 {
             bail!(
-                "--input step: only for single-input models (this one has {} inputs)",
+                "--input '{}': a step or a signal is only for single-input models (this one has {} inputs)",
+                abbreviate(text),
                 operating.len()
             );
         }
-        return Ok(Input::Step {
-            t_step: num(parts[0], "the step time")?,
-            before: vec![num(parts[1], "the value before")?],
-            after: vec![num(parts[2], "the value after")?],
-        });
+        Ok(())
+    };
+    if let Some(rest) = text.strip_prefix("step:") {
+        let parts: Vec<&str> = rest.split(':').collect();
+        let [t_step, before, after] = parts.as_slice() else {
+            bail!(
+                "--input '{}': a step is step:T:BEFORE:AFTER, e.g. step:1:0:0.5",
+                abbreviate(text)
+            );
+        };
+        let num = |s: &str, what: &str| -> Result<f64> {
+            s.trim().parse::<f64>().map_err(|_| {
+                anyhow::anyhow!(
+                    "--input '{}': {what} '{}' is not a number",
+                    abbreviate(text),
+                    abbreviate(s)
+                )
+            })
+        };
+        single()?;
+        return Ok(InputSignal::step(
+            num(t_step, "the step time")?,
+            vec![num(before, "the value before")?],
+            vec![num(after, "the value after")?],
+        ));
     }
-    Ok(Input::Constant(parse::numbers(text, "--input")?))
+    if text
+        .trim_start()
+        .starts_with(|c: char| c.is_ascii_alphabetic())
+    {
+        let shape: Input = text.parse()?;
+        single()?;
+        let after: Vec<f64> = operating.iter().map(|u| u + 1.0).collect();
+        return Ok(InputSignal::shaped(operating.to_vec(), after, shape, 0.0));
+    }
+    Ok(InputSignal::constant(parse::numbers(text, "--input")?))
 }
 
 pub fn run(a: &SimulateArgs) -> Result<()> {
     let params = parse::params(&a.params)?;
     let sys = build_model(&a.model, &params)?;
-    let x0 = parse::numbers(&a.x0, "--x0")?;
+    let x0 = match &a.x0 {
+        Some(text) => parse::numbers(text, "--x0")?,
+        None => sys.default_initial_state(),
+    };
+    let t_end = a.t_end.unwrap_or_else(|| sys.default_horizon());
     let input = parse_input(a.input.as_deref(), &sys.operating_input())?;
     if a.points < 2 {
         bail!("--points must be at least 2");
     }
-    let times = sample_times(a.t_end, a.points)?;
+    let times = sample_times(t_end, a.points)?;
     let opts = Rk45Options {
         rtol: a.rtol,
         atol: a.atol,
@@ -182,9 +223,24 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
     let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
     picture(a, sys.as_ref(), &sim)?;
     if a.json {
-        print_json(&SimulationJson::from(&sim))
+        let mut j = SimulationJson::from(&sim);
+        j.x0 = &x0;
+        print_json(&j)
     } else {
-        print(&csv(&sim))
+        let mut text = csv(&sim);
+        if a.x0.is_none() || a.t_end.is_none() {
+            text.push_str(&format!(
+                "# x0 = {} and t_end = {} s{}\n",
+                super::text::vector_text(&x0),
+                t_end,
+                match (a.x0.is_none(), a.t_end.is_none()) {
+                    (true, true) => " are the model's defaults",
+                    (true, false) => ": x0 is the model's default",
+                    _ => ": t_end is the model's default",
+                }
+            ));
+        }
+        print(&text)
     }
 }
 
@@ -196,9 +252,12 @@ struct SimulationJson<'a> {
     t: &'a [f64],
     x: &'a [Vec<f64>],
     y: &'a [Vec<f64>],
+    x0: &'a [f64],
     steps: usize,
     rejected_steps: usize,
     stopped: Option<StopJson<'a>>,
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    conserved: &'a [ConservedDrift],
 }
 
 #[derive(Serialize)]
@@ -216,12 +275,14 @@ impl<'a> From<&'a Simulation> for SimulationJson<'a> {
             t: &s.t,
             x: &s.states,
             y: &s.outputs,
+            x0: &[],
             steps: s.stats.steps,
             rejected_steps: s.stats.rejections,
             stopped: s.stop.as_ref().map(|st| StopJson {
                 t: st.t,
                 reason: &st.reason,
             }),
+            conserved: &s.conserved,
         }
     }
 }
@@ -248,6 +309,15 @@ pub fn csv(s: &Simulation) -> String {
     }
     if let Some(st) = &s.stop {
         out.push_str(&format!("# stopped at t = {}: {}\n", st.t, st.reason));
+    }
+    for c in &s.conserved {
+        out.push_str(&format!(
+            "# conserved {}: {} at t = 0, drift {:.3e} (relative {:.3e})\n",
+            c.name,
+            crate::poly::fmt_sig(c.initial, 12),
+            c.max_drift,
+            c.relative_drift
+        ));
     }
     out
 }

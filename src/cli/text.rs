@@ -35,3 +35,12 @@ pub fn vector_text(v: &[f64]) -> String {
             .join(", ")
     )
 }
+
+/// "G(s) = …" for a SISO plant: its coefficients, or for a state-space plant its factors and
+/// its size.
+pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
+    match &plant.model {
+        crate::lti::Model::Tf(g) => format!("G(s) = {g}"),
+        crate::lti::Model::Ss(ss) => format!("G(s) = {f}  (state space: {} states)", ss.order()),
+    }
+}

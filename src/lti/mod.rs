@@ -1,5 +1,7 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod lattice;
+pub mod model;
 pub mod params;
 pub mod plant;
 pub mod plants;
@@ -7,6 +9,7 @@ pub mod realize;
 pub mod ss;
 pub mod tf;
 
+pub use model::{MAX_STATES, Model, Signals};
 pub use params::{Constraint, ModelParam};
 pub use plant::{Plant, PlantFile};
 pub use plants::{PlantSpec, build_plant, plant_spec, plant_specs};

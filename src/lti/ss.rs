@@ -118,7 +118,7 @@ impl StateSpace {
     /// A diagonally similar realisation (D⁻¹AD, D⁻¹B, CD) with row and column norms of A
     /// balanced (Parlett–Reinsch, powers of two: exact). Improves the accuracy of `exp(A t)`
     /// for companion matrices with coefficients of very different sizes. Overflow-safe and
-    /// bounded ([`crate::numeric::balance`]): an entry of 1e200 is balanced like any other.
+    /// bounded ([`crate::numeric::balance()`]): an entry of 1e200 is balanced like any other.
     ///
     /// ```
     /// use ltikit::{StateSpace, TransferFunction};
@@ -191,19 +191,23 @@ impl StateSpace {
     /// index k (the relative degree), for a SISO model with D = 0. None when all n vanish
     /// (the transfer function is zero).
     fn first_markov_parameter(&self) -> Option<(usize, f64)> {
+        // The rounding error of C·A^(k−1)·B is bounded componentwise by
+        // ~(k + n)·eps·|C|·|A|^(k−1)·|B|; a parameter above a margin of that bound is not zero.
+        // (Norms instead of the componentwise bound took 1 for zero when ‖A‖ = 1e200.)
         let n = self.order();
-        let norm_a = self.a.norm().max(f64::MIN_POSITIVE);
-        let scale_bc = self.b.norm() * self.c.norm();
+        let abs_a = self.a.abs();
         let mut v = self.b.column(0).into_owned();
-        let mut a_pow = 1.0;
+        let mut va = v.abs();
+        let abs_c = self.c.abs();
         for k in 1..=n {
             let h = (&self.c * &v)[(0, 0)];
-            let tol = 1e3 * (n as f64) * f64::EPSILON * scale_bc * a_pow;
+            let bound = (&abs_c * &va)[(0, 0)];
+            let tol = 1e3 * ((k + n) as f64) * f64::EPSILON * bound;
             if h.abs() > tol {
                 return Some((k, h));
             }
             v = &self.a * v;
-            a_pow *= norm_a;
+            va = &abs_a * va;
         }
         None
     }

@@ -8,6 +8,11 @@
 //!   non-hyperbolic) → *undetermined*: "the local stability of x̄ can not be determined by the
 //!   linearized system" (seed §2.3).
 //!
+//! Where the model declares conserved quantities, each equilibrium (at zero input) also gets
+//! the energy–Casimir test ([`crate::nonlinear::energy_casimir()`]), which decides Lyapunov
+//! stability of centres; multi-input or multi-output models get every channel's transfer
+//! function ([`ChannelTf`]).
+//!
 //! An eigenvalue is *on* the axis when |Re λ| ≤ 1e-9·|λ| (`AXIS_REL_TOL`, as for poles) or
 //! |λ| ≤ 10·n·eps·‖A‖_F (a zero eigenvalue computed as ±1e-17: numerically zero).
 
@@ -17,9 +22,11 @@ use serde::{Serialize, Serializer};
 use crate::analysis::{HalfPlane, Mode, half_plane};
 use crate::error::Result;
 use crate::lti::{StateSpace, TransferFunction};
+use crate::nonlinear::energy_casimir::{EnergyCasimir, energy_casimir};
 use crate::nonlinear::equilibria::{Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria};
 use crate::nonlinear::system::{DynSystem, SystemInfo, jacobians};
-use crate::numeric::{eigenvalues, tol::EPS};
+use crate::numeric::eigenvalues;
+use crate::numeric::tol::{EPS, ZERO_REL_TOL};
 use crate::poly::Root;
 
 /// Local stability of an equilibrium from its linearisation.
@@ -65,6 +72,71 @@ pub struct LinearizedTf {
     pub g: TransferFunction,
 }
 
+/// The transfer function of one input→output channel of a multi-input or multi-output
+/// linearisation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ChannelTf {
+    /// Input index j (0-based).
+    pub input: usize,
+    /// Output index i (0-based).
+    pub output: usize,
+    /// Input name.
+    pub input_name: String,
+    /// Output name.
+    pub output_name: String,
+    /// Numerator, descending powers of s.
+    pub num: Vec<f64>,
+    /// Denominator det(sI − A), descending powers of s.
+    pub den: Vec<f64>,
+    /// The transfer function itself.
+    #[serde(skip)]
+    pub g: TransferFunction,
+    /// For display: `g` with coefficient rounding noise removed (terms below
+    /// [`ZERO_REL_TOL`] of the denominator's size at the largest pole magnitude) and common
+    /// factors cancelled — 2s³/(s⁵ + 1600s³) + 1e-13 s² noise becomes 2/(s² + 1600).
+    #[serde(skip)]
+    pub reduced: TransferFunction,
+}
+
+/// `g` without coefficient rounding noise, in lowest terms (see [`ChannelTf::reduced`]).
+fn cleaned(g: &TransferFunction) -> Result<TransferFunction> {
+    let r = g
+        .poles()?
+        .iter()
+        .map(|p| p.value.norm())
+        .fold(0.0, f64::max);
+    let r = if r > 0.0 { r } else { 1.0 };
+    let size = |c: &[f64]| {
+        let n = c.len();
+        c.iter()
+            .enumerate()
+            .map(|(i, v)| v.abs() * r.powi((n - 1 - i) as i32))
+            .sum::<f64>()
+    };
+    let den = g.den().coeffs();
+    let floor = ZERO_REL_TOL * size(den);
+    let clean = |c: &[f64]| -> Vec<f64> {
+        let n = c.len();
+        c.iter()
+            .enumerate()
+            .map(|(i, v)| {
+                if v.abs() * r.powi((n - 1 - i) as i32) <= floor {
+                    0.0
+                } else {
+                    *v
+                }
+            })
+            .collect()
+    };
+    let num = clean(g.num().coeffs());
+    if num.iter().all(|v| *v == 0.0) {
+        return TransferFunction::from_descending(&[0.0], &clean(den));
+    }
+    TransferFunction::from_descending(&num, &clean(den))?
+        .factored()?
+        .reduced_tf()
+}
+
 /// One equilibrium with its linearisation.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LinearizedEquilibrium {
@@ -100,6 +172,13 @@ pub struct LinearizedEquilibrium {
     pub method: EquilibriumMethod,
     /// Input→output transfer function (single-input single-output models only).
     pub tf: Option<LinearizedTf>,
+    /// Multi-input or multi-output models: the transfer function of every input j → output i
+    /// channel (the SISO sub-system with column j of B and row i of C), `StateSpace::to_tf`
+    /// per channel. Empty for SISO models (see `tf`) and models without inputs.
+    pub channels: Vec<ChannelTf>,
+    /// The energy–Casimir test (models with conserved quantities, at ū = 0): decides
+    /// Lyapunov stability where the eigenvalues cannot.
+    pub energy_casimir: Option<EnergyCasimir>,
     /// The linearisation as a state-space model.
     #[serde(skip)]
     pub ss: StateSpace,
@@ -234,8 +313,15 @@ pub fn analyze_equilibrium(sys: &dyn DynSystem, eq: &Equilibrium) -> Result<Line
     let eigs = sorted_eigenvalues(&ss)?;
     let scale = ss.a.norm();
     let (hyperbolic, stability, stability_reason) = local_stability(&eigs, scale);
-    let tf = if ss.b.ncols() == 1 && ss.c.nrows() == 1 {
-        Some(tf_analysis(&ss)?)
+    let siso = ss.b.ncols() == 1 && ss.c.nrows() == 1;
+    let tf = if siso { Some(tf_analysis(&ss)?) } else { None };
+    let channels = if siso {
+        Vec::new()
+    } else {
+        channel_tfs(sys, &ss)?
+    };
+    let energy_casimir = if eq.u.iter().all(|v| *v == 0.0) {
+        energy_casimir(sys, &eq.x)?
     } else {
         None
     };
@@ -254,8 +340,46 @@ pub fn analyze_equilibrium(sys: &dyn DynSystem, eq: &Equilibrium) -> Result<Line
         residual: eq.residual,
         method: eq.method,
         tf,
+        channels,
+        energy_casimir,
         ss,
     })
+}
+
+/// Every input→output channel's transfer function (a stand-in until MIMO analysis lands in
+/// the state-space layer: one SISO `to_tf` per channel).
+fn channel_tfs(sys: &dyn DynSystem, ss: &StateSpace) -> Result<Vec<ChannelTf>> {
+    let (inputs, outputs) = (sys.input_names(), sys.output_names());
+    let name = |names: &[String], k: usize, prefix: &str| {
+        names
+            .get(k)
+            .cloned()
+            .unwrap_or_else(|| format!("{prefix}{}", k + 1))
+    };
+    let mut out = Vec::new();
+    for j in 0..ss.b.ncols() {
+        for i in 0..ss.c.nrows() {
+            let sub = StateSpace::new(
+                ss.a.clone(),
+                ss.b.columns(j, 1).into_owned(),
+                ss.c.rows(i, 1).into_owned(),
+                ss.d.view((i, j), (1, 1)).into_owned(),
+            )?;
+            let g = sub.to_tf()?;
+            let reduced = cleaned(&g)?;
+            out.push(ChannelTf {
+                input: j,
+                output: i,
+                input_name: name(&inputs, j, "u"),
+                output_name: name(&outputs, i, "y"),
+                num: g.num().coeffs().to_vec(),
+                den: g.den().coeffs().to_vec(),
+                g,
+                reduced,
+            });
+        }
+    }
+    Ok(out)
 }
 
 fn tf_analysis(ss: &StateSpace) -> Result<LinearizedTf> {

@@ -2,8 +2,8 @@
 //!
 //! θ̈ + ω² sin θ = 0 with ω² = 3g/(2L), released at rest from θ₀ ∈ (0, π): the period is
 //! T = 4K(k)/ω with modulus k = sin(θ₀/2) and K the complete elliptic integral of the first
-//! kind, computed from the arithmetic–geometric mean K(k) = π / (2·AGM(1, √(1 − k²))) (quadratic
-//! convergence, full precision in ~5 iterations). The small-angle period is 2π/ω; T → ∞ as
+//! kind ([`elliptic_k`], from the arithmetic–geometric mean; see
+//! [`crate::nonlinear::elliptic`]). The small-angle period is 2π/ω; T → ∞ as
 //! θ₀ → π (the separatrix).
 //!
 //! The *measured* period comes from a simulation: the zero crossings of θ̇ (every half period)
@@ -12,55 +12,11 @@
 use serde::Serialize;
 
 use crate::error::{LtiError, Result, check_finite};
+pub use crate::nonlinear::elliptic::{agm, elliptic_k};
 use crate::nonlinear::models::Pendulum;
-use crate::nonlinear::system::NonlinearSystem;
+use crate::nonlinear::system::{DynSystem, check_point};
 use crate::numeric::rk45::{Rk45Options, StepControl, integrate};
 use crate::numeric::{Bracket, brent};
-
-/// The arithmetic–geometric mean of two non-negative numbers.
-///
-/// ```
-/// let g = ltikit::nonlinear::agm(1.0, 2f64.sqrt());
-/// assert!((g - 1.1981402347355922).abs() < 1e-15); // Gauss's constant relation
-/// ```
-pub fn agm(a: f64, b: f64) -> f64 {
-    let (mut a, mut b) = (a, b);
-    for _ in 0..64 {
-        let an = 0.5 * (a + b);
-        let bn = (a * b).sqrt();
-        if (an - bn).abs() <= 2.0 * f64::EPSILON * an {
-            return an;
-        }
-        a = an;
-        b = bn;
-    }
-    a
-}
-
-/// Complete elliptic integral of the first kind K(k) = ∫₀^{π/2} dψ/√(1 − k² sin²ψ), modulus
-/// 0 ≤ k < 1.
-///
-/// ```
-/// let k = ltikit::nonlinear::elliptic_k(0.0).unwrap();
-/// assert!((k - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
-/// // K(1/√2) = Γ(1/4)² / (4√π)
-/// let k = ltikit::nonlinear::elliptic_k(0.5f64.sqrt()).unwrap();
-/// assert!((k - 1.8540746773013719).abs() < 1e-15);
-/// assert!(ltikit::nonlinear::elliptic_k(1.0).is_err());
-/// ```
-pub fn elliptic_k(k: f64) -> Result<f64> {
-    check_finite(|| "the elliptic modulus".into(), k)?;
-    if !(0.0..1.0).contains(&k.abs()) {
-        return Err(LtiError::InvalidParameter {
-            name: "k".into(),
-            value: k,
-            reason: "the elliptic modulus must satisfy |k| < 1 (K is infinite at |k| = 1)".into(),
-        });
-    }
-    // √(1 − k²) as √((1 − k)(1 + k)): no cancellation for k near 1.
-    let kp = ((1.0 - k.abs()) * (1.0 + k.abs())).sqrt();
-    Ok(std::f64::consts::PI / (2.0 * agm(1.0, kp)))
-}
 
 fn check_amplitude(theta0: f64) -> Result<()> {
     check_finite(|| "the amplitude".into(), theta0)?;
@@ -109,26 +65,72 @@ pub fn pendulum_period_simulated(
         return Err(LtiError::invalid("at least one half period is needed"));
     }
     let p = Pendulum::new(pendulum.m, pendulum.l, 0.0, pendulum.g)?;
-    // Generous horizon: the exact period times the number of half periods, doubled.
+    // Horizon: the exact period times the number of half periods (twice what is needed).
     let t_max = pendulum_period_exact(p.omega(), theta0)? * half_periods as f64;
-    let mut crossings: Vec<f64> = Vec::with_capacity(half_periods);
+    let crossings = crossing_times(&p, &[theta0, 0.0], &[0.0], 1, half_periods, t_max, opts)?;
+    if crossings.len() < half_periods {
+        // Can only happen when the tolerances are so loose that the period is badly off.
+        return Err(LtiError::Undefined {
+            what: "the simulated period".into(),
+            reason: format!(
+                "only {} of {half_periods} half periods were completed by t = {t_max}",
+                crossings.len()
+            ),
+        });
+    }
+    Ok(2.0 * crossings[half_periods - 1] / half_periods as f64)
+}
+
+/// The first `count` times in (0, `t_max`] at which state component `component` changes sign
+/// along the solution from x(0) = `x0` under the constant input `u`, located by Brent's method
+/// on the integrator's dense output (to 1e-15 relative). A start exactly at zero is not a
+/// crossing. Fewer than `count` are returned when `t_max` comes first.
+///
+/// ```
+/// use ltikit::nonlinear::{period::crossing_times, models::VanDerPol};
+/// use ltikit::numeric::rk45::Rk45Options;
+/// // On the unit-circle limit cycle x₁ = cos t: crossings at π/2, 3π/2.
+/// let opts = Rk45Options { rtol: 1e-12, atol: 1e-14, ..Default::default() };
+/// let t = crossing_times(&VanDerPol, &[1.0, 0.0], &[], 0, 2, 10.0, &opts).unwrap();
+/// assert!((t[0] - std::f64::consts::FRAC_PI_2).abs() < 1e-10);
+/// assert!((t[1] - 1.5 * std::f64::consts::PI).abs() < 1e-10);
+/// ```
+pub fn crossing_times(
+    sys: &dyn DynSystem,
+    x0: &[f64],
+    u: &[f64],
+    component: usize,
+    count: usize,
+    t_max: f64,
+    opts: &Rk45Options,
+) -> Result<Vec<f64>> {
+    check_point(sys, x0, u)?;
+    if component >= sys.nx() {
+        return Err(LtiError::invalid(format!(
+            "state component {component} does not exist (the model has {} states)",
+            sys.nx()
+        )));
+    }
+    let mut crossings: Vec<f64> = Vec::with_capacity(count);
+    if count == 0 {
+        return Ok(crossings);
+    }
     let mut failure: Option<LtiError> = None;
     integrate(
-        |_t, x, dx| p.f(x, &[0.0], dx),
+        |_t, x, dx| sys.eval_f(x, u, dx),
         0.0,
-        &[theta0, 0.0],
+        x0,
         t_max,
         opts,
         |step| {
             let (ta, tb) = (step.t_start(), step.t_end());
-            let fa = step.state_start()[1];
-            let fb = step.state_end()[1];
-            // θ̇(0) = 0 exactly: the release is not a crossing.
+            let fa = step.state_start()[component];
+            let fb = step.state_end()[component];
             let strict = fa != 0.0 && fb != 0.0 && (fa < 0.0) != (fb < 0.0);
             let at_end = fb == 0.0 && tb > 0.0;
             if strict {
                 match brent(
-                    |t| step.eval_component(t, 1),
+                    |t| step.eval_component(t, component),
                     Bracket {
                         a: ta,
                         b: tb,
@@ -146,7 +148,7 @@ pub fn pendulum_period_simulated(
             } else if at_end {
                 crossings.push(tb);
             }
-            if crossings.len() >= half_periods {
+            if crossings.len() >= count {
                 StepControl::Stop
             } else {
                 StepControl::Continue
@@ -156,17 +158,7 @@ pub fn pendulum_period_simulated(
     if let Some(e) = failure {
         return Err(e);
     }
-    if crossings.len() < half_periods {
-        // Can only happen when the tolerances are so loose that the period is badly off.
-        return Err(LtiError::Undefined {
-            what: "the simulated period".into(),
-            reason: format!(
-                "only {} of {half_periods} half periods were completed by t = {t_max}",
-                crossings.len()
-            ),
-        });
-    }
-    Ok(2.0 * crossings[half_periods - 1] / half_periods as f64)
+    Ok(crossings)
 }
 
 /// One row of the period-against-amplitude table.

@@ -5,24 +5,25 @@ use serde::Serialize;
 
 use crate::error::{LtiError, Result};
 use crate::nonlinear::models::{Lorenz, Pendulum};
-use crate::nonlinear::simulate::{Input, Simulation, simulate};
+use crate::nonlinear::signal::InputSignal;
+use crate::nonlinear::simulate::{Simulation, simulate};
 use crate::nonlinear::system::DynSystem;
 use crate::numeric::rk45::Rk45Options;
 
 /// Simulates one trajectory per start (same input and times) — the curves of a phase portrait.
 ///
 /// ```
-/// use ltikit::nonlinear::{trajectories, sample_times, Input, models::VanDerPol};
+/// use ltikit::nonlinear::{trajectories, sample_times, InputSignal, models::VanDerPol};
 /// use ltikit::numeric::rk45::Rk45Options;
 /// let t = sample_times(10.0, 101).unwrap();
 /// let starts = vec![vec![0.01, 0.0], vec![2.0, 0.0]];
-/// let tr = trajectories(&VanDerPol, &starts, &Input::none(), &t, &Rk45Options::default()).unwrap();
+/// let tr = trajectories(&VanDerPol, &starts, &InputSignal::none(), &t, &Rk45Options::default()).unwrap();
 /// assert_eq!(tr.len(), 2);
 /// ```
 pub fn trajectories(
     sys: &dyn DynSystem,
     starts: &[Vec<f64>],
-    input: &Input,
+    input: &InputSignal,
     times: &[f64],
     opts: &Rk45Options,
 ) -> Result<Vec<Simulation>> {
@@ -107,7 +108,7 @@ pub fn divergence(
     sys: &dyn DynSystem,
     x0a: &[f64],
     x0b: &[f64],
-    input: &Input,
+    input: &InputSignal,
     times: &[f64],
     opts: &Rk45Options,
 ) -> Result<Divergence> {
@@ -149,7 +150,7 @@ pub fn lorenz_divergence(
         lorenz,
         &[1.0, 0.0, 0.0],
         &[1.0 + delta, 0.0, 0.0],
-        &Input::none(),
+        &InputSignal::none(),
         times,
         opts,
     )

@@ -7,7 +7,9 @@ use crate::error::{LtiError, Result};
 use crate::lti::params::{ModelParam, with_overrides};
 use crate::lti::plant_specs;
 use crate::nonlinear::models::{
-    LORENZ_PARAMS, LinearModel, Lorenz, MEMS_PARAMS, Mems, PENDULUM_PARAMS, Pendulum, VanDerPol,
+    DOUBLE_PENDULUM_PARAMS, DoublePendulum, GYROSCOPE_PARAMS, Gyroscope, HEAVY_TOP_PARAMS,
+    HeavyTop, LORENZ_PARAMS, LinearModel, Lorenz, MEMS_PARAMS, Mems, PENDULUM_PARAMS, Pendulum,
+    RIGID_BODY_PARAMS, RigidBody, VanDerPol,
 };
 use crate::nonlinear::system::BoxedSystem;
 
@@ -79,6 +81,38 @@ static NONLINEAR: &[NonlinearSpec] = &[
         equations: "x1' = -x2 - x1 (x1^2 + x2^2 - 1), x2' = x1 - x2 (x1^2 + x2^2 - 1); no input, y = x",
         params: &[],
         build: |_| Ok(Box::new(VanDerPol)),
+    },
+    NonlinearSpec {
+        name: "rigid-body",
+        title: "Free rigid body in body angular momentum",
+        source: "seed eqs. 2.44, 2.48–2.53, 2.82–2.87",
+        equations: "Pi' = Pi x I^-1 Pi, I = diag(I1, I2, I3): Pi1' = (I2-I3)/(I2 I3) Pi2 Pi3, cyclic; x = Pi, no input, y = Pi; conserved E = sum Pi_i^2/(2 I_i), |Pi|^2",
+        params: RIGID_BODY_PARAMS,
+        build: |v| Ok(Box::new(RigidBody::from_values(v)?)),
+    },
+    NonlinearSpec {
+        name: "heavy-top",
+        title: "Axi-symmetric heavy top",
+        source: "seed eqs. 1.101–1.102, 2.63–2.67",
+        equations: "Gamma' = Gamma x Omega, I Omega' = I Omega x Omega + m g l Gamma x e3, I = diag(I1, I1, I3); x = [Gamma, Omega], no input, y = Gamma",
+        params: HEAVY_TOP_PARAMS,
+        build: |v| Ok(Box::new(HeavyTop::from_values(v)?)),
+    },
+    NonlinearSpec {
+        name: "gyroscope",
+        title: "Gimbal gyroscope (gimbal torques in, gimbal angles out)",
+        source: "seed eqs. 1.103–1.107, exercise 2.14",
+        equations: "Il s2^2 theta1'' = u1 - u3 c2 - 2 Il theta1' theta2' s2 c2 + Iz Omega3 theta2' s2, Il theta2'' = u2 + Il theta1'^2 s2 c2 - Iz Omega3 theta1' s2, Iz Omega3' = u3; x = [theta1, theta2, theta1', theta2', Omega3], u = [u1, u2, u3], y = [theta1, theta2]",
+        params: GYROSCOPE_PARAMS,
+        build: |v| Ok(Box::new(Gyroscope::from_values(v)?)),
+    },
+    NonlinearSpec {
+        name: "double-pendulum",
+        title: "Planar double pendulum (point masses on massless rods)",
+        source: "seed example 1.1, fig. 1.4 (equations derived: §2.3.3 is blank)",
+        equations: "M(theta) theta'' = r(theta, theta', tau) from the Lagrangian of two point masses (see the model docs); x = [theta1, theta2, theta1', theta2'], u = [tau] at the pivot, y = [theta1, theta2]",
+        params: DOUBLE_PENDULUM_PARAMS,
+        build: |v| Ok(Box::new(DoublePendulum::from_values(v)?)),
     },
 ];
 

@@ -1,82 +1,19 @@
 //! Simulation of a model with the adaptive Dormand–Prince integrator
-//! ([`crate::numeric::rk45`]): a constant or step input, outputs at requested times from the
-//! dense output.
+//! ([`crate::numeric::rk45`]) under an [`InputSignal`] (constant, step, ramp, exponential,
+//! sine or cosine), outputs at requested times from the dense output.
 //!
-//! A step input u(t) = u₀ for t < t_step, u₁ after is handled by stopping exactly at t_step
-//! and restarting from the state reached there: the right-hand side is discontinuous in t, and
-//! stepping across the jump would make the controller reject steps until it has located it.
+//! An input that starts at t₀ > 0 is handled by stopping exactly at t₀ and restarting from the
+//! state reached there: the right-hand side may jump in t, and stepping across the jump would
+//! make the controller reject steps until it has located it.
 
 use serde::Serialize;
 
+use super::signal::InputSignal;
 use crate::error::{LtiError, Result, check_finite};
-use crate::nonlinear::system::{DynSystem, SystemInfo, check_len, check_point};
+use crate::nonlinear::system::{DynSystem, SystemInfo, check_point};
 use crate::numeric::rk45::{
     DenseStep, Rk45Options, Rk45Stats, StepControl, check_sample_times, integrate,
 };
-
-/// The input signal of a simulation.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Input {
-    /// u(t) = u for all t ≥ 0.
-    Constant(Vec<f64>),
-    /// u(t) = `before` for t < `t_step`, `after` for t ≥ `t_step`.
-    Step {
-        /// Time of the jump.
-        t_step: f64,
-        /// Value before the jump.
-        before: Vec<f64>,
-        /// Value from the jump on.
-        after: Vec<f64>,
-    },
-}
-
-impl Input {
-    /// No input (for autonomous models).
-    pub fn none() -> Self {
-        Input::Constant(Vec::new())
-    }
-
-    /// The value at time t.
-    pub fn at(&self, t: f64) -> &[f64] {
-        match self {
-            Input::Constant(u) => u,
-            Input::Step {
-                t_step,
-                before,
-                after,
-            } => {
-                if t < *t_step {
-                    before
-                } else {
-                    after
-                }
-            }
-        }
-    }
-
-    fn check(&self, nu: usize) -> Result<()> {
-        let check_vec = |u: &[f64]| -> Result<()> {
-            check_len("input", u.len(), nu)?;
-            for (i, &v) in u.iter().enumerate() {
-                check_finite(|| format!("input component {}", i + 1), v)?;
-            }
-            Ok(())
-        };
-        match self {
-            Input::Constant(u) => check_vec(u),
-            Input::Step {
-                t_step,
-                before,
-                after,
-            } => {
-                check_finite(|| "the step time".into(), *t_step)?;
-                check_vec(before)?;
-                check_vec(after)
-            }
-        }
-    }
-}
 
 /// A simulated trajectory.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -97,6 +34,40 @@ pub struct Simulation {
     pub stats: Rk45Stats,
     /// Set when the simulation ended before the last requested time.
     pub stop: Option<SimulationStop>,
+    /// The drift of each conserved quantity ([`SystemInfo::conserved_names`]) over the
+    /// integrator's steps — only for zero input, the condition under which they are
+    /// conserved; empty otherwise.
+    pub conserved: Vec<ConservedDrift>,
+}
+
+/// How far a conserved quantity drifted along a simulation: the integrator's error, since the
+/// exact solution keeps it constant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConservedDrift {
+    /// Its name.
+    pub name: String,
+    /// Its value at t = 0.
+    pub initial: f64,
+    /// max |Q(tₖ) − Q(0)| over the integrator's steps tₖ.
+    pub max_drift: f64,
+    /// The reference magnitude: max(|Q(0)|, the model's natural scale of Q,
+    /// [`SystemInfo::conserved_scales`]).
+    pub reference: f64,
+    /// `max_drift / reference` (`max_drift` itself when the reference is 0).
+    pub relative_drift: f64,
+}
+
+/// The integration segments [ta, tb] and whether u varies on them: one segment, or two when
+/// the input changes at a start time inside (0, t_end) (the right-hand side jumps there, and
+/// stepping across the jump would make the controller reject steps until it has located it).
+fn segments(input: &InputSignal, t_end: f64) -> Vec<(f64, f64, bool)> {
+    if input.is_constant() || input.start >= t_end {
+        vec![(0.0, t_end, false)]
+    } else if input.start > 0.0 {
+        vec![(0.0, input.start, false), (input.start, t_end, true)]
+    } else {
+        vec![(0.0, t_end, true)]
+    }
 }
 
 /// Why and when a simulation ended early.
@@ -155,17 +126,17 @@ pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
 /// by bisection on the dense output to ~1e-14 s) and [`Simulation::stop`] says when and why.
 ///
 /// ```
-/// use ltikit::nonlinear::{simulate, sample_times, Input, models::VanDerPol};
+/// use ltikit::nonlinear::{simulate, sample_times, InputSignal, models::VanDerPol};
 /// use ltikit::numeric::rk45::Rk45Options;
 /// let t = sample_times(20.0, 201).unwrap();
-/// let sim = simulate(&VanDerPol, &[0.1, 0.0], &Input::none(), &t, &Rk45Options::default()).unwrap();
+/// let sim = simulate(&VanDerPol, &[0.1, 0.0], &InputSignal::none(), &t, &Rk45Options::default()).unwrap();
 /// let end = sim.states.last().unwrap();
 /// assert!((end[0].hypot(end[1]) - 1.0).abs() < 1e-6); // on the unit-circle limit cycle
 /// ```
 pub fn simulate(
     sys: &dyn DynSystem,
     x0: &[f64],
-    input: &Input,
+    input: &InputSignal,
     times: &[f64],
     opts: &Rk45Options,
 ) -> Result<Simulation> {
@@ -183,22 +154,24 @@ pub fn simulate(
     }
     check_sample_times(times, 0.0, t_end)?;
 
-    // Segments of constant input: [0, t_step] and [t_step, t_end] for a step inside (0, t_end).
-    let mut segments: Vec<(f64, f64, Vec<f64>)> = Vec::new();
-    match input {
-        Input::Step {
-            t_step,
-            before,
-            after,
-        } if *t_step > 0.0 && *t_step < t_end => {
-            segments.push((0.0, *t_step, before.clone()));
-            segments.push((*t_step, t_end, after.clone()));
-        }
-        _ => segments.push((0.0, t_end, input.at(0.0).to_vec())),
-    }
-
+    let segments = segments(input, t_end);
     let n = sys.nx();
     let check_domain = sys.in_domain(x0);
+    if !check_domain {
+        // Outside the domain the equations may be singular: say so rather than report a NaN.
+        let mut dx = vec![0.0; n];
+        sys.eval_f(x0, &input.at(0.0), &mut dx);
+        if dx.iter().any(|v| !v.is_finite()) {
+            return Err(LtiError::invalid(format!(
+                "the initial state {x0:?} is outside the model's domain{}, where its equations \
+                 are singular",
+                sys.domain_note()
+                    .map(|d| format!(" ({d})"))
+                    .unwrap_or_default()
+            )));
+        }
+    }
+    let mut tracker = DriftTracker::new(sys, x0, input);
     let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
     let mut stats = Rk45Stats::default();
@@ -206,7 +179,8 @@ pub fn simulate(
     let mut x = x0.to_vec();
     let mut next = 0;
     let nseg = segments.len();
-    for (k, (ta, tb, u)) in segments.into_iter().enumerate() {
+    let mut u = vec![0.0; sys.nu()];
+    for (k, &(ta, tb, varying)) in segments.iter().enumerate() {
         // Samples in [ta, tb] (the last segment takes everything left).
         let seg_end = if k + 1 == nseg {
             times.len()
@@ -214,12 +188,18 @@ pub fn simulate(
             next + times[next..].iter().take_while(|&&t| t <= tb).count()
         };
         let outcome = integrate(
-            |_t, xs: &[f64], dx: &mut [f64]| sys.eval_f(xs, &u, dx),
+            |t, xs: &[f64], dx: &mut [f64]| {
+                // A segment before the start holds `before` up to its end (the jump belongs
+                // to the next segment).
+                input.eval(if varying { t.max(ta) } else { ta }, &mut u);
+                sys.eval_f(xs, &u, dx)
+            },
             ta,
             &x,
             tb,
             opts,
             |step| {
+                tracker.observe(sys, step.state_end());
                 let mut buf = vec![0.0; n];
                 let cut = (check_domain && !sys.in_domain(step.state_end()))
                     .then(|| leave_time(sys, step, &mut buf));
@@ -266,7 +246,7 @@ pub fn simulate(
     let mut outputs = Vec::with_capacity(t_out.len());
     for (t, xs) in t_out.iter().zip(&states) {
         let mut y = vec![0.0; sys.ny()];
-        sys.eval_h(xs, input.at(*t), &mut y);
+        sys.eval_h(xs, &input.at(*t), &mut y);
         outputs.push(y);
     }
     Ok(Simulation {
@@ -278,7 +258,69 @@ pub fn simulate(
         outputs,
         stats,
         stop,
+        conserved: tracker.finish(sys),
     })
+}
+
+/// The running drift of the conserved quantities (tracked only for zero input).
+struct DriftTracker {
+    names: Vec<String>,
+    initial: Vec<f64>,
+    buf: Vec<f64>,
+    drift: Vec<f64>,
+}
+
+impl DriftTracker {
+    fn new(sys: &dyn DynSystem, x0: &[f64], input: &InputSignal) -> Self {
+        let names = if input.is_zero() {
+            sys.conserved_names()
+        } else {
+            Vec::new()
+        };
+        let mut initial = vec![0.0; names.len()];
+        if !names.is_empty() {
+            sys.eval_conserved(x0, &mut initial);
+        }
+        DriftTracker {
+            buf: initial.clone(),
+            drift: vec![0.0; names.len()],
+            names,
+            initial,
+        }
+    }
+
+    fn observe(&mut self, sys: &dyn DynSystem, x: &[f64]) {
+        if self.drift.is_empty() {
+            return;
+        }
+        sys.eval_conserved(x, &mut self.buf);
+        for ((d, c), c0) in self.drift.iter_mut().zip(&self.buf).zip(&self.initial) {
+            *d = d.max((c - c0).abs());
+        }
+    }
+
+    fn finish(self, sys: &dyn DynSystem) -> Vec<ConservedDrift> {
+        let scales = sys.conserved_scales();
+        self.names
+            .into_iter()
+            .zip(self.initial.iter().zip(&self.drift))
+            .enumerate()
+            .map(|(i, (name, (&initial, &max_drift)))| {
+                let reference = initial.abs().max(scales.get(i).copied().unwrap_or(0.0));
+                ConservedDrift {
+                    name,
+                    initial,
+                    max_drift,
+                    reference,
+                    relative_drift: if reference > 0.0 {
+                        max_drift / reference
+                    } else {
+                        max_drift
+                    },
+                }
+            })
+            .collect()
+    }
 }
 
 /// The last time in the step at which the state is still in the domain (bisection on the

@@ -13,8 +13,8 @@
 //! algorithms ([`crate::nonlinear::equilibria()`], [`crate::nonlinear::linearize()`],
 //! [`crate::nonlinear::simulate()`]) and the model registry (`Box<dyn DynSystem>`) use.
 
-use nalgebra::DMatrix;
-use num_dual::{Dual64, DualNum};
+use nalgebra::{DMatrix, DVector};
+use num_dual::{Dual64, DualNum, HyperDual64};
 
 use crate::error::{LtiError, Result, check_finite};
 
@@ -82,6 +82,45 @@ pub trait SystemInfo {
     fn in_domain(&self, _x: &[f64]) -> bool {
         true
     }
+
+    /// What the domain's boundary is, in words ("the plates touch, l ≤ 0"), for the error
+    /// when a simulation starts outside it where the equations are singular. Default `None`.
+    fn domain_note(&self) -> Option<String> {
+        None
+    }
+
+    /// The initial state `ltikit simulate` uses when none is given (default: zeros). The seed's
+    /// where it gives one (Lorenz from [1, 0, 0], the rigid body from [0.6, −1, 2]).
+    fn default_initial_state(&self) -> Vec<f64> {
+        vec![0.0; self.nx()]
+    }
+
+    /// The simulation horizon (s) used when none is given (default 10 s).
+    fn default_horizon(&self) -> f64 {
+        10.0
+    }
+
+    /// Names of the quantities conserved along every solution with zero input (computed by
+    /// [`NonlinearSystem::conserved`]); empty when there are none (the default) or when the
+    /// parameters break them (damping). The **first** plays the energy in the
+    /// energy–Casimir test ([`crate::nonlinear::energy_casimir()`]); the others (Casimirs,
+    /// momenta) are the constraints it is extremised on.
+    fn conserved_names(&self) -> Vec<String> {
+        Vec::new()
+    }
+
+    /// A natural magnitude of each conserved quantity (e.g. the depth of a potential well),
+    /// used as the reference of the relative drift when |Q(0)| is smaller (an energy whose
+    /// zero is arbitrary can start at 0). Default: none (the reference is |Q(0)|).
+    fn conserved_scales(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// A sentence about the equilibria that the list cannot say (a continuum of them, a
+    /// family of which only representatives are listed); `None` by default.
+    fn equilibria_note(&self) -> Option<String> {
+        None
+    }
 }
 
 /// A nonlinear model ẋ = f(x, u), y = h(x, u), generic over the scalar type.
@@ -116,6 +155,11 @@ pub trait NonlinearSystem: SystemInfo {
     fn f<D: Scalar>(&self, x: &[D], u: &[D], dx: &mut [D]);
     /// Writes y = h(x, u) into `y` (length [`SystemInfo::ny`]).
     fn h<D: Scalar>(&self, x: &[D], u: &[D], y: &mut [D]);
+
+    /// Writes the conserved quantities named by [`SystemInfo::conserved_names`] at x into `c`
+    /// (same length). Generic like `f`, so their gradients and Hessians are exact (AD).
+    /// Default: none.
+    fn conserved<D: Scalar>(&self, _x: &[D], _c: &mut [D]) {}
 }
 
 /// The object-safe view of a model: `f64` evaluation and exact Jacobians.
@@ -132,6 +176,68 @@ pub trait DynSystem: SystemInfo {
     fn jacobian_f(&self, x: &[f64], u: &[f64]) -> (DMatrix<f64>, DMatrix<f64>);
     /// (∂h/∂x, ∂h/∂u) at (x, u): the C (p × n) and D (p × m) of the linearisation.
     fn jacobian_h(&self, x: &[f64], u: &[f64]) -> (DMatrix<f64>, DMatrix<f64>);
+    /// The conserved quantities at x (length: [`SystemInfo::conserved_names`]).
+    fn eval_conserved(&self, x: &[f64], c: &mut [f64]);
+    /// Value, gradient and Hessian of every conserved quantity at x, exact (hyper-dual
+    /// numbers: one evaluation per entry of the upper triangle).
+    fn conserved_derivatives(&self, x: &[f64]) -> Vec<Derivatives2>;
+}
+
+/// Value, gradient and Hessian of a scalar function at a point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Derivatives2 {
+    /// The value.
+    pub value: f64,
+    /// ∇q (length n).
+    pub gradient: DVector<f64>,
+    /// ∇²q (n × n, symmetric).
+    pub hessian: DMatrix<f64>,
+}
+
+/// Second derivatives of the conserved quantities by hyper-dual numbers: seeding ε₁ on x_i and
+/// ε₂ on x_j gives ∂²q/∂x_i∂x_j in the ε₁ε₂ part, exactly.
+fn hyperdual_derivatives<S: NonlinearSystem + ?Sized>(sys: &S, x: &[f64]) -> Vec<Derivatives2> {
+    let k = sys.conserved_names().len();
+    let n = x.len();
+    let zero = HyperDual64::new(0.0, 0.0, 0.0, 0.0);
+    let mut xd: Vec<HyperDual64> = x
+        .iter()
+        .map(|&v| HyperDual64::new(v, 0.0, 0.0, 0.0))
+        .collect();
+    let mut out = vec![zero; k];
+    let mut res: Vec<Derivatives2> = (0..k)
+        .map(|_| Derivatives2 {
+            value: 0.0,
+            gradient: DVector::zeros(n),
+            hessian: DMatrix::zeros(n, n),
+        })
+        .collect();
+    if n == 0 {
+        sys.conserved(&xd, &mut out);
+        for (r, o) in res.iter_mut().zip(&out) {
+            r.value = o.re;
+        }
+        return res;
+    }
+    for i in 0..n {
+        for j in i..n {
+            xd[i].eps1 = 1.0;
+            xd[j].eps2 = 1.0;
+            out.fill(zero);
+            sys.conserved(&xd, &mut out);
+            for (r, o) in res.iter_mut().zip(&out) {
+                r.value = o.re;
+                r.hessian[(i, j)] = o.eps1eps2;
+                r.hessian[(j, i)] = o.eps1eps2;
+                if i == j {
+                    r.gradient[i] = o.eps1;
+                }
+            }
+            xd[i].eps1 = 0.0;
+            xd[j].eps2 = 0.0;
+        }
+    }
+    res
 }
 
 /// Which map to differentiate.
@@ -201,6 +307,14 @@ impl<T: NonlinearSystem + ?Sized> DynSystem for T {
     fn jacobian_h(&self, x: &[f64], u: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) {
         ad_jacobian(self, Map::H, x, u)
     }
+
+    fn eval_conserved(&self, x: &[f64], c: &mut [f64]) {
+        self.conserved(x, c)
+    }
+
+    fn conserved_derivatives(&self, x: &[f64]) -> Vec<Derivatives2> {
+        hyperdual_derivatives(self, x)
+    }
 }
 
 /// A model that can be shared between threads and handed out by name.
@@ -253,6 +367,23 @@ pub fn derivative(sys: &dyn DynSystem, x: &[f64], u: &[f64]) -> Result<Vec<f64>>
     let mut dx = vec![0.0; sys.nx()];
     sys.eval_f(x, u, &mut dx);
     Ok(dx)
+}
+
+/// The conserved quantities of a model at x ([`SystemInfo::conserved_names`] order), with
+/// dimension and finiteness checks.
+///
+/// ```
+/// use ltikit::nonlinear::{conserved_quantities, models::RigidBody};
+/// let body = RigidBody::new(3.0, 2.0, 1.0).unwrap();
+/// let c = conserved_quantities(&body, &[0.6, -1.0, 2.0]).unwrap();
+/// // E = ½(0.36/3 + 1/2 + 4/1) (seed eq. 2.51), |Π|² = 5.36 (eq. 2.53)
+/// assert!((c[0] - 2.31).abs() < 1e-15 && (c[1] - 5.36).abs() < 1e-14);
+/// ```
+pub fn conserved_quantities(sys: &dyn DynSystem, x: &[f64]) -> Result<Vec<f64>> {
+    check_point(sys, x, &vec![0.0; sys.nu()])?;
+    let mut c = vec![0.0; sys.conserved_names().len()];
+    sys.eval_conserved(x, &mut c);
+    Ok(c)
 }
 
 /// The four Jacobians at a point.

@@ -93,11 +93,16 @@ pub fn exponent_range(values: impl Iterator<Item = f64>) -> Option<(i32, i32)> {
 
 /// 2-norm of the values without overflow or harmful underflow: scaled by the power of two just
 /// above the largest magnitude, which is exact (bitwise the naive `sqrt(Σx²)` whenever that
-/// neither overflows nor underflows). Returns (norm, largest magnitude).
-fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
+/// neither overflows nor underflows). Returns (norm, largest magnitude, smallest non-zero
+/// magnitude).
+fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> (f64, f64, f64) {
     let big = values.clone().fold(0.0f64, |m, x| m.max(x.abs()));
+    let small = values
+        .clone()
+        .filter(|x| *x != 0.0)
+        .fold(f64::INFINITY, |m, x| m.min(x.abs()));
     let Some(e) = exponent(big) else {
-        return (0.0, 0.0);
+        return (0.0, 0.0, 0.0);
     };
     let sum: f64 = values
         .map(|x| {
@@ -105,11 +110,12 @@ fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
             y * y
         })
         .sum();
-    (ldexp(sum.sqrt(), e), big)
+    (ldexp(sum.sqrt(), e), big, small)
 }
 
 /// Balances `m` in place by a diagonal similarity with powers of two, m ← D⁻¹·m·D (exact: no
-/// rounding), and returns the diagonal of D. See the [module docs](self).
+/// rounding — a step that would push an entry into the subnormal range or overflow is not
+/// taken), and returns the diagonal of D. See the [module docs](self).
 ///
 /// The input must be square and finite; the result is finite.
 ///
@@ -133,8 +139,8 @@ pub fn balance(m: &mut DMatrix<f64>) -> Vec<f64> {
         let mut converged = true;
         #[allow(clippy::needless_range_loop)] // i indexes the matrix, d_exp and the row at once
         for i in 0..n {
-            let (n_col, col_max) = scaled_norm(m.column(i).iter().copied());
-            let (n_row, row_max) = scaled_norm(m.row(i).iter().copied());
+            let (n_col, col_max, col_min) = scaled_norm(m.column(i).iter().copied());
+            let (n_row, row_max, row_min) = scaled_norm(m.row(i).iter().copied());
             if n_col == 0.0 || n_row == 0.0 {
                 continue;
             }
@@ -168,9 +174,12 @@ pub fn balance(m: &mut DMatrix<f64>) -> Vec<f64> {
                 continue;
             }
             let new_exp = d_exp[i] + k;
+            // Keep the similarity exact: no entry may overflow or lose bits to underflow.
             if new_exp.abs() > MAX_SCALE_EXP
                 || !ldexp(col_max, k).is_finite()
                 || !ldexp(row_max, -k).is_finite()
+                || (k < 0 && ldexp(col_min, k) < f64::MIN_POSITIVE)
+                || (k > 0 && ldexp(row_min, -k) < f64::MIN_POSITIVE)
             {
                 continue;
             }

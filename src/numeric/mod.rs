@@ -6,6 +6,7 @@
 //! [`Complex64`](num_complex::Complex64) and nalgebra matrices.
 
 pub mod balance;
+pub mod complex;
 pub mod dd;
 pub mod eig;
 pub mod expm;

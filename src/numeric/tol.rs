@@ -10,3 +10,7 @@ pub const AXIS_REL_TOL: f64 = 1e-9;
 /// Relative tolerance under which two computed roots are the same root: a numerator root
 /// cancels a denominator root, an input pole coincides with a system pole.
 pub const CANCEL_REL_TOL: f64 = 1e-8;
+
+/// Relative size under which a computed coefficient is rounding noise in a display (a
+/// linearised transfer function's structurally zero terms).
+pub const ZERO_REL_TOL: f64 = 1e-12;

@@ -218,7 +218,17 @@ impl Axis {
         let mut ticks = Vec::new();
         let mut minor = Vec::new();
         if decades.len() >= 2 {
-            let every = decades.len().div_ceil(max_ticks.max(1)).max(1) as i64;
+            // Labels every 1, 2, 5, 10, 20, 50, … decades; over many decades the grid marks
+            // fifths of the labelled step instead of every decade (600 decades would grey the
+            // whole panel).
+            let need = decades.len().div_ceil(max_ticks.max(1)).max(1) as i64;
+            let every = [1, 2, 5]
+                .iter()
+                .flat_map(|&m| (0..18).map(move |e| m * 10i64.pow(e)))
+                .filter(|&s| s >= need)
+                .min()
+                .unwrap_or(need);
+            let minor_every = if every <= 5 { 1 } else { every / 5 };
             for &k in &decades {
                 let v = 10f64.powi(k as i32);
                 if k.rem_euclid(every) == 0 {
@@ -226,7 +236,7 @@ impl Axis {
                         v,
                         label: format!("10^{{{k}}}"),
                     });
-                } else {
+                } else if k.rem_euclid(minor_every) == 0 {
                     minor.push(v);
                 }
             }
@@ -328,6 +338,30 @@ mod tests {
         let a = Axis::degrees(-1000.0, 0.0, 8);
         assert!(a.ticks.iter().all(|t| (t.v / 90.0).fract().abs() < 1e-12));
         assert!(a.ticks.len() <= 9);
+    }
+
+    #[test]
+    fn log_ticks_over_many_decades_are_round() {
+        // 601 decades, at most 9 labels: every 100 decades, grid every 20.
+        let a = Axis::log(1e-300, 1e300, 9);
+        let labels: Vec<&str> = a.ticks.iter().map(|t| t.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            [
+                "10^{-300}",
+                "10^{-200}",
+                "10^{-100}",
+                "10^{0}",
+                "10^{100}",
+                "10^{200}",
+                "10^{300}"
+            ]
+        );
+        assert_eq!(a.minor.len(), 30 - 6);
+        // 13 decades, at most 10 labels: every second decade, every decade in the grid.
+        let a = Axis::log(1e-6, 1e6, 10);
+        assert_eq!(a.ticks.len(), 7);
+        assert_eq!(a.minor.len(), 6);
     }
 
     #[test]

@@ -4,17 +4,18 @@
 use std::path::Path;
 
 use super::axes::Axis;
+use super::bode_margins::mark_margins;
 use super::frame::Frame;
 use super::layout::{
-    bottom_margin, bounds, draw_title, left_margin, right_margin, tick_targets, top_margin,
+    bottom_margin, bounds, check_span, draw_title, left_margin, right_margin, tick_targets,
+    top_margin,
 };
 use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
-use super::raster::{Canvas, HAlign, VAlign};
-use super::style::{LineStyle, MarkerShape, Theme, series_color};
-use super::{Color, PlotOptions, render};
+use super::raster::Canvas;
+use super::style::{LineStyle, Theme, series_color};
+use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::{BodeAsymptotes, FrequencyResponse, Margins};
 use crate::error::{LtiError, Result};
-use crate::poly::fmt_sig;
 
 /// One plant on a Bode diagram.
 ///
@@ -77,7 +78,7 @@ impl<'a> BodeSeries<'a> {
 }
 
 /// Linear interpolation of `ys` at `w` on log ω.
-fn interp_log(ws: &[f64], ys: &[f64], w: f64) -> Option<f64> {
+pub(super) fn interp_log(ws: &[f64], ys: &[f64], w: f64) -> Option<f64> {
     let x = w.log10();
     let k = ws.windows(2).position(|p| p[0] <= w && w <= p[1])?;
     let (a, b) = (ws[k].log10(), ws[k + 1].log10());
@@ -99,6 +100,7 @@ fn check(series: &[BodeSeries]) -> Result<()> {
         ));
     }
     for (k, s) in series.iter().enumerate() {
+        check_label(k, s.label)?;
         let r = s.response;
         let n = r.w.len();
         if r.magnitude_db.len() != n || r.phase_deg.len() != n {
@@ -137,8 +139,9 @@ fn check(series: &[BodeSeries]) -> Result<()> {
 /// to the −180° reference, with the values listed. Asymptotes are drawn dashed. Points that
 /// are not finite (−∞ dB at a zero on the axis) break the curve.
 ///
-/// Errors: no series, mismatched lengths, fewer than two finite points, bad options, an
-/// unwritable path ([`LtiError::Plot`] / [`LtiError::Io`]); no file is left behind.
+/// Errors: no series, mismatched lengths, fewer than two finite points, bad options, a title
+/// or label longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an unwritable
+/// path ([`LtiError::Plot`] / [`LtiError::Io`]); no file is left behind.
 ///
 /// ```no_run
 /// use ltikit::analysis::FrequencyResponse;
@@ -165,14 +168,38 @@ pub fn bode_png(path: impl AsRef<Path>, series: &[BodeSeries], opts: &PlotOption
     })
 }
 
-fn draw(
-    c: &mut Canvas,
-    th: &Theme,
-    series: &[BodeSeries],
-    opts: &PlotOptions,
-    title: Option<&str>,
-) -> Result<()> {
-    let color_of = |k: usize| series[k].color.unwrap_or_else(|| series_color(k));
+/// The colour of series `k`: its own, or the palette's.
+fn color_of(series: &[BodeSeries], k: usize) -> Color {
+    series[k].color.unwrap_or_else(|| series_color(k))
+}
+
+/// The name of series `k` in legends: its label or "G1", "G2", ….
+pub(super) fn name_of(s: &BodeSeries, k: usize) -> String {
+    s.label
+        .map(str::to_string)
+        .unwrap_or_else(|| format!("G{}", k + 1))
+}
+
+/// The data ranges of a Bode diagram.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Ranges {
+    /// ω range (positive frequencies).
+    pub w: (f64, f64),
+    /// Magnitude range (dB), padded.
+    pub mag: (f64, f64),
+    /// Phase range (degrees).
+    pub phase: (f64, f64),
+}
+
+impl Ranges {
+    /// Whether ω lies inside the drawn frequency range.
+    pub fn in_range(&self, w: f64) -> bool {
+        w >= self.w.0 && w <= self.w.1
+    }
+}
+
+/// Data ranges, including the margin bars and the asymptotes inside the ω range.
+fn data_ranges(series: &[BodeSeries]) -> Result<Ranges> {
     let finite_w = |s: &BodeSeries| {
         s.response
             .w
@@ -181,10 +208,8 @@ fn draw(
             .filter(|w| *w > 0.0)
             .collect::<Vec<_>>()
     };
-    let (wlo, whi) = bounds(series.iter().flat_map(finite_w)).unwrap_or((0.1, 10.0));
-    let in_range = |w: f64| w >= wlo && w <= whi;
-
-    // Data ranges, including the margin bars and the asymptotes inside the ω range.
+    let w = bounds(series.iter().flat_map(finite_w)).unwrap_or((0.1, 10.0));
+    let in_range = |x: f64| x >= w.0 && x <= w.1;
     let mut mags: Vec<f64> = Vec::new();
     let mut phases: Vec<f64> = Vec::new();
     for s in series {
@@ -220,20 +245,35 @@ fn draw(
     let pad = 0.04 * (mhi - mlo).max(1.0);
     mlo -= pad;
     mhi += pad;
-    let (plo, phi) = bounds(phases.iter().copied()).unwrap_or((-1.0, 1.0));
+    let phase = bounds(phases.iter().copied()).unwrap_or((-1.0, 1.0));
+    check_span("magnitudes (dB)", (mlo, mhi))?;
+    check_span("phases (degrees)", phase)?;
+    Ok(Ranges {
+        w,
+        mag: (mlo, mhi),
+        phase,
+    })
+}
 
-    // Layout: title, magnitude panel, small gap, phase panel, x labels.
+/// The magnitude panel over the phase panel, sharing the ω axis.
+pub(super) struct Panels {
+    pub mag: Frame,
+    pub ph: Frame,
+}
+
+/// Layout: title, magnitude panel, small gap, phase panel, x labels.
+fn layout_panels(c: &Canvas, th: &Theme, has_title: bool, r: &Ranges) -> Panels {
     let (cw, ch) = (f64::from(c.w), f64::from(c.h));
     let gap = 14.0 * th.s;
     let db_mults = [1.0, 2.0, 5.0, 10.0];
     let make = |w: f64, h_panel: f64| {
         let (nx, ny) = tick_targets(w, h_panel, th);
-        let x = Axis::log(wlo, whi, nx);
-        let mag = Axis::linear_from(mlo, mhi, ny.max(3), false, &db_mults);
-        let ph = Axis::degrees(plo, phi, ny.max(3));
+        let x = Axis::log(r.w.0, r.w.1, nx);
+        let mag = Axis::linear_from(r.mag.0, r.mag.1, ny.max(3), false, &db_mults);
+        let ph = Axis::degrees(r.phase.0, r.phase.1, ny.max(3));
         (x, mag, ph)
     };
-    let top = top_margin(th, title.is_some(), false);
+    let top = top_margin(th, has_title, false);
     let mut axes = make(cw * 0.8, ch * 0.35);
     let mut frame = (0.0, 0.0, 0.0, 0.0);
     for _ in 0..2 {
@@ -247,45 +287,52 @@ fn draw(
     }
     let (l, w, h, _) = frame;
     let (x_axis, mag_axis, ph_axis) = axes;
-    let mag = Frame {
-        x0: l,
-        y0: top,
-        x1: l + w,
-        y1: top + h,
-        x: x_axis.clone(),
-        y: mag_axis,
-    };
-    let ph = Frame {
-        x0: l,
-        y0: top + h + gap,
-        x1: l + w,
-        y1: top + 2.0 * h + gap,
-        x: x_axis,
-        y: ph_axis,
-    };
-
-    if opts.grid {
-        mag.draw_grid(c, th);
-        ph.draw_grid(c, th);
+    Panels {
+        mag: Frame {
+            x0: l,
+            y0: top,
+            x1: l + w,
+            y1: top + h,
+            x: x_axis.clone(),
+            y: mag_axis,
+        },
+        ph: Frame {
+            x0: l,
+            y0: top + h + gap,
+            x1: l + w,
+            y1: top + 2.0 * h + gap,
+            x: x_axis,
+            y: ph_axis,
+        },
     }
-    let thin = (th.line * 0.6).max(1.0);
-    // 0 dB line.
-    if mag.y.lo < 0.0 && mag.y.hi > 0.0 {
-        mag.hline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
-    }
+}
 
-    // Asymptotes under the curves.
+/// Grids and the 0 dB line.
+fn draw_background(c: &mut Canvas, th: &Theme, p: &Panels, grid: bool) {
+    if grid {
+        p.mag.draw_grid(c, th);
+        p.ph.draw_grid(c, th);
+    }
+    if p.mag.y.lo < 0.0 && p.mag.y.hi > 0.0 {
+        let thin = (th.line * 0.6).max(1.0);
+        p.mag
+            .hline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
+    }
+}
+
+/// Asymptotes, dashed and lighter, under the curves.
+fn draw_asymptotes(c: &mut Canvas, th: &Theme, series: &[BodeSeries], p: &Panels) {
     for (k, s) in series.iter().enumerate() {
         if let Some(a) = s.asymptotes {
-            let col = color_of(k).lighten(0.25);
-            mag.plot_line(
+            let col = color_of(series, k).lighten(0.25);
+            p.mag.plot_line(
                 c,
                 a.magnitude_db.iter().copied(),
                 th.line * 0.8,
                 col,
                 LineStyle::Dashed,
             );
-            ph.plot_line(
+            p.ph.plot_line(
                 c,
                 a.phase_deg.iter().copied(),
                 th.line * 0.8,
@@ -294,161 +341,69 @@ fn draw(
             );
         }
     }
+}
 
-    // Curves.
+/// The points (ω, y) with y = NaN (a break in the curve) where ω ≤ 0.
+fn positive_w<'a>(w: &'a [f64], ys: &'a [f64]) -> impl Iterator<Item = (f64, f64)> + 'a {
+    w.iter()
+        .zip(ys)
+        .map(|(&w, &y)| (w, if w > 0.0 { y } else { f64::NAN }))
+}
+
+/// Pixel points that legends should not hide.
+pub(super) type Avoid = Vec<(f64, f64)>;
+
+/// The magnitude and phase curves; returns the pixel points to keep legends off (magnitude,
+/// phase).
+fn draw_curves(c: &mut Canvas, th: &Theme, series: &[BodeSeries], p: &Panels) -> (Avoid, Avoid) {
     let mut avoid_mag = Vec::new();
     let mut avoid_ph = Vec::new();
     for (k, s) in series.iter().enumerate() {
         let r = s.response;
-        let n = r.w.len();
-        let mp = (0..n).map(|i| {
-            (
-                r.w[i],
-                if r.w[i] > 0.0 {
-                    r.magnitude_db[i]
-                } else {
-                    f64::NAN
-                },
-            )
-        });
-        let pp = (0..n).map(|i| {
-            (
-                r.w[i],
-                if r.w[i] > 0.0 {
-                    r.phase_deg[i]
-                } else {
-                    f64::NAN
-                },
-            )
-        });
-        for run in mag.clip_polyline(mp) {
-            c.stroke(&run, th.line, color_of(k), &[]);
+        for run in p.mag.clip_polyline(positive_w(&r.w, &r.magnitude_db)) {
+            c.stroke(&run, th.line, color_of(series, k), &[]);
             avoid_mag.extend(sample_run(&run, 6.0));
         }
-        for run in ph.clip_polyline(pp) {
-            c.stroke(&run, th.line, color_of(k), &[]);
+        for run in p.ph.clip_polyline(positive_w(&r.w, &r.phase_deg)) {
+            c.stroke(&run, th.line, color_of(series, k), &[]);
             avoid_ph.extend(sample_run(&run, 6.0));
         }
     }
+    (avoid_mag, avoid_ph)
+}
 
-    // Margins.
-    let mut info: Vec<LegendEntry> = Vec::new();
-    let several = series.len() > 1;
-    for (k, s) in series.iter().enumerate() {
-        let Some(m) = s.margins else { continue };
-        let col = color_of(k);
-        let r = s.response;
-        let prefix = if several {
-            format!(
-                "{}: ",
-                s.label
-                    .map(str::to_string)
-                    .unwrap_or_else(|| format!("G{}", k + 1))
-            )
-        } else {
-            String::new()
-        };
-        let fmt_w = |w: f64| format!("ω = {} rad/s", fmt_sig(w, 3));
-        match (m.gain_margin_db, m.phase_crossover) {
-            (Some(gm), Some(wpc)) if gm.is_finite() => {
-                if in_range(wpc) {
-                    mag.vline(c, wpc, thin, col, LineStyle::Dotted);
-                    ph.vline(c, wpc, thin, col, LineStyle::Dotted);
-                    mag.plot_line(
-                        c,
-                        [(wpc, -gm), (wpc, 0.0)],
-                        th.line * 1.4,
-                        col,
-                        LineStyle::Solid,
-                    );
-                    mag.plot_marker(c, (wpc, -gm), MarkerShape::Disc, 4.0 * th.s, col, th.line);
-                    if let Some(p) = interp_log(&r.w, &r.phase_deg, wpc) {
-                        ph.plot_marker(c, (wpc, p), MarkerShape::Disc, 4.0 * th.s, col, th.line);
-                        ph.hline(c, p, thin, Color(120, 120, 120), LineStyle::Dashed);
-                    }
-                    let p = mag.px((wpc, -gm / 2.0));
-                    if mag.contains((wpc, -gm / 2.0)) {
-                        c.text_on_box(
-                            &format!("GM {} dB", fmt_margin(gm, 3)),
-                            (p.0 + 8.0 * th.s, p.1),
-                            th.note,
-                            col,
-                            (HAlign::Left, VAlign::Middle),
-                        )?;
-                    }
-                }
-                info.push(LegendEntry::text(
-                    format!("{prefix}GM = {} dB at {}", fmt_margin(gm, 4), fmt_w(wpc)),
-                    col,
-                ));
-            }
-            _ => info.push(LegendEntry::text(
-                format!("{prefix}GM = ∞ (no phase crossover)"),
-                col,
-            )),
-        }
-        match (m.phase_margin_deg, m.gain_crossover) {
-            (Some(pm), Some(wgc)) if pm.is_finite() => {
-                if in_range(wgc) {
-                    mag.vline(c, wgc, thin, col, LineStyle::Dotted);
-                    ph.vline(c, wgc, thin, col, LineStyle::Dotted);
-                    mag.plot_marker(c, (wgc, 0.0), MarkerShape::Disc, 4.0 * th.s, col, th.line);
-                    if let Some(p) = interp_log(&r.w, &r.phase_deg, wgc) {
-                        let reference = p - pm;
-                        ph.hline(c, reference, thin, Color(120, 120, 120), LineStyle::Dashed);
-                        ph.plot_line(
-                            c,
-                            [(wgc, reference), (wgc, p)],
-                            th.line * 1.4,
-                            col,
-                            LineStyle::Solid,
-                        );
-                        ph.plot_marker(c, (wgc, p), MarkerShape::Disc, 4.0 * th.s, col, th.line);
-                        let mid = (wgc, reference + pm / 2.0);
-                        if ph.contains(mid) {
-                            let q = ph.px(mid);
-                            c.text_on_box(
-                                &format!("PM {}°", fmt_margin(pm, 3)),
-                                (q.0 + 8.0 * th.s, q.1),
-                                th.note,
-                                col,
-                                (HAlign::Left, VAlign::Middle),
-                            )?;
-                        }
-                    }
-                }
-                info.push(LegendEntry::text(
-                    format!("{prefix}PM = {}° at {}", fmt_margin(pm, 4), fmt_w(wgc)),
-                    col,
-                ));
-            }
-            _ => info.push(LegendEntry::text(
-                format!("{prefix}PM = ∞ (no gain crossover)"),
-                col,
-            )),
-        }
-    }
-
-    mag.draw_axes(c, th, false, true)?;
-    ph.draw_axes(c, th, true, true)?;
-    mag.draw_axis_titles(c, th, None, Some("Magnitude (dB)"), th.pad)?;
-    ph.draw_axis_titles(
+/// Axis frames, ticks and titles of both panels.
+fn draw_axes(c: &mut Canvas, th: &Theme, p: &Panels) -> Result<()> {
+    p.mag.draw_axes(c, th, false, true)?;
+    p.ph.draw_axes(c, th, true, true)?;
+    p.mag
+        .draw_axis_titles(c, th, None, Some("Magnitude (dB)"), th.pad)?;
+    p.ph.draw_axis_titles(
         c,
         th,
         Some("Frequency ω (rad/s)"),
         Some("Phase (deg)"),
         th.pad,
-    )?;
+    )
+}
 
-    // Legend (plants, asymptotes) in the magnitude panel; margin values in the phase panel.
+/// Legend (plants, asymptotes) in the magnitude panel; margin values in the phase panel.
+fn draw_legends(
+    c: &mut Canvas,
+    th: &Theme,
+    series: &[BodeSeries],
+    p: &Panels,
+    avoid: &(Avoid, Avoid),
+    info: &[LegendEntry],
+) -> Result<()> {
     let mut legend: Vec<LegendEntry> = Vec::new();
-    if several || series[0].asymptotes.is_some() {
+    if series.len() > 1 || series[0].asymptotes.is_some() {
         for (k, s) in series.iter().enumerate() {
-            let name = s
-                .label
-                .map(str::to_string)
-                .unwrap_or_else(|| format!("G{}", k + 1));
-            legend.push(LegendEntry::line(name, color_of(k), LineStyle::Solid));
+            legend.push(LegendEntry::line(
+                name_of(s, k),
+                color_of(series, k),
+                LineStyle::Solid,
+            ));
         }
     }
     if series.iter().any(|s| s.asymptotes.is_some()) {
@@ -464,13 +419,13 @@ fn draw(
         Corner::TopLeft,
         Corner::BottomRight,
     ];
-    draw_legend(c, &mag, th, &legend, &avoid_mag, &corners, &[])?;
+    draw_legend(c, &p.mag, th, &legend, &avoid.0, &corners, &[])?;
     draw_legend(
         c,
-        &ph,
+        &p.ph,
         th,
-        &info,
-        &avoid_ph,
+        info,
+        &avoid.1,
         &[
             Corner::BottomLeft,
             Corner::TopRight,
@@ -479,13 +434,27 @@ fn draw(
         ],
         &[],
     )?;
+    Ok(())
+}
+
+fn draw(
+    c: &mut Canvas,
+    th: &Theme,
+    series: &[BodeSeries],
+    opts: &PlotOptions,
+    title: Option<&str>,
+) -> Result<()> {
+    let ranges = data_ranges(series)?;
+    let panels = layout_panels(c, th, title.is_some(), &ranges);
+    draw_background(c, th, &panels, opts.grid);
+    draw_asymptotes(c, th, series, &panels);
+    let mut avoid = draw_curves(c, th, series, &panels);
+    let colors: Vec<Color> = (0..series.len()).map(|k| color_of(series, k)).collect();
+    let info = mark_margins(c, th, series, &colors, &panels, &ranges, &mut avoid)?;
+    draw_axes(c, th, &panels)?;
+    draw_legends(c, th, series, &panels, &avoid, &info)?;
     if let Some(t) = title {
         draw_title(c, th, t)?;
     }
     Ok(())
-}
-
-/// A margin in dB or degrees for display: rounding residue below 1e-9 shows as 0.
-fn fmt_margin(x: f64, sig: usize) -> String {
-    fmt_sig(if x.abs() < 1e-9 { 0.0 } else { x }, sig)
 }

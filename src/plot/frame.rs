@@ -2,8 +2,9 @@
 
 use super::axes::Axis;
 use super::layout::tick_label_height;
-use super::raster::{Canvas, HAlign, VAlign, cap_height};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
+use super::text::{HAlign, Measured, VAlign, cap_height};
 use crate::error::Result;
 use crate::plot::Color;
 
@@ -266,7 +267,8 @@ impl Frame {
         Ok(())
     }
 
-    /// Axis titles: x below the tick labels, y rotated left of them.
+    /// Axis titles: x below the tick labels, y rotated left of them; each is cut with an
+    /// ellipsis where longer than its side of the frame.
     pub fn draw_axis_titles(
         &self,
         c: &mut Canvas,
@@ -278,17 +280,18 @@ impl Frame {
         if let Some(t) = x_title {
             let h = tick_label_height(&self.x, th);
             let y = self.y1 + 5.0 * th.s + h + 8.0 * th.s;
-            c.text(
-                t,
+            let t = Measured::new(t, th.label).shortened(self.x1 - self.x0);
+            c.draw_measured(
+                &t,
                 ((self.x0 + self.x1) / 2.0, y),
-                th.label,
                 Theme::AXIS,
                 (HAlign::Center, VAlign::Top),
             )?;
         }
         if let Some(t) = y_title {
             let x = left_edge + cap_height(th.label) / 2.0 + 0.1 * th.label;
-            c.text_up(t, x, (self.y0 + self.y1) / 2.0, th.label, Theme::AXIS)?;
+            let t = Measured::new(t, th.label).shortened(self.y1 - self.y0);
+            c.text_up(&t, x, (self.y0 + self.y1) / 2.0, Theme::AXIS)?;
         }
         Ok(())
     }

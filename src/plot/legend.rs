@@ -1,8 +1,9 @@
 //! Legend and information boxes, placed in the frame corner that hides the least of the curves.
 
 use super::frame::Frame;
-use super::raster::{Canvas, HAlign, VAlign};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
+use super::text::{HAlign, Measured, VAlign};
 use crate::error::Result;
 use crate::plot::Color;
 
@@ -56,36 +57,87 @@ pub(crate) enum Corner {
     BottomLeft,
 }
 
-/// Draws a legend box inside `frame` in the corner (from `prefer`) that hides the fewest of the
-/// pixel points `avoid`; returns the box drawn (x0, y0, x1, y1).
-pub(crate) fn draw_legend(
-    c: &mut Canvas,
+/// A box (x0, y0, x1, y1) in pixels.
+pub(crate) type Rect = (f64, f64, f64, f64);
+
+/// A legend fitted to its frame: the rows shown (text measured, and shortened with an
+/// ellipsis where wider than the frame), and the box size.
+struct Fitted {
+    rows: Vec<(Swatch, Measured, Color)>,
+    /// Box width and height.
+    w: f64,
+    h: f64,
+    /// Swatch width (0 when no row has one), horizontal padding, row height.
+    swatch: f64,
+    padx: f64,
+    row: f64,
+}
+
+impl Fitted {
+    /// Measures the rows once and fits them into `frame` (inside its 8 px margins): rows too
+    /// wide are cut, and when there are more rows than fit, the last row shown says how many
+    /// are left out. `None` when not even two rows fit (and there is more than one).
+    fn new(frame: &Frame, th: &Theme, entries: &[LegendEntry]) -> Option<Fitted> {
+        let size = th.note;
+        let row = 1.45 * size;
+        let m = 8.0 * th.s;
+        let swatch = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
+            34.0 * th.s
+        } else {
+            0.0
+        };
+        let padx = 8.0 * th.s;
+        let gap = if swatch > 0.0 { 6.0 * th.s } else { 0.0 };
+        let max_text = frame.x1 - frame.x0 - 2.0 * m - (padx + swatch + gap + padx);
+        let max_rows = ((frame.y1 - frame.y0 - 2.0 * m - 0.5 * size) / row).floor();
+        let max_rows = if max_rows.is_finite() && max_rows > 0.0 {
+            max_rows as usize
+        } else {
+            0
+        };
+        let shown = if entries.len() <= max_rows {
+            entries.len()
+        } else if max_rows >= 2 {
+            max_rows - 1
+        } else {
+            return None;
+        };
+        let fit = |text: &str| Measured::new(text, size).shortened(max_text);
+        let mut rows: Vec<(Swatch, Measured, Color)> = entries[..shown]
+            .iter()
+            .map(|e| (e.swatch.clone(), fit(&e.text), e.color))
+            .collect();
+        if shown < entries.len() {
+            let more = format!("… and {} more", entries.len() - shown);
+            rows.push((Swatch::None, fit(&more), Theme::NOTE));
+        }
+        let text_w = rows.iter().map(|r| r.1.width()).fold(0.0, f64::max);
+        let w = padx + swatch + gap + text_w + padx;
+        let h = row * rows.len() as f64 + 0.5 * size;
+        Some(Fitted {
+            rows,
+            w,
+            h,
+            swatch,
+            padx,
+            row,
+        })
+    }
+}
+
+/// The position of a `bw` × `bh` box in `frame`: the first preferred corner hiding the fewest
+/// of the points `avoid` without overlapping a `taken` box; if every corner hides something,
+/// the middles of the edges are tried as well.
+fn place(
     frame: &Frame,
     th: &Theme,
-    entries: &[LegendEntry],
+    (bw, bh): (f64, f64),
     avoid: &[(f64, f64)],
     prefer: &[Corner],
-    taken: &[(f64, f64, f64, f64)],
-) -> Result<Option<(f64, f64, f64, f64)>> {
-    if entries.is_empty() {
-        return Ok(None);
-    }
-    let size = th.note;
-    let row = 1.45 * size;
-    let sw = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
-        34.0 * th.s
-    } else {
-        0.0
-    };
-    let text_w = entries
-        .iter()
-        .map(|e| Canvas::text_width(&e.text, size))
-        .fold(0.0, f64::max);
-    let padx = 8.0 * th.s;
-    let bw = padx + sw + if sw > 0.0 { 6.0 * th.s } else { 0.0 } + text_w + padx;
-    let bh = row * entries.len() as f64 + 0.5 * size;
+    taken: &[Rect],
+) -> Rect {
     let m = 8.0 * th.s;
-    let place = |corner: Corner| -> (f64, f64, f64, f64) {
+    let at_corner = |corner: Corner| -> Rect {
         let (x, y) = match corner {
             Corner::TopRight => (frame.x1 - m - bw, frame.y0 + m),
             Corner::TopLeft => (frame.x0 + m, frame.y0 + m),
@@ -94,34 +146,41 @@ pub(crate) fn draw_legend(
         };
         (x, y, x + bw, y + bh)
     };
-    let overlaps = |a: (f64, f64, f64, f64), b: &(f64, f64, f64, f64)| {
-        a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+    let overlaps = |a: Rect, b: &Rect| a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
+    let score = |b: Rect| {
+        let hidden = avoid
+            .iter()
+            .filter(|p| {
+                p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
+            })
+            .count();
+        hidden
+            + if taken.iter().any(|t| overlaps(b, t)) {
+                1_000_000
+            } else {
+                0
+            }
     };
     let prefer = if prefer.is_empty() {
         &[Corner::TopRight][..]
     } else {
         prefer
     };
-    let mut best = place(prefer[0]);
+    let mut best = at_corner(prefer[0]);
     let mut best_score = usize::MAX;
-    for &corner in prefer {
-        let b = place(corner);
-        let mut score = avoid
-            .iter()
-            .filter(|p| {
-                p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
-            })
-            .count();
-        if taken.iter().any(|t| overlaps(b, t)) {
-            score += 1_000_000;
-        }
-        if score < best_score {
-            best_score = score;
+    let mut consider = |b: Rect| {
+        let sc = score(b);
+        if sc < best_score {
+            best_score = sc;
             best = b;
         }
+        best_score
+    };
+    let mut last = usize::MAX;
+    for &corner in prefer {
+        last = consider(at_corner(corner));
     }
-    if best_score > 0 {
-        // Every preferred corner hides something: try the middles of the edges as well.
+    if last > 0 {
         let cx = (frame.x0 + frame.x1 - bw) / 2.0;
         let cy = (frame.y0 + frame.y1 - bh) / 2.0;
         for (x, y) in [
@@ -130,24 +189,32 @@ pub(crate) fn draw_legend(
             (frame.x0 + m, cy),
             (frame.x1 - m - bw, cy),
         ] {
-            let b = (x, y, x + bw, y + bh);
-            let score = avoid
-                .iter()
-                .filter(|p| {
-                    p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
-                })
-                .count()
-                + if taken.iter().any(|t| overlaps(b, t)) {
-                    1_000_000
-                } else {
-                    0
-                };
-            if score < best_score {
-                best_score = score;
-                best = b;
-            }
+            consider((x, y, x + bw, y + bh));
         }
     }
+    best
+}
+
+/// Draws a legend box inside `frame` in the corner (from `prefer`) that hides the fewest of the
+/// pixel points `avoid`; returns the box drawn (x0, y0, x1, y1). The box always fits the frame:
+/// rows wider than the frame are cut with an ellipsis, rows beyond its height are summarised
+/// as "… and n more" (no box at all when the frame cannot hold two rows).
+pub(crate) fn draw_legend(
+    c: &mut Canvas,
+    frame: &Frame,
+    th: &Theme,
+    entries: &[LegendEntry],
+    avoid: &[(f64, f64)],
+    prefer: &[Corner],
+    taken: &[Rect],
+) -> Result<Option<Rect>> {
+    if entries.is_empty() {
+        return Ok(None);
+    }
+    let Some(fit) = Fitted::new(frame, th, entries) else {
+        return Ok(None);
+    };
+    let best = place(frame, th, (fit.w, fit.h), avoid, prefer, taken);
     let (x0, y0, x1, y1) = best;
     c.fill_rect(x0, y0, x1, y1, Color::WHITE, 0.9);
     c.stroke(
@@ -156,45 +223,63 @@ pub(crate) fn draw_legend(
         Color(190, 190, 190),
         &[],
     );
-    for (k, e) in entries.iter().enumerate() {
-        let cy = y0 + 0.25 * size + row * (k as f64 + 0.5);
-        let mut tx = x0 + padx;
-        match e.swatch {
-            Swatch::None => {}
-            Swatch::Line { color, style } => {
-                c.stroke(
-                    &[(tx, cy), (tx + sw, cy)],
-                    th.line,
-                    color,
-                    &style.pattern(th.line),
-                );
-            }
-            Swatch::Marker { shape, color } => {
-                draw_marker(c, (tx + sw / 2.0, cy), shape, 5.5 * th.s, color, th.line);
-            }
-            Swatch::Patch { color, alpha } => {
-                c.fill_rect(
-                    tx,
-                    cy - 0.35 * size,
-                    tx + sw,
-                    cy + 0.35 * size,
-                    color,
-                    alpha,
-                );
-            }
-        }
+    let size = th.note;
+    let sw = fit.swatch;
+    for (k, (swatch, text, color)) in fit.rows.iter().enumerate() {
+        let cy = y0 + 0.25 * size + fit.row * (k as f64 + 0.5);
+        let mut tx = x0 + fit.padx;
+        draw_swatch(c, th, swatch, (tx, cy), sw);
         if sw > 0.0 {
             tx += sw + 6.0 * th.s;
         }
-        c.text(
-            &e.text,
-            (tx, cy),
-            size,
-            e.color,
-            (HAlign::Left, VAlign::Middle),
-        )?;
+        c.draw_measured(text, (tx, cy), *color, (HAlign::Left, VAlign::Middle))?;
     }
     Ok(Some(best))
+}
+
+/// Draws a row's swatch of width `sw` starting at `(x, cy)` (vertically centred on cy).
+fn draw_swatch(c: &mut Canvas, th: &Theme, swatch: &Swatch, (tx, cy): (f64, f64), sw: f64) {
+    let size = th.note;
+    match *swatch {
+        Swatch::None => {}
+        Swatch::Line { color, style } => {
+            c.stroke(
+                &[(tx, cy), (tx + sw, cy)],
+                th.line,
+                color,
+                &style.pattern(th.line),
+            );
+        }
+        Swatch::Marker { shape, color } => {
+            draw_marker(c, (tx + sw / 2.0, cy), shape, 5.5 * th.s, color, th.line);
+        }
+        Swatch::Patch { color, alpha } => {
+            c.fill_rect(
+                tx,
+                cy - 0.35 * size,
+                tx + sw,
+                cy + 0.35 * size,
+                color,
+                alpha,
+            );
+        }
+    }
+}
+
+/// Corners, edge midpoints and centre of a box: what a legend must not cover of an annotation.
+pub(crate) fn box_points(r: Rect) -> [(f64, f64); 9] {
+    let (xm, ym) = ((r.0 + r.2) / 2.0, (r.1 + r.3) / 2.0);
+    [
+        (r.0, r.1),
+        (xm, r.1),
+        (r.2, r.1),
+        (r.0, ym),
+        (xm, ym),
+        (r.2, ym),
+        (r.0, r.3),
+        (xm, r.3),
+        (r.2, r.3),
+    ]
 }
 
 /// Points every `step` px along a pixel polyline (for keeping legends off the curves).

@@ -8,10 +8,13 @@
 //! - no display, no fontconfig, no system package: the font (Noto Sans) is compiled in and
 //!   rasterised with `ab_glyph`; lines, markers and fills are drawn with anti-aliasing into an
 //!   RGB buffer and clipped to the plot frame;
+//! - text that does not fit is shrunk (the title, down to 60 %) or cut with an ellipsis
+//!   (titles, axis titles, legend rows; legends with more rows than fit end with "… and n
+//!   more"), in time linear in its length; text longer than [`MAX_TEXT_CHARS`] is an error;
 //! - the file is written atomically (a temporary file in the same directory, then a rename),
 //!   so an error never leaves a partial file behind;
-//! - errors are [`LtiError::Plot`] (bad options, no data) or [`LtiError::Io`] (unwritable
-//!   path).
+//! - errors are [`LtiError::Plot`] (bad options, no data, text too long, data spanning more
+//!   than f64 can subtract) or [`LtiError::Io`] (unwritable path).
 //!
 //! Conventions: frequencies in rad/s on a log axis labelled in decades, magnitudes in dB,
 //! phases in degrees with ticks at multiples of 45° or 90°, times in seconds. Text accepts a
@@ -27,23 +30,30 @@
 
 mod axes;
 mod bode;
+mod bode_margins;
 mod frame;
+mod heatmap;
 mod layout;
 mod legend;
+mod markup;
 mod nyquist;
 mod output;
+mod projection;
 mod pzmap;
 mod raster;
 mod step;
 mod style;
+mod text;
 mod xy;
 
 use std::path::Path;
 
 pub use bode::{BodeSeries, bode_png};
+pub use heatmap::{ColorMap, HeatMap, MAX_HEATMAP_CELLS, heatmap_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
+pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};
 pub use pzmap::{PzMap, pzmap_png};
-pub use step::{InputKind, StepSeries, step_png};
+pub use step::{StepSeries, step_png};
 pub use style::{Color, LineStyle, MarkerShape, PALETTE, series_color};
 pub use xy::{
     Curve, Equilibrium, Marker, PhasePortrait, XyPlot, phase_portrait_png, time_plot_png, xy_png,
@@ -57,6 +67,38 @@ pub const MIN_SIDE: u32 = 100;
 pub const MAX_SIDE: u32 = 16_384;
 /// Largest accepted image area (px²).
 pub const MAX_PIXELS: u64 = 36_000_000;
+/// Longest accepted title, label, legend text or note, in characters (Unicode scalar values,
+/// markup included).
+///
+/// Text that does not fit is shrunk or cut with an ellipsis, in time linear in its length; this
+/// limit only refuses text that no accepted image could show: the widest image
+/// ([`MAX_SIDE`] px) at the smallest font shows about 12 000 characters on one line. Labels
+/// generated from plants of the highest order ([`crate::MAX_ORDER`]) stay below 10 000 characters.
+///
+/// ```
+/// use ltikit::plot::{MAX_TEXT_CHARS, PlotOptions};
+/// let ok = PlotOptions { title: Some("x".repeat(MAX_TEXT_CHARS)), ..Default::default() };
+/// assert!(ok.validate().is_ok());
+/// let long = PlotOptions { title: Some("x".repeat(MAX_TEXT_CHARS + 1)), ..Default::default() };
+/// let e = long.validate().unwrap_err();
+/// assert!(e.to_string().contains("MAX_TEXT_CHARS"), "{e}");
+/// ```
+pub const MAX_TEXT_CHARS: usize = 16_384;
+
+/// Checks that `text` (`what`, e.g. "the title") has at most [`MAX_TEXT_CHARS`] characters.
+pub(crate) fn check_text(what: &str, text: &str) -> Result<()> {
+    // A string of at most MAX_TEXT_CHARS bytes has at most as many characters: no count.
+    if text.len() <= MAX_TEXT_CHARS {
+        return Ok(());
+    }
+    let n = text.chars().count();
+    if n > MAX_TEXT_CHARS {
+        return Err(LtiError::Plot(format!(
+            "{what} has {n} characters, more than the limit of {MAX_TEXT_CHARS} (MAX_TEXT_CHARS)"
+        )));
+    }
+    Ok(())
+}
 
 /// Options common to every plot.
 ///
@@ -95,8 +137,8 @@ impl Default for PlotOptions {
 }
 
 impl PlotOptions {
-    /// Checks the size (each side in [`MIN_SIDE`]…[`MAX_SIDE`], at most [`MAX_PIXELS`]) and the
-    /// scales (finite, 0.25…8).
+    /// Checks the size (each side in [`MIN_SIDE`]…[`MAX_SIDE`], at most [`MAX_PIXELS`]), the
+    /// scales (finite, 0.25…8) and the title (at most [`MAX_TEXT_CHARS`] characters).
     pub fn validate(&self) -> Result<()> {
         let (w, h) = self.size;
         if w == 0 || h == 0 {
@@ -119,6 +161,9 @@ impl PlotOptions {
             if !v.is_finite() || !(0.25..=8.0).contains(&v) {
                 return Err(LtiError::Plot(format!("{name} {v} is outside 0.25…8")));
             }
+        }
+        if let Some(t) = &self.title {
+            check_text("the title", t)?;
         }
         Ok(())
     }
@@ -155,6 +200,14 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     };
     o.validate()?;
     Ok((w, h))
+}
+
+/// Checks the label of series `k` (0-based) against [`MAX_TEXT_CHARS`].
+pub(crate) fn check_label(k: usize, label: Option<&str>) -> Result<()> {
+    match label {
+        Some(l) => check_text(&format!("the label of series {}", k + 1), l),
+        None => Ok(()),
+    }
 }
 
 /// Renders with `draw` and writes the PNG atomically.

@@ -3,11 +3,13 @@
 
 use std::path::Path;
 
-use super::layout::{bounds, draw_title, equal_axes, layout_single};
-use super::legend::{Corner, LegendEntry, draw_legend, sample_run};
-use super::raster::{Canvas, HAlign, VAlign};
+use super::frame::Frame;
+use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single};
+use super::legend::{Corner, LegendEntry, box_points, draw_legend, sample_run};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
-use super::{Color, PlotOptions, render};
+use super::text::{HAlign, VAlign};
+use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::NyquistContour;
 use crate::error::{LtiError, Result};
 use crate::poly::fmt_sig;
@@ -103,8 +105,9 @@ fn runs(contour: &NyquistContour, radius: Option<f64>) -> Vec<Run> {
 /// arcs at infinity keep their direction. The encirclement count N, the open-loop RHP poles P
 /// and Z = N + P are listed.
 ///
-/// Errors: no series, a series without finite points, bad options, an unwritable path; no file
-/// is left behind.
+/// Errors: no series, a series without finite points, bad options, a title or label longer
+/// than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an unwritable path; no file is
+/// left behind.
 ///
 /// ```no_run
 /// use ltikit::TransferFunction;
@@ -122,6 +125,7 @@ pub fn nyquist_png(
         return Err(LtiError::Plot("Nyquist plot: no contour given".into()));
     }
     for (k, s) in series.iter().enumerate() {
+        check_label(k, s.label)?;
         if !s
             .contour
             .points
@@ -143,19 +147,13 @@ pub fn nyquist_png(
     })
 }
 
-fn draw(
-    c: &mut Canvas,
-    th: &Theme,
-    series: &[NyquistSeries],
-    opts: &PlotOptions,
-    title: Option<&str>,
-) -> Result<()> {
-    let color_of = |k: usize| series[k].color.unwrap_or_else(|| series_color(k));
-    let radius = series
-        .iter()
-        .filter_map(|s| s.contour.display_radius)
-        .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
-    let all_runs: Vec<Vec<Run>> = series.iter().map(|s| runs(s.contour, radius)).collect();
+/// The colour of series `k`: its own, or the palette's.
+fn color_of(series: &[NyquistSeries], k: usize) -> Color {
+    series[k].color.unwrap_or_else(|| series_color(k))
+}
+
+/// Equal-aspect axes around every displayed point, −1 and the origin.
+fn layout(c: &Canvas, th: &Theme, all_runs: &[Vec<Run>], has_title: bool) -> Result<Frame> {
     let pts = || {
         all_runs
             .iter()
@@ -166,10 +164,17 @@ fn draw(
     let (xlo, xhi) = bounds(pts().map(|p| p.0)).unwrap_or((-1.0, 1.0));
     let (ylo, yhi) = bounds(pts().map(|p| p.1)).unwrap_or((-1.0, 1.0));
     let pad = 0.08 * (xhi - xlo).max(yhi - ylo).max(1e-9);
-    let frame = layout_single(c, th, title.is_some(), true, true, |w, h| {
-        equal_axes((xlo - pad, xhi + pad), (ylo - pad, yhi + pad), w, h, th)
-    });
-    if opts.grid {
+    let (xr, yr) = ((xlo - pad, xhi + pad), (ylo - pad, yhi + pad));
+    check_span("real parts", xr)?;
+    check_span("imaginary parts", yr)?;
+    Ok(layout_single(c, th, has_title, true, true, |w, h| {
+        equal_axes(xr, yr, w, h, th)
+    }))
+}
+
+/// Grid, the axes through the origin, the unit circle and the display-radius circle.
+fn draw_background(c: &mut Canvas, th: &Theme, frame: &Frame, grid: bool, radius: Option<f64>) {
+    if grid {
         frame.draw_grid(c, th);
     }
     let thin = (th.line * 0.6).max(1.0);
@@ -191,11 +196,20 @@ fn draw(
     if let Some(r) = radius {
         frame.plot_line(c, circle(r), thin, Color(200, 200, 200), LineStyle::Solid);
     }
+}
 
+/// The curves (ω > 0 solid, ω < 0 dashed, beyond the display radius dotted) with direction
+/// arrows; returns the pixel points to keep legends off.
+fn draw_curves(
+    c: &mut Canvas,
+    th: &Theme,
+    frame: &Frame,
+    all_runs: &[Vec<Run>],
+    colors: &[Color],
+) -> Vec<(f64, f64)> {
     let mut avoid = Vec::new();
     let arrow = 12.0 * th.s.max(0.8);
-    for (k, rs) in all_runs.iter().enumerate() {
-        let col = color_of(k);
+    for (rs, &col) in all_runs.iter().zip(colors) {
         let mut pos = Vec::new();
         let mut neg = Vec::new();
         let mut far = Vec::new();
@@ -222,7 +236,16 @@ fn draw(
             arrows_along(c, f, 1, arrow, col);
         }
     }
-    // The critical point.
+    avoid
+}
+
+/// The critical point −1, marked and labelled; adds the mark and its label to `avoid`.
+fn draw_critical_point(
+    c: &mut Canvas,
+    th: &Theme,
+    frame: &Frame,
+    avoid: &mut Vec<(f64, f64)>,
+) -> Result<()> {
     frame.plot_marker(
         c,
         (-1.0, 0.0),
@@ -233,24 +256,22 @@ fn draw(
     );
     if frame.contains((-1.0, 0.0)) {
         let p = frame.px((-1.0, 0.0));
-        c.text_on_box(
+        avoid.push(p);
+        let b = c.text_on_box(
             "−1",
             (p.0 - 6.0 * th.s, p.1 + 8.0 * th.s),
             th.note,
             Color(200, 0, 0),
             (HAlign::Right, VAlign::Top),
         )?;
+        avoid.extend(box_points(b));
     }
+    Ok(())
+}
 
-    frame.draw_axes(c, th, true, true)?;
-    frame.draw_axis_titles(
-        c,
-        th,
-        Some("Real axis Re G(jω)"),
-        Some("Imaginary axis Im G(jω)"),
-        th.pad,
-    )?;
-
+/// The legend: line styles (one plant) or plants, the verdict N, P, Z of each, and the
+/// display-radius note.
+fn legend_rows(series: &[NyquistSeries], radius: Option<f64>) -> Vec<LegendEntry> {
     let several = series.len() > 1;
     let mut legend = Vec::new();
     for (k, s) in series.iter().enumerate() {
@@ -261,7 +282,7 @@ fn draw(
         if several {
             legend.push(LegendEntry::line(
                 format!("{name} (ω > 0)"),
-                color_of(k),
+                color_of(series, k),
                 LineStyle::Solid,
             ));
         }
@@ -283,13 +304,14 @@ fn draw(
             ),
             _ => format!("{prefix}the curve passes through −1: N undefined"),
         };
-        legend.push(LegendEntry::text(verdict, color_of(k)));
+        legend.push(LegendEntry::text(verdict, color_of(series, k)));
     }
     if !several {
-        legend.insert(0, LegendEntry::line("ω > 0", color_of(0), LineStyle::Solid));
+        let col = color_of(series, 0);
+        legend.insert(0, LegendEntry::line("ω > 0", col, LineStyle::Solid));
         legend.insert(
             1,
-            LegendEntry::line("ω < 0 (mirror)", color_of(0), LineStyle::Dashed),
+            LegendEntry::line("ω < 0 (mirror)", col, LineStyle::Dashed),
         );
     }
     if let Some(r) = radius {
@@ -299,11 +321,39 @@ fn draw(
             LineStyle::Dotted,
         ));
     }
+    legend
+}
+
+fn draw(
+    c: &mut Canvas,
+    th: &Theme,
+    series: &[NyquistSeries],
+    opts: &PlotOptions,
+    title: Option<&str>,
+) -> Result<()> {
+    let radius = series
+        .iter()
+        .filter_map(|s| s.contour.display_radius)
+        .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
+    let all_runs: Vec<Vec<Run>> = series.iter().map(|s| runs(s.contour, radius)).collect();
+    let frame = layout(c, th, &all_runs, title.is_some())?;
+    draw_background(c, th, &frame, opts.grid, radius);
+    let colors: Vec<Color> = (0..series.len()).map(|k| color_of(series, k)).collect();
+    let mut avoid = draw_curves(c, th, &frame, &all_runs, &colors);
+    draw_critical_point(c, th, &frame, &mut avoid)?;
+    frame.draw_axes(c, th, true, true)?;
+    frame.draw_axis_titles(
+        c,
+        th,
+        Some("Real axis Re G(jω)"),
+        Some("Imaginary axis Im G(jω)"),
+        th.pad,
+    )?;
     draw_legend(
         c,
         &frame,
         th,
-        &legend,
+        &legend_rows(series, radius),
         &avoid,
         &[
             Corner::TopRight,

@@ -4,11 +4,13 @@ use std::path::Path;
 
 use num_complex::Complex64;
 
-use super::layout::{bounds, draw_title, equal_axes, layout_single};
+use super::frame::Frame;
+use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single};
 use super::legend::{Corner, LegendEntry, Swatch, draw_legend};
-use super::raster::{Canvas, HAlign, VAlign};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme};
-use super::{Color, PlotOptions, render};
+use super::text::{HAlign, VAlign};
+use super::{Color, PlotOptions, check_text, render};
 use crate::analysis::PoleZero;
 use crate::error::Result;
 use crate::poly::{Root, fmt_sig};
@@ -68,7 +70,9 @@ const STABLE_SHADE: Color = Color(44, 160, 44);
 /// pixel on both axes, and optionally lines of constant ζ (0.1, 0.3, 0.5, 0.7, 0.9) and
 /// half-circles of constant ωₙ.
 ///
-/// Errors: bad options or an unwritable path; no file is left behind. A map with no finite
+/// Errors: bad options, a title or label longer than
+/// [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, or an unwritable path; no file is
+/// left behind. A map with no finite
 /// poles or zeros (a constant G) is drawn with a note.
 ///
 /// ```no_run
@@ -79,6 +83,9 @@ const STABLE_SHADE: Color = Color(44, 160, 44);
 /// pzmap_png("/tmp/pz.png", &PzMap::new(&pz).damping_guides(true), &PlotOptions::default()).unwrap();
 /// ```
 pub fn pzmap_png(path: impl AsRef<Path>, map: &PzMap, opts: &PlotOptions) -> Result<()> {
+    if let Some(l) = map.label {
+        check_text("the label", l)?;
+    }
     let title = opts.title_or(|| match map.label {
         Some(l) => format!("Pole-zero map of G(s) = {l}"),
         None => "Pole-zero map".into(),
@@ -92,22 +99,9 @@ fn finite(r: &Root) -> bool {
     r.value.re.is_finite() && r.value.im.is_finite()
 }
 
-fn draw(
-    c: &mut Canvas,
-    th: &Theme,
-    map: &PzMap,
-    opts: &PlotOptions,
-    title: Option<&str>,
-) -> Result<()> {
-    let pz = map.pz;
-    let all: Vec<Complex64> = pz
-        .reduced_poles
-        .iter()
-        .chain(&pz.reduced_zeros)
-        .chain(&pz.cancelled)
-        .filter(|r| finite(r))
-        .map(|r| r.value)
-        .collect();
+/// Equal-aspect axes around every finite root and the origin, with room around them.
+fn layout(c: &Canvas, th: &Theme, pz: &PoleZero, has_title: bool) -> Result<Frame> {
+    let all = finite_roots(pz);
     let (xlo, xhi) = bounds(all.iter().map(|z| z.re).chain([0.0])).unwrap_or((0.0, 0.0));
     let (ylo, yhi) = bounds(all.iter().map(|z| z.im).chain([0.0])).unwrap_or((0.0, 0.0));
     let span = (xhi - xlo).max(yhi - ylo);
@@ -115,97 +109,131 @@ fn draw(
     let pad = 0.18 * span;
     let xr = (xlo - pad, xhi + pad);
     let yr = (ylo - pad, yhi + pad);
-    let frame = layout_single(c, th, title.is_some(), true, true, |w, h| {
+    check_span("real parts", xr)?;
+    check_span("imaginary parts", yr)?;
+    Ok(layout_single(c, th, has_title, true, true, |w, h| {
         equal_axes(xr, yr, w, h, th)
-    });
-    let (x0, x1, y0, y1) = (frame.x.lo, frame.x.hi, frame.y.lo, frame.y.hi);
+    }))
+}
 
-    // Stable half plane.
+/// Every finite pole, zero and cancelled root.
+fn finite_roots(pz: &PoleZero) -> Vec<Complex64> {
+    pz.reduced_poles
+        .iter()
+        .chain(&pz.reduced_zeros)
+        .chain(&pz.cancelled)
+        .filter(|r| finite(r))
+        .map(|r| r.value)
+        .collect()
+}
+
+/// The stable half plane shaded, then the grid.
+fn draw_background(c: &mut Canvas, th: &Theme, frame: &Frame, grid: bool) {
+    let (x0, x1, y0, y1) = (frame.x.lo, frame.x.hi, frame.y.lo, frame.y.hi);
     if x0 < 0.0 {
         let p = frame.px((x0, y0));
         let q = frame.px((0.0f64.min(x1), y1));
         c.fill_rect(p.0, p.1, q.0, q.1, STABLE_SHADE, 0.08);
     }
-    if opts.grid {
+    if grid {
         frame.draw_grid(c, th);
     }
+}
+
+/// Colour of the ζ/ωₙ guides and of their labels.
+const GUIDE: Color = Color(150, 150, 150);
+const GUIDE_TEXT: Color = Color(110, 110, 110);
+
+/// The largest distance from the origin to a corner of the frame.
+fn corner_radius(frame: &Frame) -> f64 {
+    [frame.x.lo, frame.x.hi]
+        .iter()
+        .flat_map(|&x| [frame.y.lo, frame.y.hi].map(|y| (x * x + y * y).sqrt()))
+        .fold(0.0, f64::max)
+}
+
+/// Rays of constant damping ζ through the origin, labelled where the upper ray leaves the
+/// frame.
+fn draw_zeta_rays(c: &mut Canvas, th: &Theme, frame: &Frame) -> Result<()> {
     let thin = (th.line * 0.6).max(1.0);
-    let guide = Color(150, 150, 150);
-    if map.damping_guides {
-        let r_max = [x0, x1]
-            .iter()
-            .flat_map(|&x| [y0, y1].map(|y| (x * x + y * y).sqrt()))
-            .fold(0.0, f64::max);
-        for zeta in [0.1f64, 0.3, 0.5, 0.7, 0.9] {
-            let dir = Complex64::new(-zeta, (1.0 - zeta * zeta).sqrt());
-            for sign in [1.0, -1.0] {
-                let end = (dir.re * r_max, sign * dir.im * r_max);
-                frame.plot_line(c, [(0.0, 0.0), end], thin, guide, LineStyle::Dashed);
-            }
-            // Label where the upper ray leaves the frame.
-            let t_exit = [
-                if dir.re < 0.0 {
-                    x0 / dir.re
-                } else {
-                    f64::INFINITY
-                },
-                if dir.im > 0.0 {
-                    y1 / dir.im
-                } else {
-                    f64::INFINITY
-                },
-            ]
-            .into_iter()
-            .fold(f64::INFINITY, f64::min);
-            if t_exit.is_finite() && t_exit > 0.0 {
-                let at = (dir.re * t_exit * 0.94, dir.im * t_exit * 0.94);
-                if frame.contains(at) {
-                    let p = frame.px(at);
-                    c.text_on_box(
-                        &format!("ζ = {zeta}"),
-                        p,
-                        th.note * 0.85,
-                        Color(110, 110, 110),
-                        (HAlign::Center, VAlign::Middle),
-                    )?;
-                }
-            }
+    let r_max = corner_radius(frame);
+    for zeta in [0.1f64, 0.3, 0.5, 0.7, 0.9] {
+        let dir = Complex64::new(-zeta, (1.0 - zeta * zeta).sqrt());
+        for sign in [1.0, -1.0] {
+            let end = (dir.re * r_max, sign * dir.im * r_max);
+            frame.plot_line(c, [(0.0, 0.0), end], thin, GUIDE, LineStyle::Dashed);
         }
-        // ωn half-circles at the tick spacing of the real axis.
-        let step = frame
-            .x
-            .ticks
-            .windows(2)
-            .map(|w| w[1].v - w[0].v)
-            .next()
-            .unwrap_or(1.0);
-        let mut k = 1;
-        while (k as f64) * step <= r_max && k < 50 {
-            let r = k as f64 * step;
-            let arc: Vec<(f64, f64)> = (0..=96)
-                .map(|i| {
-                    let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * i as f64 / 96.0;
-                    (r * a.cos(), r * a.sin())
-                })
-                .collect();
-            frame.plot_line(c, arc, thin, guide, LineStyle::Dotted);
-            if frame.contains((-r, 0.0)) && -r > x0 + 0.02 * (x1 - x0) {
-                let p = frame.px((-r, 0.0));
+        let t_exit = [
+            if dir.re < 0.0 {
+                frame.x.lo / dir.re
+            } else {
+                f64::INFINITY
+            },
+            if dir.im > 0.0 {
+                frame.y.hi / dir.im
+            } else {
+                f64::INFINITY
+            },
+        ]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+        if t_exit.is_finite() && t_exit > 0.0 {
+            let at = (dir.re * t_exit * 0.94, dir.im * t_exit * 0.94);
+            if frame.contains(at) {
+                let p = frame.px(at);
                 c.text_on_box(
-                    &format!("ω_{{n}} = {}", fmt_sig(r, 3)),
-                    (p.0 - 3.0 * th.s, p.1 + 5.0 * th.s),
-                    th.note * 0.8,
-                    Color(110, 110, 110),
-                    (HAlign::Right, VAlign::Top),
+                    &format!("ζ = {zeta}"),
+                    p,
+                    th.note * 0.85,
+                    GUIDE_TEXT,
+                    (HAlign::Center, VAlign::Middle),
                 )?;
             }
-            k += 1;
         }
     }
-    // Axes through the origin: the imaginary axis is the stability boundary.
-    frame.vline(c, 0.0, th.line * 0.75, Color(60, 60, 60), LineStyle::Solid);
-    frame.hline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
+    Ok(())
+}
 
+/// Half-circles of constant ωₙ at the tick spacing of the real axis, labelled on the negative
+/// real axis.
+fn draw_wn_circles(c: &mut Canvas, th: &Theme, frame: &Frame) -> Result<()> {
+    let thin = (th.line * 0.6).max(1.0);
+    let r_max = corner_radius(frame);
+    let (x0, x1) = (frame.x.lo, frame.x.hi);
+    let step = frame
+        .x
+        .ticks
+        .windows(2)
+        .map(|w| w[1].v - w[0].v)
+        .next()
+        .unwrap_or(1.0);
+    let mut k = 1;
+    while (k as f64) * step <= r_max && k < 50 {
+        let r = k as f64 * step;
+        let arc: Vec<(f64, f64)> = (0..=96)
+            .map(|i| {
+                let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * i as f64 / 96.0;
+                (r * a.cos(), r * a.sin())
+            })
+            .collect();
+        frame.plot_line(c, arc, thin, GUIDE, LineStyle::Dotted);
+        if frame.contains((-r, 0.0)) && -r > x0 + 0.02 * (x1 - x0) {
+            let p = frame.px((-r, 0.0));
+            c.text_on_box(
+                &format!("ω_{{n}} = {}", fmt_sig(r, 3)),
+                (p.0 - 3.0 * th.s, p.1 + 5.0 * th.s),
+                th.note * 0.8,
+                GUIDE_TEXT,
+                (HAlign::Right, VAlign::Top),
+            )?;
+        }
+        k += 1;
+    }
+    Ok(())
+}
+
+/// Zeros ○, poles ×, cancelled pairs ⊗, with multiplicities; returns their pixel positions.
+fn draw_roots(c: &mut Canvas, th: &Theme, frame: &Frame, pz: &PoleZero) -> Result<Vec<(f64, f64)>> {
     let r = 7.0 * th.s;
     let lw = th.line * 1.1;
     let mut avoid = Vec::new();
@@ -223,33 +251,29 @@ fn draw(
         }
         Ok(())
     };
-    for z in pz.reduced_zeros.iter().filter(|r| finite(r)) {
-        let p = (z.value.re, z.value.im);
-        frame.plot_marker(c, p, MarkerShape::Circle, r, ROOT_COLOR, lw);
-        mult(c, z, ROOT_COLOR)?;
-        avoid.push(frame.px(p));
+    let groups = [
+        (&pz.reduced_zeros, MarkerShape::Circle, r, ROOT_COLOR),
+        (&pz.reduced_poles, MarkerShape::Cross, r, ROOT_COLOR),
+        (
+            &pz.cancelled,
+            MarkerShape::CircledCross,
+            r * 1.25,
+            CANCEL_COLOR,
+        ),
+    ];
+    for (roots, shape, size, color) in groups {
+        for z in roots.iter().filter(|r| finite(r)) {
+            let p = (z.value.re, z.value.im);
+            frame.plot_marker(c, p, shape, size, color, lw);
+            mult(c, z, color)?;
+            avoid.push(frame.px(p));
+        }
     }
-    for p in pz.reduced_poles.iter().filter(|r| finite(r)) {
-        let q = (p.value.re, p.value.im);
-        frame.plot_marker(c, q, MarkerShape::Cross, r, ROOT_COLOR, lw);
-        mult(c, p, ROOT_COLOR)?;
-        avoid.push(frame.px(q));
-    }
-    for k in pz.cancelled.iter().filter(|r| finite(r)) {
-        let q = (k.value.re, k.value.im);
-        frame.plot_marker(c, q, MarkerShape::CircledCross, r * 1.25, CANCEL_COLOR, lw);
-        mult(c, k, CANCEL_COLOR)?;
-        avoid.push(frame.px(q));
-    }
+    Ok(avoid)
+}
 
-    frame.draw_axes(c, th, true, true)?;
-    frame.draw_axis_titles(
-        c,
-        th,
-        Some("Real axis σ (1/s)"),
-        Some("Imaginary axis ω (rad/s)"),
-        th.pad,
-    )?;
+/// The legend rows: the marker kinds present, notes, the shaded half plane.
+fn legend_rows(pz: &PoleZero) -> Vec<LegendEntry> {
     let mut legend = vec![LegendEntry::marker("pole", MarkerShape::Cross, ROOT_COLOR)];
     if !pz.reduced_zeros.is_empty() {
         legend.push(LegendEntry::marker("zero", MarkerShape::Circle, ROOT_COLOR));
@@ -267,7 +291,7 @@ fn draw(
             Theme::NOTE,
         ));
     }
-    if all.is_empty() {
+    if finite_roots(pz).is_empty() {
         legend.push(LegendEntry::text("no finite poles or zeros", Theme::NOTE));
     }
     legend.push(LegendEntry {
@@ -278,11 +302,41 @@ fn draw(
         text: "stable half plane".into(),
         color: Color::BLACK,
     });
+    legend
+}
+
+fn draw(
+    c: &mut Canvas,
+    th: &Theme,
+    map: &PzMap,
+    opts: &PlotOptions,
+    title: Option<&str>,
+) -> Result<()> {
+    let pz = map.pz;
+    let frame = layout(c, th, pz, title.is_some())?;
+    draw_background(c, th, &frame, opts.grid);
+    if map.damping_guides {
+        draw_zeta_rays(c, th, &frame)?;
+        draw_wn_circles(c, th, &frame)?;
+    }
+    // Axes through the origin: the imaginary axis is the stability boundary.
+    let thin = (th.line * 0.6).max(1.0);
+    frame.vline(c, 0.0, th.line * 0.75, Color(60, 60, 60), LineStyle::Solid);
+    frame.hline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
+    let avoid = draw_roots(c, th, &frame, pz)?;
+    frame.draw_axes(c, th, true, true)?;
+    frame.draw_axis_titles(
+        c,
+        th,
+        Some("Real axis σ (1/s)"),
+        Some("Imaginary axis ω (rad/s)"),
+        th.pad,
+    )?;
     draw_legend(
         c,
         &frame,
         th,
-        &legend,
+        &legend_rows(pz),
         &avoid,
         &[
             Corner::TopRight,

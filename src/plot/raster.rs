@@ -1,27 +1,16 @@
-//! A small anti-aliased rasteriser over an RGB buffer, with text from the compiled-in font.
+//! A small anti-aliased rasteriser over an RGB buffer: strokes, discs, rings, polygons and
+//! rectangles (text is drawn by [`super::text`]).
 //!
 //! Geometry (strokes with round joins, dashes, discs, rings, polygons, rectangles) is drawn
 //! with exact per-pixel coverage: every stroke accumulates its coverage in a mask (maximum
 //! over its pieces, so dense polylines do not darken their own edges) that is composited
-//! once. Text is rasterised with `ab_glyph` from Noto Sans compiled into the binary (the
-//! `ttf-noto-sans` crate), with kerning, side bearings and sub-pixel pen positions: no
-//! fontconfig, no system font, no display.
+//! once.
 //!
 //! Coordinates are pixels with (0, 0) the top-left corner of the image; a pixel (i, j) covers
 //! [i, i + 1) × [j, j + 1), so its centre is (i + 0.5, j + 0.5).
 
-use std::sync::OnceLock;
-
-use ab_glyph::{Font, FontRef, GlyphId, PxScale, ScaleFont, point};
-
+use super::text::font;
 use crate::error::{LtiError, Result};
-
-/// The compiled-in font, parsed once per process (`None` if it were ever rejected).
-fn font() -> Option<&'static FontRef<'static>> {
-    static FONT: OnceLock<Option<FontRef<'static>>> = OnceLock::new();
-    FONT.get_or_init(|| FontRef::try_from_slice(ttf_noto_sans::REGULAR).ok())
-        .as_ref()
-}
 
 /// An sRGB colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,93 +28,6 @@ impl Color {
         Color(m(self.0), m(self.1), m(self.2))
     }
 }
-
-/// Horizontal text alignment relative to the anchor point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum HAlign {
-    Left,
-    Center,
-    Right,
-}
-
-/// Vertical text alignment relative to the anchor point (capital letters define top and
-/// middle; `Bottom` includes descenders).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum VAlign {
-    Top,
-    Middle,
-    Bottom,
-}
-
-/// Capital height of Noto Sans as a fraction of the font size (the size is the ascent −
-/// descent height, as in `ab_glyph::PxScale`: 1362 font units, caps 714).
-const CAP: f64 = 0.524;
-/// Descender depth as a fraction of the font size (293 / 1362).
-const DESC: f64 = 0.215;
-
-/// One run of rich text: normal, superscript or subscript.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Run {
-    pub text: String,
-    /// 0 normal, 1 superscript, −1 subscript.
-    pub level: i8,
-}
-
-/// Splits `s` into runs: `^{…}` and `_{…}` are super- and subscripts, and `^` followed by a
-/// number (`s^2`, `10^-3`) is a superscript too. Everything else is literal.
-pub(crate) fn rich_runs(s: &str) -> Vec<Run> {
-    let mut runs: Vec<Run> = Vec::new();
-    let mut cur = String::new();
-    let chars: Vec<char> = s.chars().collect();
-    let mut i = 0;
-    let push = |runs: &mut Vec<Run>, text: String, level: i8| {
-        if !text.is_empty() {
-            runs.push(Run { text, level });
-        }
-    };
-    while i < chars.len() {
-        let c = chars[i];
-        if (c == '^' || c == '_') && i + 1 < chars.len() {
-            let level = if c == '^' { 1 } else { -1 };
-            if chars[i + 1] == '{' {
-                if let Some(end) = chars[i + 2..].iter().position(|&d| d == '}') {
-                    push(&mut runs, std::mem::take(&mut cur), 0);
-                    let inner: String = chars[i + 2..i + 2 + end].iter().collect();
-                    push(&mut runs, inner.replace('-', "−"), level);
-                    i += end + 3;
-                    continue;
-                }
-            } else if c == '^' {
-                let mut j = i + 1;
-                if j < chars.len() && (chars[j] == '-' || chars[j] == '−') {
-                    j += 1;
-                }
-                let start_digits = j;
-                while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
-                    j += 1;
-                }
-                if j > start_digits {
-                    push(&mut runs, std::mem::take(&mut cur), 0);
-                    let inner: String = chars[i + 1..j].iter().collect();
-                    push(&mut runs, inner.replace('-', "−"), 1);
-                    i = j;
-                    continue;
-                }
-            }
-        }
-        cur.push(c);
-        i += 1;
-    }
-    push(&mut runs, cur, 0);
-    runs
-}
-
-/// Relative size of super- and subscripts.
-const SCRIPT: f64 = 0.72;
-/// How far a superscript's baseline is raised, as a fraction of the font size.
-const SUP_RAISE: f64 = 0.30;
-/// How far a subscript's baseline is lowered, as a fraction of the font size.
-const SUB_DROP: f64 = 0.12;
 
 /// An RGB image being drawn.
 pub(crate) struct Canvas {
@@ -162,7 +64,7 @@ impl Canvas {
     }
 
     #[inline]
-    fn blend(&mut self, x: usize, y: usize, c: Color, a: f64) {
+    pub(super) fn blend(&mut self, x: usize, y: usize, c: Color, a: f64) {
         if a <= 0.0 {
             return;
         }
@@ -415,204 +317,11 @@ impl Canvas {
             }
         }
     }
-
-    /// Width in pixels of plain text at font size `size` (advances and kerning).
-    pub fn plain_width(text: &str, size: f64) -> f64 {
-        let Some(f) = font() else { return 0.0 };
-        let sf = f.as_scaled(PxScale::from(size as f32));
-        let mut w = 0.0f32;
-        let mut prev: Option<GlyphId> = None;
-        for ch in text.chars() {
-            let id = sf.glyph_id(ch);
-            if let Some(p) = prev {
-                w += sf.kern(p, id);
-            }
-            w += sf.h_advance(id);
-            prev = Some(id);
-        }
-        f64::from(w)
-    }
-
-    /// Width of rich text (see [`rich_runs`]).
-    pub fn text_width(text: &str, size: f64) -> f64 {
-        rich_runs(text)
-            .iter()
-            .map(|r| Self::plain_width(&r.text, if r.level == 0 { size } else { size * SCRIPT }))
-            .sum()
-    }
-
-    /// Draws plain text with its baseline starting at (x, baseline). `rotate`: reading
-    /// upwards, the baseline being the column x and the text starting at row `baseline`.
-    fn draw_plain(
-        &mut self,
-        text: &str,
-        x: f64,
-        baseline: f64,
-        size: f64,
-        c: Color,
-        rotate: bool,
-    ) -> Result<()> {
-        let f =
-            font().ok_or_else(|| LtiError::Plot("the compiled-in font is unavailable".into()))?;
-        let scale = PxScale::from(size as f32);
-        let sf = f.as_scaled(scale);
-        // Horizontal text is laid out at its real sub-pixel position; rotated text at the
-        // origin and then turned by a quarter (integer pixel offsets map exactly).
-        let (ox, oy) = if rotate {
-            (0.0, 0.0)
-        } else {
-            (x as f32, baseline as f32)
-        };
-        let (rx, ry) = (x.round() as i64, baseline.round() as i64);
-        let mut pen = ox;
-        let mut prev: Option<GlyphId> = None;
-        let (w, h) = (i64::from(self.w), i64::from(self.h));
-        for ch in text.chars() {
-            let id = sf.glyph_id(ch);
-            if let Some(p) = prev {
-                pen += sf.kern(p, id);
-            }
-            let glyph = id.with_scale_and_position(scale, point(pen, oy));
-            pen += sf.h_advance(id);
-            prev = Some(id);
-            let Some(og) = f.outline_glyph(glyph) else {
-                continue;
-            };
-            let b = og.px_bounds();
-            let (bx, by) = (b.min.x as i64, b.min.y as i64);
-            og.draw(|gx, gy, cov| {
-                let (px, py) = if rotate {
-                    (rx + by + i64::from(gy), ry - bx - i64::from(gx))
-                } else {
-                    (bx + i64::from(gx), by + i64::from(gy))
-                };
-                if px >= 0 && py >= 0 && px < w && py < h {
-                    self.blend(px as usize, py as usize, c, f64::from(cov));
-                }
-            });
-        }
-        Ok(())
-    }
-
-    /// Start x and baseline y of text of `width` anchored at `at` with `align`.
-    fn anchor(at: (f64, f64), width: f64, size: f64, align: (HAlign, VAlign)) -> (f64, f64) {
-        let x0 = match align.0 {
-            HAlign::Left => at.0,
-            HAlign::Center => at.0 - width / 2.0,
-            HAlign::Right => at.0 - width,
-        };
-        let baseline = match align.1 {
-            VAlign::Top => at.1 + CAP * size,
-            VAlign::Middle => at.1 + CAP * size / 2.0,
-            VAlign::Bottom => at.1 - DESC * size,
-        };
-        (x0, baseline)
-    }
-
-    /// Draws rich text anchored at `at` with `align` (horizontal, vertical).
-    pub fn text(
-        &mut self,
-        text: &str,
-        at: (f64, f64),
-        size: f64,
-        c: Color,
-        align: (HAlign, VAlign),
-    ) -> Result<()> {
-        let (mut cx, baseline) = Self::anchor(at, Self::text_width(text, size), size, align);
-        for run in rich_runs(text) {
-            let (sz, dy) = match run.level {
-                0 => (size, 0.0),
-                1 => (size * SCRIPT, -SUP_RAISE * size),
-                _ => (size * SCRIPT, SUB_DROP * size),
-            };
-            self.draw_plain(&run.text, cx, baseline + dy, sz, c, false)?;
-            cx += Self::plain_width(&run.text, sz);
-        }
-        Ok(())
-    }
-
-    /// [`Canvas::text`] over a translucent white box, for annotations on top of curves.
-    pub fn text_on_box(
-        &mut self,
-        text: &str,
-        at: (f64, f64),
-        size: f64,
-        c: Color,
-        align: (HAlign, VAlign),
-    ) -> Result<()> {
-        let width = Self::text_width(text, size);
-        let (x0, baseline) = Self::anchor(at, width, size, align);
-        let m = 0.15 * size;
-        let raise = if text.contains('^') {
-            SUP_RAISE * size
-        } else {
-            0.0
-        };
-        self.fill_rect(
-            x0 - m,
-            baseline - CAP * size - raise - m,
-            x0 + width + m,
-            baseline + DESC * size + 0.5 * m,
-            Color::WHITE,
-            0.85,
-        );
-        self.text(text, at, size, c, align)
-    }
-
-    /// Draws plain text reading upwards, centred vertically at y, its caps centred on x.
-    pub fn text_up(&mut self, text: &str, x: f64, y: f64, size: f64, c: Color) -> Result<()> {
-        let width = Self::text_width(text, size);
-        // Rotated: the baseline is a column; caps extend to its left.
-        let baseline_x = x + CAP * size / 2.0;
-        // Rotated (reading upwards): caps extend to the left of the baseline column.
-        let mut cy = y + width / 2.0;
-        for run in rich_runs(text) {
-            let (sz, dx) = match run.level {
-                0 => (size, 0.0),
-                1 => (size * SCRIPT, -SUP_RAISE * size),
-                _ => (size * SCRIPT, SUB_DROP * size),
-            };
-            self.draw_plain(&run.text, baseline_x + dx, cy, sz, c, true)?;
-            cy -= Self::plain_width(&run.text, sz);
-        }
-        Ok(())
-    }
-}
-
-/// Font cap height for layout computations.
-pub(crate) fn cap_height(size: f64) -> f64 {
-    CAP * size
-}
-
-/// Descender depth for layout computations.
-pub(crate) fn descent(size: f64) -> f64 {
-    DESC * size
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rich_text_runs() {
-        let r = rich_runs("10^{-3} s^2 + x_{1}");
-        let texts: Vec<(&str, i8)> = r.iter().map(|r| (r.text.as_str(), r.level)).collect();
-        assert_eq!(
-            texts,
-            vec![
-                ("10", 0),
-                ("−3", 1),
-                (" s", 0),
-                ("2", 1),
-                (" + x", 0),
-                ("1", -1)
-            ]
-        );
-        // A lone caret or underscore stays literal.
-        let r = rich_runs("a_b ^ c");
-        assert_eq!(r.len(), 1);
-        assert_eq!(r[0].text, "a_b ^ c");
-    }
 
     #[test]
     fn stroke_covers_pixels_and_dashes_leave_gaps() {
@@ -628,20 +337,5 @@ mod tests {
         let gaps = dark.windows(2).filter(|w| w[0] && !w[1]).count();
         assert!((20..42).contains(&n), "dark pixels {n}");
         assert!(gaps >= 3, "gaps {gaps}");
-    }
-
-    #[test]
-    fn text_is_drawn() {
-        let mut c = Canvas::new(80, 30).unwrap();
-        c.text(
-            "Hg 10^{2}",
-            (2.0, 15.0),
-            20.0,
-            Color::BLACK,
-            (HAlign::Left, VAlign::Middle),
-        )
-        .unwrap();
-        assert!(c.pixels().iter().any(|&b| b < 100));
-        assert!(Canvas::text_width("10^{2}", 20.0) > Canvas::plain_width("10", 20.0));
     }
 }

@@ -5,11 +5,13 @@
 use std::path::Path;
 
 use super::axes::Axis;
-use super::layout::{bounds, draw_title, equal_axes, layout_single, tick_targets};
-use super::legend::{Corner, LegendEntry, Swatch, draw_legend, sample_run};
-use super::raster::{HAlign, VAlign};
+use super::frame::Frame;
+use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single, tick_targets};
+use super::legend::{Corner, LegendEntry, Swatch, box_points, draw_legend, sample_run};
+use super::raster::Canvas;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
-use super::{Color, PlotOptions, render};
+use super::text::{HAlign, VAlign};
+use super::{Color, PlotOptions, check_label, check_text, render};
 use crate::error::{LtiError, Result};
 
 /// One curve: points in drawing order, with its style.
@@ -186,10 +188,30 @@ fn check_range(r: Option<(f64, f64)>, what: &str) -> Result<()> {
     Ok(())
 }
 
+/// Checks every text of the plot against [`super::MAX_TEXT_CHARS`].
+fn check_texts(plot: &XyPlot) -> Result<()> {
+    check_text("the default title", &plot.title)?;
+    check_text("the x-axis title", &plot.x_label)?;
+    check_text("the y-axis title", &plot.y_label)?;
+    for (k, c) in plot.curves.iter().enumerate() {
+        check_label(k, c.label.as_deref())?;
+    }
+    for (k, m) in plot.markers.iter().enumerate() {
+        if let Some(l) = &m.label {
+            check_text(&format!("the label of marker {}", k + 1), l)?;
+        }
+    }
+    for (k, n) in plot.notes.iter().enumerate() {
+        check_text(&format!("note {}", k + 1), n)?;
+    }
+    Ok(())
+}
+
 /// Writes a generic x–y plot (see [`XyPlot`]).
 ///
-/// Errors: no curve or marker with a finite point, a bad fixed range, bad options, an
-/// unwritable path.
+/// Errors: no curve or marker with a finite point, a bad fixed range, bad options, a title,
+/// axis title, label or note longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS)
+/// characters, an unwritable path.
 pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Result<()> {
     xy_png_with(path.as_ref(), plot, &[], opts)
 }
@@ -203,6 +225,7 @@ fn xy_png_with(
 ) -> Result<()> {
     check_range(plot.x_range, "x")?;
     check_range(plot.y_range, "y")?;
+    check_texts(plot)?;
     let all = || {
         plot.curves
             .iter()
@@ -215,92 +238,18 @@ fn xy_png_with(
     let (Some(xb), Some(yb)) = (xb, yb) else {
         return Err(LtiError::Plot("no finite data points to plot".into()));
     };
+    let xr = padded(xb, plot.x_range.is_some());
+    let yr = padded(yb, plot.y_range.is_some());
+    check_span("x values", xr)?;
+    check_span("y values", yr)?;
     let title = opts.title_or(|| plot.title.clone());
     render(path, opts, |c, th| {
-        let pad = |r: (f64, f64), fixed: bool| {
-            if fixed {
-                r
-            } else {
-                let d = (r.1 - r.0).abs().max(1e-300) * 0.03;
-                (r.0 - d, r.1 + d)
-            }
-        };
-        let xr = pad(xb, plot.x_range.is_some());
-        let yr = pad(yb, plot.y_range.is_some());
-        let frame = layout_single(
-            c,
-            th,
-            title.is_some(),
-            !plot.x_label.is_empty(),
-            !plot.y_label.is_empty(),
-            |w, h| {
-                if plot.equal_aspect {
-                    equal_axes(xr, yr, w, h, th)
-                } else {
-                    let (nx, ny) = tick_targets(w, h, th);
-                    (
-                        Axis::linear(xr.0, xr.1, nx, plot.x_range.is_some()),
-                        Axis::linear(yr.0, yr.1, ny, plot.y_range.is_some()),
-                    )
-                }
-            },
-        );
+        let frame = layout(c, th, plot, (xr, yr), title.is_some());
         if opts.grid {
             frame.draw_grid(c, th);
         }
-        let mut legend = Vec::new();
-        let mut avoid = Vec::new();
-        let mut auto_color = 0;
-        for curve in &plot.curves {
-            let color = curve.color.unwrap_or_else(|| {
-                auto_color += 1;
-                series_color(auto_color - 1)
-            });
-            let w = th.line
-                * if curve.width > 0.0 && curve.width.is_finite() {
-                    curve.width
-                } else {
-                    1.0
-                };
-            let runs = frame.clip_polyline(curve.points.iter().copied());
-            let pattern = curve.style.pattern(w);
-            for run in &runs {
-                c.stroke(run, w, color, &pattern);
-                avoid.extend(sample_run(run, 6.0));
-            }
-            arrows_along(
-                c,
-                &runs,
-                curve.arrows,
-                11.0 * th.s.max(0.8) + 2.0 * w,
-                color,
-            );
-            if let Some(l) = &curve.label {
-                legend.push(LegendEntry::line(l.clone(), color, curve.style));
-            }
-        }
-        for m in &plot.markers {
-            let color = m.color.unwrap_or(Color::BLACK);
-            frame.plot_marker(c, m.at, m.shape, 6.0 * th.s, color, th.line);
-            if let (Some(l), true) = (&m.label, frame.contains(m.at)) {
-                let p = frame.px(m.at);
-                avoid.push(p);
-                let x = p.0 + 9.0 * th.s;
-                let right = x + super::raster::Canvas::text_width(l, th.note) < frame.x1;
-                let (x, h) = if right {
-                    (x, HAlign::Left)
-                } else {
-                    (p.0 - 9.0 * th.s, HAlign::Right)
-                };
-                c.text_on_box(
-                    l,
-                    (x, p.1 - 7.0 * th.s),
-                    th.note,
-                    color,
-                    (h, VAlign::Bottom),
-                )?;
-            }
-        }
+        let (mut legend, mut avoid) = draw_curves(c, th, &frame, &plot.curves);
+        draw_markers(c, th, &frame, &plot.markers, &mut avoid)?;
         legend.extend(extra.iter().cloned());
         for n in &plot.notes {
             legend.push(LegendEntry {
@@ -313,12 +262,8 @@ fn xy_png_with(
         frame.draw_axis_titles(
             c,
             th,
-            Some(&plot.x_label)
-                .filter(|s| !s.is_empty())
-                .map(|s| s.as_str()),
-            Some(&plot.y_label)
-                .filter(|s| !s.is_empty())
-                .map(|s| s.as_str()),
+            non_empty(&plot.x_label),
+            non_empty(&plot.y_label),
             th.pad,
         )?;
         draw_legend(
@@ -340,6 +285,127 @@ fn xy_png_with(
         }
         Ok(())
     })
+}
+
+/// `Some(s)` unless `s` is empty.
+fn non_empty(s: &str) -> Option<&str> {
+    Some(s).filter(|s| !s.is_empty())
+}
+
+/// The drawn range for data bounds `r`: automatic ranges get 3 % of room on each side, fixed
+/// ones are kept.
+fn padded(r: (f64, f64), fixed: bool) -> (f64, f64) {
+    if fixed {
+        r
+    } else {
+        let d = (r.1 - r.0).abs().max(f64::MIN_POSITIVE) * 0.03;
+        (r.0 - d, r.1 + d)
+    }
+}
+
+/// The frame for the drawn ranges `(xr, yr)`, with equal units per pixel when asked.
+fn layout(
+    c: &Canvas,
+    th: &Theme,
+    plot: &XyPlot,
+    (xr, yr): ((f64, f64), (f64, f64)),
+    has_title: bool,
+) -> Frame {
+    layout_single(
+        c,
+        th,
+        has_title,
+        !plot.x_label.is_empty(),
+        !plot.y_label.is_empty(),
+        |w, h| {
+            if plot.equal_aspect {
+                equal_axes(xr, yr, w, h, th)
+            } else {
+                let (nx, ny) = tick_targets(w, h, th);
+                (
+                    Axis::linear(xr.0, xr.1, nx, plot.x_range.is_some()),
+                    Axis::linear(yr.0, yr.1, ny, plot.y_range.is_some()),
+                )
+            }
+        },
+    )
+}
+
+/// The curves with their arrows; returns their legend rows and the pixel points to keep
+/// legends off.
+fn draw_curves(
+    c: &mut Canvas,
+    th: &Theme,
+    frame: &Frame,
+    curves: &[Curve],
+) -> (Vec<LegendEntry>, Vec<(f64, f64)>) {
+    let mut legend = Vec::new();
+    let mut avoid = Vec::new();
+    let mut auto_color = 0;
+    for curve in curves {
+        let color = curve.color.unwrap_or_else(|| {
+            auto_color += 1;
+            series_color(auto_color - 1)
+        });
+        let w = th.line
+            * if curve.width > 0.0 && curve.width.is_finite() {
+                curve.width
+            } else {
+                1.0
+            };
+        let runs = frame.clip_polyline(curve.points.iter().copied());
+        let pattern = curve.style.pattern(w);
+        for run in &runs {
+            c.stroke(run, w, color, &pattern);
+            avoid.extend(sample_run(run, 6.0));
+        }
+        arrows_along(
+            c,
+            &runs,
+            curve.arrows,
+            11.0 * th.s.max(0.8) + 2.0 * w,
+            color,
+        );
+        if let Some(l) = &curve.label {
+            legend.push(LegendEntry::line(l.clone(), color, curve.style));
+        }
+    }
+    (legend, avoid)
+}
+
+/// The markers, with their labels to the upper right (upper left near the right edge); adds
+/// the labelled positions to `avoid`.
+fn draw_markers(
+    c: &mut Canvas,
+    th: &Theme,
+    frame: &Frame,
+    markers: &[Marker],
+    avoid: &mut Vec<(f64, f64)>,
+) -> Result<()> {
+    for m in markers {
+        let color = m.color.unwrap_or(Color::BLACK);
+        frame.plot_marker(c, m.at, m.shape, 6.0 * th.s, color, th.line);
+        if let (Some(l), true) = (&m.label, frame.contains(m.at)) {
+            let p = frame.px(m.at);
+            avoid.push(p);
+            let x = p.0 + 9.0 * th.s;
+            let right = x + Canvas::text_width(l, th.note) < frame.x1;
+            let (x, h) = if right {
+                (x, HAlign::Left)
+            } else {
+                (p.0 - 9.0 * th.s, HAlign::Right)
+            };
+            let b = c.text_on_box(
+                l,
+                (x, p.1 - 7.0 * th.s),
+                th.note,
+                color,
+                (h, VAlign::Bottom),
+            )?;
+            avoid.extend(box_points(b));
+        }
+    }
+    Ok(())
 }
 
 /// Time plot of several series y(t) against t (s), with a legend.

@@ -7,6 +7,7 @@
 //!
 //! Roots come with exact multiplicities ([`Poly::roots`], see [`roots`] for the method).
 
+pub mod exact;
 mod root;
 pub mod roots;
 

@@ -34,6 +34,7 @@
 //! from the factors.
 
 mod display;
+mod plant;
 mod pole_zero;
 pub(crate) mod series;
 mod source;

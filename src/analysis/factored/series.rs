@@ -39,15 +39,32 @@ impl ScaledProduct {
         }
     }
 
-    /// Multiplies by `v`.
+    /// `v` as (mantissa, exponent) with the larger component of the mantissa in [0.5, 1).
+    fn split(v: Complex64) -> (Complex64, i64) {
+        let m = v.re.abs().max(v.im.abs());
+        match crate::numeric::balance::exponent(m) {
+            Some(e) => {
+                let e = i64::from(e) + 1;
+                let s = pow2(-e);
+                (Complex64::new(v.re * s, v.im * s), e)
+            }
+            None => (v, 0),
+        }
+    }
+
+    /// Multiplies by `v` (any finite size: the factor's exponent is taken out first).
     pub(crate) fn mul(&mut self, v: Complex64) {
-        self.mant *= v;
+        let (m, e) = Self::split(v);
+        self.mant *= m;
+        self.exp += e;
         self.rescale();
     }
 
-    /// Divides by `v`.
+    /// Divides by `v` (Smith's division on the factor's mantissa).
     pub(crate) fn div(&mut self, v: Complex64) {
-        self.mant /= v;
+        let (m, e) = Self::split(v);
+        self.mant = crate::numeric::complex::div(self.mant, m);
+        self.exp -= e;
         self.rescale();
     }
 
@@ -143,7 +160,7 @@ pub(crate) fn normalised_series(
     let mut factor = vec![zero; m];
     let mut apply = |a: Complex64, k: usize, sign: f64, out: &mut Vec<Complex64>| {
         // (1 + x)^(sign·k), x = h/a: binomial coefficients C(sign·k, l) x^l
-        let x = a.inv();
+        let x = crate::numeric::complex::recip(a);
         let kk = sign * k as f64;
         let mut coef = Complex64::new(1.0, 0.0);
         for (l, f) in factor.iter_mut().enumerate() {
@@ -185,6 +202,20 @@ mod tests {
         let mut p = ScaledProduct::new(C::new(2.0, 0.0));
         p.mul_pow(C::new(1e-200, 0.0), 2);
         assert_eq!(p.value(), C::new(0.0, 0.0)); // 2e-400 underflows at the end only
+    }
+
+    #[test]
+    fn factors_beyond_1e154_are_not_lost() {
+        // 1/((s + 1e200)(s + 1e-200)) at s = 0: 1/(1e200·1e-200) = 1
+        let p = [
+            Root::new(C::new(-1e200, 0.0), 1),
+            Root::new(C::new(-1e-200, 0.0), 1),
+        ];
+        let v = eval_factors(1.0, &[], &p, C::new(0.0, 0.0));
+        assert!((v - C::new(1.0, 0.0)).norm() < 1e-15, "{v}");
+        // the series of (1 + h/1e200)^(−1): 1, −1e-200
+        let s = normalised_series(&[], &[(C::new(1e200, 0.0), 1)], 2);
+        assert_eq!(s[1], C::new(-1e-200, 0.0));
     }
 
     #[test]

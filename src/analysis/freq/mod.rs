@@ -181,7 +181,7 @@ fn worker_count(n: usize) -> usize {
 }
 
 /// Checks that every frequency is finite and ≥ 0.
-pub(crate) fn check_frequencies(w: &[f64]) -> Result<()> {
+pub fn check_frequencies(w: &[f64]) -> Result<()> {
     for (i, &x) in w.iter().enumerate() {
         check_finite(|| format!("frequency w[{i}]"), x)?;
         if x < 0.0 {

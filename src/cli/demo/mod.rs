@@ -1,8 +1,10 @@
 //! `ltikit demo`: the textbook tour. Analyses every textbook plant and the seed's nonlinear
 //! models, verifies the results at run time, and writes `report.md` with its PNGs.
 
+mod lattice;
 mod linear;
 mod md;
+mod mechanics;
 mod nonlinear;
 mod seed;
 mod verify;
@@ -103,7 +105,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         figures: Vec::new(),
         checks: Checks::default(),
         step: 0,
-        steps: plants.len() + 7,
+        steps: plants.len() + 12,
         tty: std::io::stderr().is_terminal() && !a.json,
     };
     let mut md = Md::default();
@@ -127,6 +129,11 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         plants.len() + 1
     ));
     toc.push(format!("{}. Nonlinear models", plants.len() + 2));
+    toc.push(format!("{}. Mechanical systems", plants.len() + 3));
+    toc.push(format!(
+        "{}. The linear lattice (seed §2.4)",
+        plants.len() + 4
+    ));
     toc.push("Verification".into());
     md.bullets(&toc);
 
@@ -159,6 +166,9 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     nonlinear::lorenz(&mut ctx, &mut md)?;
     ctx.progress("van der Pol");
     nonlinear::vanderpol(&mut ctx, &mut md)?;
+    mechanics::sections(&mut ctx, &mut md, plants.len() + 3)?;
+    ctx.progress("linear lattice");
+    lattice::section(&mut ctx, &mut md, plants.len() + 4)?;
 
     ctx.progress("verification");
     seed::analytic_checks(&mut ctx)?;

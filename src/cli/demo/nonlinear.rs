@@ -7,10 +7,11 @@ use super::{Ctx, fig};
 use crate::cli::text::vector_text;
 use crate::nonlinear::models::{Lorenz, Mems, Pendulum, VanDerPol};
 use crate::nonlinear::{
-    DynSystem, EquilibriumSearch, Linearization, LocalStability, linearize, pendulum_periods,
+    DynSystem, EquilibriumSearch, Linearization, LocalStability, PeriodPoint, linearize,
+    pendulum_periods,
 };
 use crate::nonlinear::{
-    Input, Simulation, lorenz_divergence, pendulum_separatrices, sample_times, simulate,
+    InputSignal, Simulation, lorenz_divergence, pendulum_separatrices, sample_times, simulate,
     trajectories,
 };
 use crate::numeric::rk45::Rk45Options;
@@ -169,6 +170,21 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
             1e-14,
         );
     }
+    let rows = period_table(ctx, md, &p)?;
+    let (portrait, undamped) = portraits(ctx, &p, &lin)?;
+    let period = period_figure(ctx, &p, &rows)?;
+    md.image("Damped pendulum phase portrait", portrait);
+    md.image(
+        "Undamped pendulum phase portrait with separatrices",
+        undamped,
+    );
+    md.image("Pendulum period against amplitude", period);
+    Ok(lin)
+}
+
+/// MEMS mirror: equilibria below pull-in, the pull-in voltage.
+/// The pendulum's period against amplitude: exact, simulated and small-angle, tabled and checked.
+fn period_table(ctx: &mut Ctx, md: &mut Md, p: &Pendulum) -> Result<Vec<PeriodPoint>> {
     md.p(
         "**Period against amplitude** (undamped, C = 0): the exact T = 4K(k)/ω with \
           k = sin(θ₀/2), ω² = 3g/(2L) (seed §2.3.1.1), the period measured on the simulated \
@@ -180,7 +196,7 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         atol: 1e-14,
         ..Default::default()
     };
-    let rows = pendulum_periods(&p, &amps, &opts)?;
+    let rows = pendulum_periods(p, &amps, &opts)?;
     let table: Vec<Vec<String>> = rows
         .iter()
         .map(|r| {
@@ -216,6 +232,15 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         );
     }
 
+    Ok(rows)
+}
+
+/// The damped and the undamped phase portraits (with separatrices); returns their file names.
+fn portraits(
+    ctx: &mut Ctx,
+    p: &Pendulum,
+    lin: &Linearization,
+) -> Result<(&'static str, &'static str)> {
     // Phase portraits: the damped pendulum, and the undamped one with its separatrices.
     let pi = std::f64::consts::PI;
     let t = sample_times(12.0, 2401)?;
@@ -228,10 +253,16 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         vec![pi, -9.0],
         vec![-pi, 6.5],
     ];
-    let damped = trajectories(&p, &starts, &Input::Constant(vec![0.0]), &t, &accurate())?;
+    let damped = trajectories(
+        p,
+        &starts,
+        &InputSignal::constant(vec![0.0]),
+        &t,
+        &accurate(),
+    )?;
     let portrait = "pendulum-phase.png";
-    let mut eq = markers(&lin, 0, 1);
-    eq.extend(markers(&lin, 0, 1).into_iter().map(|mut e| {
+    let mut eq = markers(lin, 0, 1);
+    eq.extend(markers(lin, 0, 1).into_iter().map(|mut e| {
         e.at.0 -= 2.0 * pi;
         e
     }));
@@ -257,7 +288,13 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         vec![-pi, 8.5],
         vec![pi, -8.5],
     ];
-    let free = trajectories(&p0, &starts, &Input::Constant(vec![0.0]), &t, &accurate())?;
+    let free = trajectories(
+        &p0,
+        &starts,
+        &InputSignal::constant(vec![0.0]),
+        &t,
+        &accurate(),
+    )?;
     let [upper, lower] = pendulum_separatrices(&p0, -pi, pi, 401)?;
     let sep = |v: &[[f64; 2]]| Curve::new(v.iter().map(|q| (q[0], q[1])));
     let undamped = "pendulum-phase-undamped.png";
@@ -290,6 +327,12 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         },
         &fig("Undamped pendulum (C = 0): oscillations inside the separatrices, rotations outside"),
     )?;
+    Ok((portrait, undamped))
+}
+
+/// The period against amplitude: the exact curve, the small-angle line, the simulated periods.
+fn period_figure(ctx: &mut Ctx, p: &Pendulum, rows: &[PeriodPoint]) -> Result<&'static str> {
+    let pi = std::f64::consts::PI;
     // Period against amplitude.
     let dense: Vec<(f64, f64)> = (1..=313)
         .map(|k| {
@@ -319,16 +362,9 @@ pub fn pendulum(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         },
         &fig("Pendulum period against amplitude (seed §2.3.1.1)"),
     )?;
-    md.image("Damped pendulum phase portrait", portrait);
-    md.image(
-        "Undamped pendulum phase portrait with separatrices",
-        undamped,
-    );
-    md.image("Pendulum period against amplitude", period);
-    Ok(lin)
+    Ok(period)
 }
 
-/// MEMS mirror: equilibria below pull-in, the pull-in voltage.
 pub fn mems(ctx: &mut Ctx, md: &mut Md) -> Result<(Mems, Linearization)> {
     let m = Mems::default();
     md.h3("Electrostatic MEMS mirror (exercises 1.4, 2.11)");
@@ -378,7 +414,7 @@ pub fn mems(ctx: &mut Ctx, md: &mut Md) -> Result<(Mems, Linearization)> {
         let sim = simulate(
             &mv,
             &[m.l0, 0.0, 0.0],
-            &Input::Constant(vec![v]),
+            &InputSignal::constant(vec![v]),
             &t,
             &accurate(),
         )?;
@@ -477,7 +513,7 @@ pub fn lorenz(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
           trajectories wander between them forever (the attractor below).",
     );
     let t = sample_times(50.0, 25001)?;
-    let sim = simulate(&l, &[1.0, 0.0, 0.0], &Input::none(), &t, &accurate())?;
+    let sim = simulate(&l, &[1.0, 0.0, 0.0], &InputSignal::none(), &t, &accurate())?;
     let attractor = "lorenz-attractor.png";
     phase_portrait_png(
         ctx.figure(attractor),
@@ -536,7 +572,7 @@ pub fn vanderpol(ctx: &mut Ctx, md: &mut Md) -> Result<Linearization> {
         vec![-1.5, 1.5],
         vec![0.3, 0.2],
     ];
-    let tr = trajectories(&VanDerPol, &starts, &Input::none(), &t, &accurate())?;
+    let tr = trajectories(&VanDerPol, &starts, &InputSignal::none(), &t, &accurate())?;
     let worst = tr
         .iter()
         .map(|s| {

@@ -51,6 +51,26 @@ impl CoeffList {
     }
 }
 
+/// A matrix as rows of numbers or as one string "0 1; -4 -0.8".
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum MatrixSpec {
+    /// `[[0, 1], [-4, -0.8]]`
+    Rows(Vec<Vec<f64>>),
+    /// `"0 1; -4 -0.8"`
+    Text(String),
+}
+
+impl MatrixSpec {
+    /// The matrix.
+    pub fn matrix(&self, what: &str) -> Result<nalgebra::DMatrix<f64>> {
+        match self {
+            MatrixSpec::Rows(r) => super::text::matrix_of_rows(r.clone(), what),
+            MatrixSpec::Text(s) => super::text::parse_matrix(s, what),
+        }
+    }
+}
+
 /// A parsed plant record (plant file or batch line).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -82,6 +102,27 @@ pub struct PlantFile {
     /// Model parameters.
     #[serde(default)]
     pub params: BTreeMap<String, f64>,
+    /// State matrix A (n × n) of a state-space plant.
+    #[serde(default)]
+    pub a: Option<MatrixSpec>,
+    /// Input matrix B (n × m).
+    #[serde(default)]
+    pub b: Option<MatrixSpec>,
+    /// Output matrix C (p × n).
+    #[serde(default)]
+    pub c: Option<MatrixSpec>,
+    /// Feedthrough D (p × m; zero when absent).
+    #[serde(default)]
+    pub d: Option<MatrixSpec>,
+    /// Names (with units) of the inputs of a state-space plant.
+    #[serde(default)]
+    pub inputs: Vec<String>,
+    /// Names of the outputs.
+    #[serde(default)]
+    pub outputs: Vec<String>,
+    /// Names of the states.
+    #[serde(default)]
+    pub states: Vec<String>,
 }
 
 /// Largest plant file or batch line accepted (bytes).
@@ -132,12 +173,20 @@ impl PlantFile {
     }
 
     fn validated(self) -> Result<PlantFile> {
-        match (&self.den, &self.model) {
-            (Some(_), None) => Ok(self),
-            (None, Some(_)) if self.num.is_none() => Ok(self),
-            _ => Err(LtiError::invalid(
-                "a plant needs either `den` (with an optional `num`), or `model` (with optional [params])",
-            )),
+        let coeffs = self.den.is_some() || self.num.is_some();
+        let matrices = self.a.is_some() || self.b.is_some() || self.c.is_some() || self.d.is_some();
+        let kinds = [coeffs, self.model.is_some(), matrices]
+            .iter()
+            .filter(|&&k| k)
+            .count();
+        let complete = (!coeffs || self.den.is_some())
+            && (!matrices || (self.a.is_some() && self.b.is_some() && self.c.is_some()));
+        if kinds == 1 && complete {
+            Ok(self)
+        } else {
+            Err(LtiError::invalid(
+                "a plant needs exactly one of: `den` (with an optional `num`), `model` (with optional [params]), or `a`, `b`, `c` (with an optional `d`)",
+            ))
         }
     }
 }
@@ -168,6 +217,11 @@ mod tests {
         assert!(PlantFile::parse("name = \"x\"\nnum = [1.0]\nden = [1.0]\ntypo = 3").is_err());
         assert!(PlantFile::parse("name = \"x\"\nden = [1.0]\nmodel = \"tank\"").is_err());
         assert!(PlantFile::parse_json("{}").is_err());
+        assert!(PlantFile::parse_json(r#"{"a": [[1]], "b": [[1]]}"#).is_err()); // no c
+        assert!(
+            PlantFile::parse_json(r#"{"a": [[1]], "b": [[1]], "c": "1", "den": [1]}"#).is_err()
+        );
+        assert!(PlantFile::parse_json(r#"{"a": [[-1]], "b": [[1]], "c": "1"}"#).is_ok());
         assert!(PlantFile::parse_json("[1, 2]").is_err());
     }
 }

@@ -7,7 +7,9 @@
 //! let p = Plant::from_text(Some("4"), "1 0.8 4").unwrap();
 //! assert_eq!(p.name, "4 / (s^2 + 0.8 s + 4)");
 //! let q = Plant::from_model("spring-mass-damper", &[("C".into(), 0.8)]).unwrap();
-//! assert_eq!(q.tf.den().coeffs(), &[1.0, 0.8, 4.0]);
+//! assert_eq!(q.tf().unwrap().den().coeffs(), &[1.0, 0.8, 4.0]);
+//! let ss = Plant::from_matrices_text("0 1; -4 -0.8", "0; 1", "1 0", None).unwrap();
+//! assert_eq!(ss.model.dims(), (1, 1));
 //! assert_eq!(q.name, "spring-mass-damper (M=1, C=0.8, K=4)");
 //! let r = Plant::from_json_line(r#"{"name": "p1", "den": [1, 2, 1]}"#).unwrap();
 //! assert_eq!(r.name, "p1");
@@ -18,25 +20,30 @@ mod text;
 
 use std::path::Path;
 
-pub use file::{CoeffList, MAX_RECORD_BYTES, PlantFile};
+pub use file::{CoeffList, MAX_RECORD_BYTES, MatrixSpec, PlantFile};
 pub use text::{
-    Coefficient, coefficients_of, parse_list, parse_number, parse_param, parse_params, parse_values,
+    Coefficient, coefficients_of, matrix_of_rows, parse_list, parse_matrix, parse_number,
+    parse_param, parse_params, parse_values,
 };
 
-use crate::error::Result;
-use crate::lti::{TransferFunction, build_plant};
+use nalgebra::DMatrix;
+
+use crate::error::{LtiError, Result};
+use crate::lti::{Model, Signals, StateSpace, TransferFunction, build_plant};
 use crate::poly::fmt_num;
 
-/// A plant as the user gave it: a name, a description, the transfer function, and the
-/// coefficients as typed when it was given by them.
+/// A plant as the user gave it: a name, a description, the model (transfer function or state
+/// space), the names of its signals, and the coefficients as typed when it was given by them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plant {
     /// Display name (the file's name, the model with its parameters, or G itself).
     pub name: String,
     /// What it is, with its input and output when known.
     pub description: Option<String>,
-    /// The transfer function.
-    pub tf: TransferFunction,
+    /// The model.
+    pub model: Model,
+    /// Names of the inputs, outputs and states.
+    pub signals: Signals,
     /// Numerator and denominator coefficients as typed (text kept), when given by them.
     pub typed: Option<(Vec<Coefficient>, Vec<Coefficient>)>,
 }
@@ -63,12 +70,71 @@ impl Plant {
     ) -> Result<Plant> {
         let values = |c: &[Coefficient]| c.iter().map(|x| x.value).collect::<Vec<_>>();
         let tf = TransferFunction::from_descending(&values(&num), &values(&den))?;
+        let mut plant = Self::from_tf(tf, name)?;
+        plant.typed = Some((num, den));
+        Ok(plant)
+    }
+
+    /// From a transfer function (named by its own text unless `name` is given).
+    pub fn from_tf(tf: TransferFunction, name: Option<String>) -> Result<Plant> {
+        let model = Model::Tf(tf);
+        let Model::Tf(g) = &model else {
+            unreachable!("just built")
+        };
+        let name = name.unwrap_or_else(|| g.to_string());
         Ok(Plant {
-            name: name.unwrap_or_else(|| tf.to_string()),
+            name,
             description: None,
-            tf,
-            typed: Some((num, den)),
+            signals: Signals::for_model(&model, vec![], vec![], vec![])?,
+            model,
+            typed: None,
         })
+    }
+
+    /// From a state-space model (size-checked: [`crate::lti::MAX_STATES`]).
+    pub fn from_state_space(ss: StateSpace, name: Option<String>) -> Result<Plant> {
+        ss.check_size()?;
+        let (n, m, p) = (ss.order(), ss.n_inputs(), ss.n_outputs());
+        let model = Model::Ss(ss);
+        Ok(Plant {
+            name: name.unwrap_or_else(|| {
+                format!("state-space model ({n} states, {m} inputs, {p} outputs)")
+            }),
+            description: None,
+            signals: Signals::for_model(&model, vec![], vec![], vec![])?,
+            model,
+            typed: None,
+        })
+    }
+
+    /// From the matrices A, B, C (and D, zero when absent) typed as text, rows separated by
+    /// `;`: `--a "0 1; -4 -0.8" --b "0; 1" --c "1 0" --d 0`.
+    ///
+    /// Errors: a bad token, ragged rows, inconsistent dimensions (naming the matrices),
+    /// NaN/∞ entries, more than [`crate::lti::MAX_STATES`] states.
+    pub fn from_matrices_text(a: &str, b: &str, c: &str, d: Option<&str>) -> Result<Plant> {
+        let a = parse_matrix(a, "--a")?;
+        let b = parse_matrix(b, "--b")?;
+        let c = parse_matrix(c, "--c")?;
+        let d = d.map(|d| parse_matrix(d, "--d")).transpose()?;
+        Self::from_state_space(state_space_of(a, b, c, d)?, None)
+    }
+
+    /// The transfer function, when the plant is one.
+    pub fn tf(&self) -> Option<&TransferFunction> {
+        match &self.model {
+            Model::Tf(g) => Some(g),
+            Model::Ss(_) => None,
+        }
+    }
+
+    /// The plant as a state-space model (a transfer function in controllable canonical form;
+    /// errors for an improper one).
+    pub fn state_space(&self) -> Result<StateSpace> {
+        match &self.model {
+            Model::Tf(g) => StateSpace::from_tf(g),
+            Model::Ss(ss) => Ok(ss.clone()),
+        }
     }
 
     /// A textbook model ([`crate::lti::plant_specs`]) with parameter overrides.
@@ -81,12 +147,7 @@ impl Plant {
             .map(|(k, v)| format!("{k}={}", fmt_num(*v)))
             .collect::<Vec<_>>()
             .join(", ");
-        Ok(Plant {
-            name: format!("{name} ({list})"),
-            description: None,
-            tf,
-            typed: None,
-        })
+        Self::from_tf(tf, Some(format!("{name} ({list})")))
     }
 
     /// From a plant record (see [`PlantFile`]).
@@ -105,9 +166,28 @@ impl Plant {
                 Self::from_model(m, &params)?
             }
             (None, None) => {
-                return Err(crate::LtiError::invalid(
-                    "a plant needs either `den` or `model`",
-                ));
+                let matrix = |m: &Option<MatrixSpec>, what: &str| {
+                    m.as_ref()
+                        .map(|x| x.matrix(what))
+                        .transpose()?
+                        .ok_or_else(|| {
+                            LtiError::invalid(format!("a state-space plant needs `{what}`"))
+                        })
+                };
+                let ss = state_space_of(
+                    matrix(&f.a, "a")?,
+                    matrix(&f.b, "b")?,
+                    matrix(&f.c, "c")?,
+                    f.d.as_ref().map(|x| x.matrix("d")).transpose()?,
+                )?;
+                let mut p = Self::from_state_space(ss, None)?;
+                p.signals = Signals::for_model(
+                    &p.model,
+                    f.inputs.clone(),
+                    f.outputs.clone(),
+                    f.states.clone(),
+                )?;
+                p
             }
         };
         if let Some(n) = &f.name {
@@ -139,6 +219,19 @@ impl Plant {
     }
 }
 
+/// A state-space model from its matrices, D zero (p × m) when absent.
+fn state_space_of(
+    a: DMatrix<f64>,
+    b: DMatrix<f64>,
+    c: DMatrix<f64>,
+    d: Option<DMatrix<f64>>,
+) -> Result<StateSpace> {
+    let d = d.unwrap_or_else(|| DMatrix::zeros(c.nrows(), b.ncols()));
+    let ss = StateSpace::new(a, b, c, d)?;
+    ss.check_size()?;
+    Ok(ss)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -153,10 +246,34 @@ mod tests {
         .unwrap();
         let d = Plant::from_model("spring-mass-damper", &[]).unwrap();
         for p in [&b, &c, &d] {
-            assert_eq!(p.tf, a.tf);
+            assert_eq!(p.tf(), a.tf());
         }
         assert_eq!(c.name, "x");
         assert_eq!(a.typed.as_ref().unwrap().1[1].text, "0.4");
+    }
+
+    #[test]
+    fn state_space_from_text_and_records() {
+        let p = Plant::from_matrices_text("0 1; -4 -0.8", "0; 1", "1 0", Some("0")).unwrap();
+        let Model::Ss(ss) = &p.model else {
+            panic!("state space expected")
+        };
+        assert_eq!((ss.order(), ss.n_inputs(), ss.n_outputs()), (2, 1, 1));
+        let e = Plant::from_matrices_text("0 1; -4 -0.8", "0; 1; 2", "1 0", None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("inconsistent dimensions"), "{e}");
+        let e = Plant::from_matrices_text("0 1 2; -4 -0.8 1", "0; 1", "1 0", None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("square"), "{e}");
+        let r = Plant::from_json_line(
+            r#"{"a": "-1 0; 0 -2", "b": [[1, 0], [0, 1]], "c": [[1, 1]], "outputs": ["sum"]}"#,
+        )
+        .unwrap();
+        assert_eq!(r.model.dims(), (2, 1));
+        assert_eq!(r.signals.outputs, vec!["sum".to_string()]);
+        assert_eq!(r.signals.inputs, vec!["u1".to_string(), "u2".to_string()]);
     }
 
     #[test]
@@ -166,7 +283,7 @@ mod tests {
         let e = Plant::from_json_line(r#"{"den": [1], "model": "tank"}"#)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("either"), "{e}");
+        assert!(e.contains("exactly one of"), "{e}");
         let e = Plant::from_model("tank", &[("Q".into(), 1.0)])
             .unwrap_err()
             .to_string();

@@ -56,6 +56,50 @@ pub fn parse_list(text: &str, what: &str) -> Result<Vec<Coefficient>> {
     Ok(out)
 }
 
+/// Parses a matrix: rows separated by `;` (or new lines), entries by spaces or commas, e.g.
+/// `"0 1; -4 -0.8"`.
+///
+/// Errors: no entries, rows of different lengths (naming the row), a token that is not a
+/// number.
+///
+/// ```
+/// use ltikit::lti::plant::parse_matrix;
+/// let a = parse_matrix("0 1; -4 -0.8", "--a").unwrap();
+/// assert_eq!((a.nrows(), a.ncols(), a[(1, 1)]), (2, 2, -0.8));
+/// let e = parse_matrix("1 2; 3", "--a").unwrap_err().to_string();
+/// assert!(e.contains("row 2 has 1 entries"), "{e}");
+/// ```
+pub fn parse_matrix(text: &str, what: &str) -> Result<nalgebra::DMatrix<f64>> {
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    for row in text.split([';', '\n']) {
+        let vals: Vec<f64> = row
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|t| !t.is_empty())
+            .map(|t| parse_number(t, what))
+            .collect::<Result<_>>()?;
+        if !vals.is_empty() {
+            rows.push(vals);
+        }
+    }
+    matrix_of_rows(rows, what)
+}
+
+/// A matrix from its rows (all of one length).
+pub fn matrix_of_rows(rows: Vec<Vec<f64>>, what: &str) -> Result<nalgebra::DMatrix<f64>> {
+    let Some(n) = rows.first().map(Vec::len) else {
+        return Err(LtiError::invalid(format!("{what}: no entries given")));
+    };
+    if let Some((i, r)) = rows.iter().enumerate().find(|(_, r)| r.len() != n) {
+        return Err(LtiError::invalid(format!(
+            "{what}: row {} has {} entries, row 1 has {n} (rows must be of equal length)",
+            i + 1,
+            r.len()
+        )));
+    }
+    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+    Ok(nalgebra::DMatrix::from_row_slice(rows.len(), n, &flat))
+}
+
 /// The values of [`parse_list`].
 pub fn parse_values(text: &str, what: &str) -> Result<Vec<f64>> {
     Ok(parse_list(text, what)?

@@ -8,6 +8,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::analysis::auto_time_span;
 use crate::error::Result;
 use crate::lti::{StateSpace, TransferFunction, build_plant};
 use crate::nonlinear::system::{NonlinearSystem, Scalar, SystemInfo};
@@ -26,6 +27,7 @@ pub struct LinearModel {
     ss: StateSpace,
     params: Vec<(String, f64)>,
     states: Vec<String>,
+    horizon: f64,
 }
 
 impl LinearModel {
@@ -37,6 +39,7 @@ impl LinearModel {
             ss,
             params: Vec::new(),
             states,
+            horizon: 10.0,
         }
     }
 
@@ -67,9 +70,12 @@ impl LinearModel {
                 ss,
                 params: Vec::new(),
                 states,
+                horizon: horizon(g),
             })
         } else {
-            Ok(Self::new(name, StateSpace::from_tf(g)?))
+            let mut m = Self::new(name, StateSpace::from_tf(g)?);
+            m.horizon = horizon(g);
+            Ok(m)
         }
     }
 
@@ -85,6 +91,17 @@ impl LinearModel {
     pub fn ss(&self) -> &StateSpace {
         &self.ss
     }
+}
+
+/// The automatic time span of the plant's responses (1.5× the 2 % settling of the slowest
+/// mode, five periods of undamped modes, …), 10 s when it has none.
+fn horizon(g: &TransferFunction) -> f64 {
+    g.factored()
+        .and_then(|f| auto_time_span(&f))
+        .map(|s| s.t_end)
+        .ok()
+        .filter(|t| t.is_finite() && *t > 0.0)
+        .unwrap_or(10.0)
 }
 
 impl SystemInfo for LinearModel {
@@ -105,6 +122,20 @@ impl SystemInfo for LinearModel {
     }
     fn state_names(&self) -> Vec<String> {
         self.states.clone()
+    }
+
+    /// The first state 1, the others 0: y(0) = 1 at rest for the phase-variable plants (the
+    /// seed's exercise 2.7 start).
+    fn default_initial_state(&self) -> Vec<f64> {
+        let mut x = vec![0.0; self.nx()];
+        if let Some(v) = x.first_mut() {
+            *v = 1.0;
+        }
+        x
+    }
+
+    fn default_horizon(&self) -> f64 {
+        self.horizon
     }
 
     /// Solutions of A x = −B u: the unique one when A is invertible; the minimum-norm one when

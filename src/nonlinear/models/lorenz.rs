@@ -96,6 +96,16 @@ impl SystemInfo for Lorenz {
         }
         Some(eq)
     }
+
+    /// [1, 0, 0] (seed fig. 2.9).
+    fn default_initial_state(&self) -> Vec<f64> {
+        vec![1.0, 0.0, 0.0]
+    }
+
+    /// 50 s (seed fig. 2.9).
+    fn default_horizon(&self) -> f64 {
+        50.0
+    }
 }
 
 impl NonlinearSystem for Lorenz {

@@ -194,6 +194,19 @@ impl SystemInfo for Mems {
     fn in_domain(&self, x: &[f64]) -> bool {
         x[0] > 0.0
     }
+
+    fn domain_note(&self) -> Option<String> {
+        Some("the plates touch: l ≤ 0".into())
+    }
+
+    /// At rest at the rest gap, uncharged: l = l0, l̇ = 0, q = 0 (exercise 2.11).
+    fn default_initial_state(&self) -> Vec<f64> {
+        vec![self.l0, 0.0, 0.0]
+    }
+
+    fn default_horizon(&self) -> f64 {
+        60.0
+    }
 }
 
 impl NonlinearSystem for Mems {

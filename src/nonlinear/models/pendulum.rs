@@ -136,6 +136,25 @@ impl SystemInfo for Pendulum {
         }
         Some(vec![vec![a, 0.0], vec![b, 0.0]])
     }
+
+    /// Released at rest from θ = 1 rad.
+    fn default_initial_state(&self) -> Vec<f64> {
+        vec![1.0, 0.0]
+    }
+
+    /// Without friction (C = 0) the energy ½θ̇² + ω²(1 − cos θ), ω² = 3g/(2L), is conserved.
+    fn conserved_names(&self) -> Vec<String> {
+        if self.c == 0.0 {
+            vec!["E".into()]
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// The height of the potential barrier, 2ω².
+    fn conserved_scales(&self) -> Vec<f64> {
+        vec![2.0 * self.omega() * self.omega()]
+    }
 }
 
 impl NonlinearSystem for Pendulum {
@@ -146,5 +165,11 @@ impl NonlinearSystem for Pendulum {
     }
     fn h<D: Scalar>(&self, x: &[D], _u: &[D], y: &mut [D]) {
         y[0] = x[0];
+    }
+    fn conserved<D: Scalar>(&self, x: &[D], c: &mut [D]) {
+        if let Some(e) = c.first_mut() {
+            let w2 = 3.0 * self.g / (2.0 * self.l);
+            *e = x[1] * x[1] * 0.5 - (x[0].cos() - 1.0) * w2;
+        }
     }
 }

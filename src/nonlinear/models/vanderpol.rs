@@ -36,6 +36,15 @@ impl SystemInfo for VanDerPol {
     fn closed_form_equilibria(&self, _u: &[f64]) -> Option<Vec<Vec<f64>>> {
         Some(vec![vec![0.0, 0.0]])
     }
+
+    /// [0.001, 0] (seed exercise 2.9: it spirals out to the limit cycle).
+    fn default_initial_state(&self) -> Vec<f64> {
+        vec![0.001, 0.0]
+    }
+
+    fn default_horizon(&self) -> f64 {
+        20.0
+    }
 }
 
 impl NonlinearSystem for VanDerPol {

@@ -8,7 +8,7 @@ use crate::error::{LtiError, Result};
 use crate::poly::Poly;
 
 /// Candidate roots (with repetition): closed forms for degree ≤ 2, companion eigenvalues above.
-pub(super) fn candidates(q: &Poly) -> Result<Vec<Complex64>> {
+pub(crate) fn candidates(q: &Poly) -> Result<Vec<Complex64>> {
     let c = q.coeffs();
     let n = q.degree();
     match n {

@@ -1,7 +1,9 @@
 //! Roots of a real polynomial with exact multiplicities.
 //!
 //! # Method
-//! 1. Exact zero roots (trailing zero coefficients) are deflated exactly.
+//! 1. Exact zero roots (trailing zero coefficients) are deflated exactly; coefficients of
+//!    extreme range are split at wide gaps between the tropical roots and each piece is centred
+//!    by an exact power of two (`scale.rs`).
 //! 2. Candidates: degree 1 and 2 by stable closed forms; otherwise the eigenvalues of the
 //!    balanced companion matrix (Francis double-shift QR directly on the Hessenberg companion
 //!    matrix, capped, with [`crate::numeric::eigenvalues`] as the fallback). Simple roots come out to
@@ -20,6 +22,13 @@
 //!    to a small multiple of eps); if it does not, the polished candidates are returned as
 //!    simple roots — no multiplicity is ever claimed that the coefficients do not support.
 //!
+//! When a multiple root is found, all roots are refined together by Gauss–Newton with the
+//! structure fixed and a double-double residual (`refine.rs`); when the checks of step 5 fail,
+//! a second stage takes the structure from the derivatives (`derivatives.rs`).
+//!
+//! Files, by step: `scale.rs` (1), `candidates.rs` and `companion.rs` (2), `group.rs` and
+//! `newton.rs` (3, 4), `refine.rs`, `checks.rs` (5) and `derivatives.rs`.
+//!
 //! Two simple roots closer than about 2e-7 relative are indistinguishable from a double root
 //! perturbed by rounding of the coefficients and are reported as one double root; roots
 //! 5e-4 apart (which scipy's `residue` merges) stay distinct.
@@ -27,16 +36,17 @@
 use num_complex::Complex64;
 
 mod candidates;
+pub(crate) use candidates::candidates;
 mod checks;
 mod companion;
 mod derivatives;
 mod group;
 mod newton;
 mod refine;
+mod scale;
 
 use super::{MAX_ORDER, Poly, Root};
 use crate::error::{LtiError, Result};
-use candidates::candidates;
 use checks::{any_more_multiple, reconstructs, simple_roots};
 use derivatives::{hidden_multiple_root, structure_from_derivatives};
 use group::{group_weight, link_groups, resolve_group};
@@ -87,10 +97,45 @@ pub fn roots(p: &Poly) -> Result<Vec<Root>> {
     }
     let q = Poly::trimmed(p.coeffs()[..=n - k0].to_vec());
     if q.degree() > 0 {
-        let candidates = candidates(&q)?;
-        out.extend(resolve_multiplicities(&q, &candidates));
+        out.extend(solve(&q)?);
     }
     sort_roots(&mut out);
+    Ok(out)
+}
+
+/// Roots of `q` (no zero roots), in its own frame or piece by piece (see [`scale`]).
+fn solve(q: &Poly) -> Result<Vec<Root>> {
+    let pieces = match scale::plan(q)? {
+        scale::Plan::Native => {
+            let cand = candidates(q)?;
+            return Ok(resolve_multiplicities(q, &cand));
+        }
+        scale::Plan::Pieces(p) => p,
+    };
+    let mut out = Vec::new();
+    for piece in pieces {
+        let cand = candidates(&piece.poly)?;
+        for r in resolve_multiplicities(&piece.poly, &cand) {
+            let value = scale::unscale(r.value, piece.shift);
+            if !(value.re.is_finite() && value.im.is_finite()) {
+                return Err(LtiError::invalid(format!(
+                    "a root of the polynomial is about 2^{} in magnitude, beyond the range of f64",
+                    piece.shift
+                )));
+            }
+            out.push(Root {
+                value,
+                multiplicity: r.multiplicity,
+            });
+        }
+    }
+    let total: usize = out.iter().map(|r| r.multiplicity).sum();
+    if total != q.degree() {
+        return Err(LtiError::NoConvergence {
+            what: format!("root finder (found {total} of {} roots)", q.degree()),
+            iterations: 0,
+        });
+    }
     Ok(out)
 }
 

@@ -8,6 +8,9 @@ use crate::numeric::dd::{self, Dd, two_prod};
 use crate::numeric::tol::EPS;
 use crate::poly::{Poly, Root};
 
+/// Iteration cap of the SVD behind each Gauss–Newton step, per column of the Jacobian.
+const SVD_ITER_PER_COLUMN: usize = 100;
+
 /// Gauss–Newton refinement of all roots jointly with the multiplicity structure held fixed
 /// (Zeng's "pejorative manifold"): find real parameters θ (one per real root, (a, b) per pair
 /// a ± bj) minimising the weighted distance between the monic coefficients of
@@ -71,7 +74,15 @@ pub(super) fn refine_structured(q: &Poly, found: &[Found]) -> Option<Vec<Found>>
         }
         let jac = structured_jacobian(&cur, n, &w);
         let rhs = nalgebra::DVector::from_iterator(n, r.iter().map(|x| -x));
-        let svd = jac.svd(true, true);
+        // nalgebra's `svd()` iterates without a cap (and never ends on a Jacobian with
+        // non-finite or wildly scaled entries): finite entries only, capped iteration.
+        if jac.iter().any(|x| !x.is_finite()) {
+            break;
+        }
+        let cols = jac.ncols();
+        // (5·eps is the tolerance of nalgebra's own `svd()`.)
+        let cap = SVD_ITER_PER_COLUMN * cols.max(1);
+        let svd = nalgebra::SVD::try_new(jac, true, true, 5.0 * EPS, cap)?;
         let delta = svd.solve(&rhs, f64::EPSILON).ok()?;
         let mut next = cur.clone();
         let mut k = 0;
