@@ -246,6 +246,7 @@ struct Refl3 {
 /// segment of [`SEGMENT`] positions); the parts of T to the right and above, and Z, are
 /// updated once per segment, column by column (left) or in row chunks that stay in cache
 /// (right). Same operations as the textbook order, far less memory traffic.
+#[allow(clippy::too_many_arguments)] // one sweep's state, passed once per bulge step
 fn chase(
     m: &mut Mat,
     l: usize,
@@ -636,6 +637,7 @@ pub fn lanv2(a: f64, b: f64, c: f64, d: f64) -> Block2 {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // these tests expect exact zeros and exact values
     use super::*;
 
     fn check_block(a: f64, b: f64, c: f64, d: f64) {
@@ -679,6 +681,8 @@ mod tests {
         assert_eq!(blk.c, 0.0);
         let (r1, i1, r2, i2) = blk.eigenvalues();
         assert!(i1 == 0.0 && i2 == 0.0);
-        assert!(((r1 - r2).abs() - 2e-10).abs() < 1e-20, "{r1} {r2}");
+        // Near 1 an f64 is resolved to ε = 2.2e-16 (one ulp), so each eigenvalue is exact to
+        // about ε/2 at best and their distance to about ε: the split is 2e-10 to that.
+        assert!(((r1 - r2).abs() - 2e-10).abs() <= 2.0 * f64::EPSILON, "{r1} {r2}");
     }
 }

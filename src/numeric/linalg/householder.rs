@@ -131,6 +131,7 @@ pub(crate) fn fixed_reflector(n: usize) -> Reflector {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // these tests expect exact zeros and exact values
     use super::*;
 
     #[test]

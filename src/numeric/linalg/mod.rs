@@ -25,15 +25,26 @@
 pub mod complex_schur;
 pub mod eigvec;
 pub mod francis;
+pub mod freqresp;
 pub mod hessenberg;
 pub mod householder;
+pub mod markov;
+pub mod minreal;
+pub mod rrqr;
 pub mod schur;
+pub mod staircase;
 pub mod structure;
+pub mod zeros;
 
 pub use eigvec::{EigenvectorSet, eigenvectors};
+pub use freqresp::HessenbergResponse;
 pub use hessenberg::{Hessenberg, hessenberg};
+pub use markov::{RelativeDegree, markov_parameter, relative_degree};
+pub use minreal::{MinimalRealization, minimal_realization};
 pub use schur::{RealSchur, SchurOptions, real_schur, schur_eigenvalues};
+pub use staircase::{Staircase, controllability_staircase, observability_staircase};
 pub use structure::{EigenCluster, EigenStructure, eigen_structure};
+pub use zeros::{InvariantZeros, invariant_zeros, transmission_zeros};
 
 use nalgebra::DMatrix;
 

@@ -131,12 +131,15 @@ pub fn real_schur(a: &DMatrix<f64>, opts: SchurOptions) -> Result<RealSchur> {
     })
 }
 
+/// T, the optional Q and the number of sweeps.
+type SchurCore = (DMatrix<f64>, Option<DMatrix<f64>>, usize);
+
 /// Hessenberg reduction plus Francis iteration; Err(sweeps) when the cap is hit.
 fn schur_core(
     mut m: DMatrix<f64>,
     want_t: bool,
     want_q: bool,
-) -> std::result::Result<(DMatrix<f64>, Option<DMatrix<f64>>, usize), usize> {
+) -> std::result::Result<SchurCore, usize> {
     let n = m.nrows();
     let reflectors = super::hessenberg::reduce_in_place(&mut m);
     let mut q = want_q.then(|| super::householder::form_product(n, &reflectors));

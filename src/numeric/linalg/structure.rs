@@ -5,8 +5,8 @@
 //! # Method
 //! **Clusters.** A perturbation of size ε‖A‖ moves a simple eigenvalue by ~ε‖A‖ but scatters
 //! an m-fold defective one over a circle of radius ~(ε)^(1/m)‖A‖. Computed eigenvalues are
-//! therefore grouped by single linkage (closest pairs first) into clusters whose diameter is
-//! at most 2·r_m, with m the cluster size and
+//! therefore grouped top-down (components of the graph of links shorter than 2·r_6, split at their
+//! longest spanning-tree link) into clusters whose diameter is at most 2·r_m, m the size, and
 //! r_m = ν·(64·n·ε)^(1/min(m, 6)), ν = max(‖T‖₁, ‖T‖∞) of the balanced Schur form.
 //! The cluster's value is its mean (the trace of its invariant subspace divided by m, which
 //! is accurate to O(ε‖A‖) although the members are not); self-conjugate clusters are made
@@ -224,61 +224,64 @@ fn is_self_conjugate(g: &[usize], ev: &[Complex64], _z: Complex64) -> bool {
     up == down
 }
 
-/// Single-linkage clustering, closest pairs first, accepting a merge only when the merged
-/// cluster's diameter is within 2·r_m for its size m.
+/// Clustering top-down: the connected components of the graph linking eigenvalues closer
+/// than 2·r_6 (the largest radius), each split at the longest link of its minimum spanning
+/// tree until its diameter is within 2·r_m for its size m.
+///
+/// Top-down, not closest-pairs-first: the m members of a defective eigenvalue lie on a circle
+/// and are about equally far apart (a Jordan block of size 3 scatters into a near-equilateral
+/// triangle), so no pair of them may satisfy the bound r_2 of a pair although the three
+/// together satisfy r_3; a bottom-up merge would never form the triple.
 fn link_clusters(ev: &[Complex64], scale: f64) -> Vec<Vec<usize>> {
     let n = ev.len();
     let reach = 2.0 * radius(MAX_DEFECTIVE_SIZE, n, scale);
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| ev[a].re.total_cmp(&ev[b].re));
-    let mut edges: Vec<(f64, usize, usize)> = Vec::new();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
     for (ia, &a) in order.iter().enumerate() {
         for &b in &order[ia + 1..] {
             if ev[b].re - ev[a].re > reach {
                 break;
             }
-            let dist = (ev[a] - ev[b]).norm();
-            if dist <= reach {
-                edges.push((dist, a, b));
+            if (ev[a] - ev[b]).norm() <= reach {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                if ra != rb {
+                    parent[rb] = ra;
+                }
             }
         }
     }
-    edges.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let mut members: Vec<Vec<usize>> = (0..n).map(|k| vec![k]).collect();
-    let mut owner: Vec<usize> = (0..n).collect();
-    for (dist, a, b) in edges {
-        let (ga, gb) = (owner[a], owner[b]);
-        if ga == gb {
-            continue;
-        }
-        let size = members[ga].len() + members[gb].len();
-        let limit = 2.0 * radius(size, n, scale);
-        if dist > limit {
-            continue;
-        }
-        let diameter = members[ga]
-            .iter()
-            .flat_map(|&x| members[gb].iter().map(move |&y| (x, y)))
-            .map(|(x, y)| (ev[x] - ev[y]).norm())
-            .fold(0.0, f64::max);
-        let inner = |g: &Vec<usize>| {
-            g.iter()
-                .flat_map(|&x| g.iter().map(move |&y| (ev[x] - ev[y]).norm()))
-                .fold(0.0, f64::max)
-        };
-        if diameter.max(inner(&members[ga])).max(inner(&members[gb])) > limit {
-            continue;
-        }
-        let moved = std::mem::take(&mut members[gb]);
-        for &k in &moved {
-            owner[k] = ga;
-        }
-        members[ga].extend(moved);
+    let mut components: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for k in 0..n {
+        let r = root(&mut parent, k);
+        components[r].push(k);
     }
-    let mut out: Vec<Vec<usize>> = members.into_iter().filter(|g| !g.is_empty()).collect();
+    let mut work: Vec<Vec<usize>> = components.into_iter().filter(|g| !g.is_empty()).collect();
+    let mut out = Vec::new();
+    while let Some(g) = work.pop() {
+        let diameter = g
+            .iter()
+            .flat_map(|&x| g.iter().map(move |&y| (ev[x] - ev[y]).norm()))
+            .fold(0.0, f64::max);
+        if g.len() > 1 && diameter > 2.0 * radius(g.len(), n, scale) {
+            let (left, right) = split_longest_link(&g, ev);
+            work.push(left);
+            work.push(right);
+        } else {
+            out.push(g);
+        }
+    }
     for g in &mut out {
         g.sort_unstable();
     }
+    out.sort_unstable_by_key(|g| g.first().copied().unwrap_or(0));
     out
 }
 
@@ -323,11 +326,11 @@ fn split_longest_link(g: &[usize], ev: &[Complex64]) -> (Vec<usize>, Vec<usize>)
         false
     };
     let (mut left, mut right) = (Vec::new(), Vec::new());
-    for i in 0..m {
+    for (i, &k) in g.iter().enumerate() {
         if below(i) {
-            right.push(g[i]);
+            right.push(k);
         } else {
-            left.push(g[i]);
+            left.push(k);
         }
     }
     (left, right)
