@@ -683,6 +683,9 @@ mod tests {
         assert!(i1 == 0.0 && i2 == 0.0);
         // Near 1 an f64 is resolved to ε = 2.2e-16 (one ulp), so each eigenvalue is exact to
         // about ε/2 at best and their distance to about ε: the split is 2e-10 to that.
-        assert!(((r1 - r2).abs() - 2e-10).abs() <= 2.0 * f64::EPSILON, "{r1} {r2}");
+        assert!(
+            ((r1 - r2).abs() - 2e-10).abs() <= 2.0 * f64::EPSILON,
+            "{r1} {r2}"
+        );
     }
 }
