@@ -57,7 +57,7 @@ impl Factored {
     /// eigenvalues of A with their multiplicities, the removed modes of a minimal realisation
     /// (uncontrollable or unobservable) are the cancelled roots, zeros are the transmission
     /// zeros and the gain is the first non-zero Markov parameter. G(s) and the dc gain come
-    /// from the minimal realisation (see [`super::ss_source`]).
+    /// from the minimal realisation (its Hessenberg form and an LU solve).
     ///
     /// Errors: a model that is not SISO, more than [`super::MAX_FACTORED_ORDER`] states.
     ///

@@ -13,14 +13,14 @@ use nalgebra::DMatrix;
 pub struct Reflector {
     /// First coordinate the reflector acts on.
     pub offset: usize,
-    /// The Householder vector, v[0] = 1.
+    /// The Householder vector, v\[0\] = 1.
     pub v: Vec<f64>,
     /// The factor τ (0 ≤ τ ≤ 2).
     pub tau: f64,
 }
 
 /// Builds the reflector that maps x to β·e₁ (LAPACK's `dlarfg` convention: β = −sign(x₀)‖x‖,
-/// so no cancellation) and returns (β, τ); `x` is overwritten by v (x[0] = 1).
+/// so no cancellation) and returns (β, τ); `x` is overwritten by v (x\[0\] = 1).
 /// For x[1..] = 0 the reflector is the identity (τ = 0) and β = x₀.
 ///
 /// ```

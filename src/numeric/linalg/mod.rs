@@ -5,7 +5,7 @@
 //!
 //! | file | what | method |
 //! |---|---|---|
-//! | [`hessenberg`] | H = QᵀAQ | Householder reflectors, column-major sweeps |
+//! | [`mod@hessenberg`] | H = QᵀAQ | Householder reflectors, column-major sweeps |
 //! | [`francis`] | real Schur form of a Hessenberg matrix | double-shift QR (Francis), Ahues–Tisseur deflation, exceptional shifts, 2×2 blocks standardised |
 //! | [`schur`] | A = D·Q·T·Qᵀ·D⁻¹ with eigenvalues | balancing + power-of-two scaling + the two above, capped, one retry after a Householder similarity |
 //! | [`complex_schur`] | complex triangular Schur form | one unitary rotation per 2×2 block |

@@ -3,10 +3,10 @@
 //!
 //! # Method
 //! 1. optional **balancing** (the overflow-safe, capped Parlett–Reinsch of
-//!    [`crate::numeric::balance`]): D is a diagonal of powers of two, so D⁻¹AD is exact;
+//!    [`mod@crate::numeric::balance`]): D is a diagonal of powers of two, so D⁻¹AD is exact;
 //! 2. **power-of-two scaling** into the range where no intermediate overflows
 //!    ([`crate::numeric::eig::SAFE_EXP`]), exact and undone on T;
-//! 3. [Hessenberg reduction](super::hessenberg) and the
+//! 3. [Hessenberg reduction](mod@super::hessenberg) and the
 //!    [Francis double-shift QR](super::francis) with exceptional shifts and an iteration cap;
 //! 4. on exhaustion of the cap, **one retry** on H·M·H for a fixed Householder reflector H
 //!    (an orthogonal similarity that breaks cyclic structure; DESIGN §5), with Q ← H·Q.
