@@ -106,3 +106,56 @@ fn bode_png(bencher: Bencher) {
     bencher.bench(|| common::bode_png_of(black_box(&g), &path).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// State space at scale: the seed's periodic lattice, N = 128 (256 states), one channel.
+mod ss {
+    use crate::common::ss as lattice;
+    use divan::{Bencher, black_box};
+    use ltikit::analysis::Factored;
+    use ltikit::numeric::linalg::{HessenbergResponse, eigen_structure};
+    use num_complex::Complex64;
+
+    /// Eigenvalues of A with their multiplicity structure.
+    #[divan::bench(sample_count = 10)]
+    fn eigenvalues(bencher: Bencher) {
+        let ss = lattice::lattice();
+        bencher.bench(|| eigen_structure(black_box(&ss.a)).unwrap());
+    }
+
+    /// Poles, transmission zeros and minimal realisation of the channel (the factored form).
+    #[divan::bench(sample_count = 10)]
+    fn channel_factored(bencher: Bencher) {
+        let ss = lattice::lattice();
+        bencher.bench(|| Factored::from_state_space(black_box(&ss)).unwrap());
+    }
+
+    /// G(jω) at 10 000 frequencies: one Hessenberg reduction, one O(n²) solve each.
+    #[divan::bench(sample_count = 10)]
+    fn freq_hessenberg(bencher: Bencher) {
+        let ss = lattice::lattice();
+        let s: Vec<Complex64> = lattice::freq_grid(10_000)
+            .iter()
+            .map(|&w| Complex64::new(0.0, w))
+            .collect();
+        bencher.bench(|| {
+            let h = HessenbergResponse::new(&ss.a, &ss.b, &ss.c, &ss.d).unwrap();
+            h.eval_siso_many(black_box(&s)).unwrap()
+        });
+    }
+
+    /// Reference loop: the modal sum (2N − 1 complex terms) at the same 10 000 frequencies.
+    #[divan::bench(sample_count = 10)]
+    fn freq_modal_sum_reference(bencher: Bencher) {
+        let (p, r) = lattice::modal_form();
+        let w = lattice::freq_grid(10_000);
+        bencher.bench(|| lattice::modal_sum(&p, &r, black_box(&w)));
+    }
+
+    /// Step response, 10 000 samples, by exact discretisation of the 256-state model.
+    #[divan::bench(sample_count = 10)]
+    fn step_state_space(bencher: Bencher) {
+        let ss = lattice::lattice();
+        let t = lattice::time_grid(10_000);
+        bencher.bench(|| ss.step_response_from(0, black_box(&t), false).unwrap());
+    }
+}

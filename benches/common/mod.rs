@@ -4,6 +4,8 @@
 //! `benches/compare/compare.py` reads too, so both sides time identical inputs.
 #![allow(dead_code)] // each including target uses a different subset
 
+pub mod ss;
+
 use ltikit::TransferFunction;
 use ltikit::analysis::{FrequencyResponse, auto_frequency_grid};
 use ltikit::plot::{BodeSeries, PlotOptions, bode_png};

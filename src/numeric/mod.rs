@@ -10,6 +10,7 @@ pub mod complex;
 pub mod dd;
 pub mod eig;
 pub mod expm;
+pub mod linalg;
 pub mod rk45;
 pub mod scalar;
 pub mod tol;

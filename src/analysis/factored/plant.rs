@@ -76,12 +76,38 @@ impl Factored {
         }
     }
 
-    /// The factored form of a SISO state-space model.
+    /// The factored form of a SISO state-space model, without coefficients: poles are the
+    /// eigenvalues of A with their multiplicities, the removed modes of a minimal realisation
+    /// (uncontrollable or unobservable) are the cancelled roots, zeros are the transmission
+    /// zeros and the gain is the first non-zero Markov parameter. G(s) and the dc gain come
+    /// from the minimal realisation (its Hessenberg form and an LU solve).
     ///
-    /// Errors: a model that is not SISO.
+    /// Errors: a model that is not SISO, more than [`super::MAX_FACTORED_ORDER`] states.
+    ///
+    /// ```
+    /// use nalgebra::{DMatrix, DVector};
+    /// use ltikit::StateSpace;
+    /// use ltikit::analysis::Factored;
+    /// // 1/((s + 1)(s + 2)) in diagonal form, with a third, uncontrollable mode at −5.
+    /// let a = DMatrix::from_diagonal(&DVector::from_vec(vec![-1.0, -2.0, -5.0]));
+    /// let b = DMatrix::from_column_slice(3, 1, &[1.0, -1.0, 0.0]);
+    /// let c = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+    /// let ss = StateSpace::new(a, b, c, DMatrix::zeros(1, 1)).unwrap();
+    /// let f = Factored::from_state_space(&ss).unwrap();
+    /// assert_eq!(f.poles().len(), 3);
+    /// assert_eq!(f.reduced_poles().len(), 2);
+    /// assert!((f.pole_zero().cancelled[0].value.re + 5.0).abs() < 1e-14);
+    /// assert!((f.dc_gain().unwrap() - 0.5).abs() < 1e-15);
+    /// ```
     pub fn from_state_space(ss: &StateSpace) -> Result<Factored> {
-        // Interim: through the transfer function (orders ≤ MAX_ORDER) until the state-space
-        // kernels (eigenvalues, transmission zeros, minimal realisation) land.
-        ss.to_tf()?.factored()
+        let (pz, gain, source) = super::ss_source::factor_state_space(ss)?;
+        super::count_factorization();
+        Ok(Factored {
+            pz,
+            gain,
+            source: super::Source::StateSpace(Box::new(source)),
+            bode: std::sync::OnceLock::new(),
+            decision: super::exact::Decision::default(),
+        })
     }
 }

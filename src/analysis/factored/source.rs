@@ -8,11 +8,15 @@
 //!   the canonical realisation of responses and the polynomial margin equations.
 //! - **Factors** (zeros, poles, gain): everything from the factors, with products kept in
 //!   scaled form so that high orders neither overflow nor underflow.
+//! - **State space** (a SISO model or channel, [`super::ss_source`]): G from the Hessenberg
+//!   form of the minimal realisation, the dc gain by a solve D − C·A⁻¹·B; everything else from
+//!   the factors (poles = eigenvalues, zeros = transmission zeros).
 
 use num_complex::Complex64;
 
 use super::Factored;
 use super::series::{ScaledProduct, eval_factors};
+use super::ss_source::SsSource;
 use crate::lti::TransferFunction;
 
 /// The coefficients of a plant given by them, and of its reduced form.
@@ -31,6 +35,8 @@ pub(crate) enum Source {
     Coefficients(Box<Coeffs>),
     /// Zeros, poles and gain only.
     Factors,
+    /// A SISO state-space model: its minimal realisation.
+    StateSpace(Box<SsSource>),
 }
 
 /// The low-frequency asymptote K·s^k of the reduced G: K = sign·e^(ln_abs).
@@ -47,6 +53,16 @@ pub(crate) struct LowFrequency {
 }
 
 impl LowFrequency {
+    /// The asymptote of a G finite at s = 0 with value `k`.
+    pub(crate) fn of_value(k: f64) -> LowFrequency {
+        LowFrequency {
+            sign: if k < 0.0 { -1.0 } else { 1.0 },
+            ln_abs: k.abs().ln(),
+            int_order: 0,
+            k,
+        }
+    }
+
     /// K as an f64 (from the logarithm when the direct ratio under- or overflowed).
     pub fn value(&self) -> f64 {
         if self.k.is_finite() && self.k != 0.0 {
@@ -64,7 +80,7 @@ impl Source {
     pub(crate) fn coefficients(&self) -> Option<&Coeffs> {
         match self {
             Source::Coefficients(c) => Some(c),
-            Source::Factors => None,
+            Source::Factors | Source::StateSpace(_) => None,
         }
     }
 
@@ -84,6 +100,7 @@ impl Source {
                 g.eval(s)
             }
             Source::Factors => eval_factors(f.gain, &f.pz.reduced_zeros, &f.pz.reduced_poles, s),
+            Source::StateSpace(ss) => ss.eval(s),
         }
     }
 
@@ -102,38 +119,50 @@ impl Source {
                     k: a / b,
                 }
             }
-            Source::Factors => {
-                let mut acc = ScaledProduct::new(Complex64::new(f.gain, 0.0));
-                let mut int_order = 0i32;
-                let mut ln_abs = f.gain.abs().ln();
-                for z in &f.pz.reduced_zeros {
-                    if z.is_origin() {
-                        int_order += z.multiplicity as i32;
-                    } else {
-                        acc.mul_pow(-z.value, z.multiplicity);
-                        ln_abs += z.multiplicity as f64 * z.value.norm().ln();
-                    }
-                }
-                for p in &f.pz.reduced_poles {
-                    if p.is_origin() {
-                        int_order -= p.multiplicity as i32;
-                    } else {
-                        acc.div_pow(-p.value, p.multiplicity);
-                        ln_abs -= p.multiplicity as f64 * p.value.norm().ln();
-                    }
-                }
-                let k = acc.value().re;
-                let sign = if f.gain < 0.0 { -1.0 } else { 1.0 }
-                    * real_root_sign(&f.pz.reduced_zeros)
-                    * real_root_sign(&f.pz.reduced_poles);
-                LowFrequency {
-                    sign,
-                    ln_abs,
-                    int_order,
-                    k,
+            Source::StateSpace(ss) => {
+                let at_origin = f.pz.reduced_poles.iter().chain(&f.pz.reduced_zeros);
+                if at_origin.clone().any(|r| r.is_origin()) {
+                    factors_low_frequency(f)
+                } else {
+                    ss.low_frequency()
+                        .unwrap_or_else(|| factors_low_frequency(f))
                 }
             }
+            Source::Factors => factors_low_frequency(f),
         }
+    }
+}
+
+/// The low-frequency asymptote from the reduced factors.
+fn factors_low_frequency(f: &Factored) -> LowFrequency {
+    let mut acc = ScaledProduct::new(Complex64::new(f.gain, 0.0));
+    let mut int_order = 0i32;
+    let mut ln_abs = f.gain.abs().ln();
+    for z in &f.pz.reduced_zeros {
+        if z.is_origin() {
+            int_order += z.multiplicity as i32;
+        } else {
+            acc.mul_pow(-z.value, z.multiplicity);
+            ln_abs += z.multiplicity as f64 * z.value.norm().ln();
+        }
+    }
+    for p in &f.pz.reduced_poles {
+        if p.is_origin() {
+            int_order -= p.multiplicity as i32;
+        } else {
+            acc.div_pow(-p.value, p.multiplicity);
+            ln_abs -= p.multiplicity as f64 * p.value.norm().ln();
+        }
+    }
+    let k = acc.value().re;
+    let sign = if f.gain < 0.0 { -1.0 } else { 1.0 }
+        * real_root_sign(&f.pz.reduced_zeros)
+        * real_root_sign(&f.pz.reduced_poles);
+    LowFrequency {
+        sign,
+        ln_abs,
+        int_order,
+        k,
     }
 }
 

@@ -1,7 +1,13 @@
 //! Analyses of state-space models as such (SISO or MIMO): time responses by exact
-//! discretisation. (A SISO channel's poles, zeros and everything built on them go through the
+//! discretisation ([`time`]), the analysis of the whole model ([`report`]: eigen structure,
+//! controllability, minimal realisation, zeros, dc gains, stability, modes) and the MIMO
+//! frequency response ([`freq`]). (A SISO channel's poles, zeros and everything built on them go through the
 //! factored core.)
 
+pub mod freq;
+pub mod report;
 pub mod time;
 
+pub use freq::MimoFreqResponse;
+pub use report::{DcGain, SsAnalysis, SsEigenvalue, SsMode, StaircaseRank};
 pub use time::{Hold, InputSignal, SsTimeResponse};

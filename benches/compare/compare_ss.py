@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""State-space timings of ltikit against python-control (without Slycot), in one run.
+
+    python3 benches/compare/compare_ss.py   # in a virtual environment with control, scipy, numpy
+
+The model is the seed's periodic lattice (N = 128, omega0 = 1, 256 states), force on
+particle 1, displacement of particle 6 — built here with numpy exactly as
+`ltikit::lti::lattice` builds it (checked: the script compares G(j*0.5) with the closed form).
+ltikit's side is `cargo run --release --example bench_ss_json` (medians, seconds). Printed:
+each operation's medians and the ratio python/ltikit.
+"""
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+import control as ct
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+N, OUT = 128, 6
+
+
+def lattice():
+    n = N
+    a = np.zeros((2 * n, 2 * n))
+    for i in range(n):
+        a[i, n + i] = 1.0
+        a[n + i, i] = -2.0
+        a[n + i, (i + 1) % n] += 1.0
+        a[n + i, (i - 1) % n] += 1.0
+    b = np.zeros((2 * n, 1)); b[n, 0] = 1.0
+    c = np.zeros((1, 2 * n)); c[0, OUT - 1] = 1.0
+    return ct.ss(a, b, c, np.zeros((1, 1)))
+
+
+def median_time(fn, repeat=5):
+    fn()
+    ts = []
+    for _ in range(repeat):
+        t0 = time.perf_counter(); fn(); ts.append(time.perf_counter() - t0)
+    return sorted(ts)[len(ts) // 2]
+
+
+def main():
+    sys_ = lattice()
+    w = np.logspace(-2, 1, 10_000)
+    t = np.linspace(0, 100, 10_000)
+    # The model check: the modal closed form at omega = 0.5.
+    k = np.arange(N)
+    exact = np.sum(np.cos(2 * np.pi * k * (OUT - 1) / N) / (-0.25 + (2 * np.sin(np.pi * k / N)) ** 2)) / N
+    got = sys_(0.5j)
+    assert abs(np.squeeze(got) - exact) < 1e-9 * abs(exact), (got, exact)
+    py = {
+        "eigenvalues": median_time(lambda: np.linalg.eigvals(sys_.A)),
+        "freq_hessenberg_10k": median_time(lambda: ct.frequency_response(sys_, w), 3),
+        "step_10k": median_time(lambda: ct.step_response(sys_, T=t), 3),
+    }
+    def poles_zeros():
+        sys_.poles(); sys_.zeros()
+    try:
+        py["channel_factored"] = median_time(poles_zeros, 3)
+        py["channel_factored_note"] = "poles() + zeros() (python-control has no minreal without Slycot)"
+    except Exception as e:  # noqa: BLE001
+        py["channel_factored"] = None
+        py["channel_factored_note"] = f"not available without Slycot: {e}"
+    out = subprocess.run(["cargo", "run", "--quiet", "--release", "--example", "bench_ss_json"],
+                         cwd=ROOT, check=True, capture_output=True, text=True).stdout
+    lt = json.loads(out)
+    print(f"python-control {ct.__version__}, numpy {np.__version__}")
+    print(f"{'operation':28} {'python (s)':>12} {'ltikit (s)':>12} {'ratio':>8}")
+    for key in ["eigenvalues", "channel_factored", "freq_hessenberg_10k", "step_10k"]:
+        p, l = py.get(key), lt[key]
+        ratio = f"{p / l:8.1f}" if p else "     n/a"
+        print(f"{key:28} {p if p else float('nan'):12.4g} {l:12.4g} {ratio}")
+    print(f"{'freq_modal_sum_10k (ltikit)':28} {'':12} {lt['freq_modal_sum_10k']:12.4g}"
+          f"   Hessenberg/modal = {lt['freq_hessenberg_10k'] / lt['freq_modal_sum_10k']:.1f}")
+    print("channel_factored (python):", py["channel_factored_note"])
+    print(f"max relative difference Hessenberg vs modal sum: {lt['freq_max_rel_diff_vs_modal']:.2e}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,58 @@
+//! Timings of ltikit's state-space kernels on the seed's lattice (N = 128, 256 states), as
+//! JSON on stdout, for `benches/compare/compare_ss.py` (which times python-control on the same
+//! model in the same run). Medians of repeated runs, in seconds.
+
+#[path = "../benches/common/ss.rs"]
+mod lattice;
+
+use std::time::Instant;
+
+use ltikit::analysis::Factored;
+use ltikit::numeric::linalg::{HessenbergResponse, eigen_structure};
+use num_complex::Complex64;
+
+/// Median seconds per call over `reps` calls (after one warm-up call).
+fn median<T>(reps: usize, mut f: impl FnMut() -> T) -> f64 {
+    std::hint::black_box(f());
+    let mut times: Vec<f64> = (0..reps)
+        .map(|_| {
+            let t0 = Instant::now();
+            std::hint::black_box(f());
+            t0.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let ss = lattice::lattice();
+    let s: Vec<Complex64> = lattice::freq_grid(10_000)
+        .iter()
+        .map(|&w| Complex64::new(0.0, w))
+        .collect();
+    let (p, r) = lattice::modal_form();
+    let w = lattice::freq_grid(10_000);
+    let t = lattice::time_grid(10_000);
+    // Accuracy of the timed frequency response against the modal sum (printed, not timed).
+    let h = HessenbergResponse::new(&ss.a, &ss.b, &ss.c, &ss.d)?;
+    let g = h.eval_siso_many(&s)?;
+    let m = lattice::modal_sum(&p, &r, &w);
+    let max_rel = g
+        .iter()
+        .zip(&m)
+        .map(|(a, b)| (a - b).norm() / b.norm())
+        .fold(0.0, f64::max);
+    let out = serde_json::json!({
+        "eigenvalues": median(7, || eigen_structure(&ss.a)),
+        "channel_factored": median(7, || Factored::from_state_space(&ss)),
+        "freq_hessenberg_10k": median(5, || {
+            HessenbergResponse::new(&ss.a, &ss.b, &ss.c, &ss.d).and_then(|h| h.eval_siso_many(&s))
+        }),
+        "freq_modal_sum_10k": median(7, || lattice::modal_sum(&p, &r, &w)),
+        "step_10k": median(5, || ss.step_response_from(0, &t, false)),
+        "freq_max_rel_diff_vs_modal": max_rel,
+    });
+    println!("{out}");
+    Ok(())
+}

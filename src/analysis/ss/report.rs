@@ -1,0 +1,337 @@
+//! State-space analysis of a whole model (SISO or MIMO), computed once: eigenvalues with their
+//! multiplicity structure, controllability and observability, the minimal realisation, zeros,
+//! the dc-gain matrix, internal and per-channel BIBO stability, and the modes with their
+//! shapes. No coefficients are formed; everything comes from the kernels of
+//! [`crate::numeric::linalg`].
+
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::lti::StateSpace;
+use crate::numeric::linalg::structure::radius;
+use crate::numeric::linalg::{EigenCluster, eigen_structure};
+use crate::numeric::linalg::{
+    controllability_staircase, eigenvectors, invariant_zeros, minimal_realization,
+    observability_staircase, transmission_zeros,
+};
+use crate::poly::{HalfPlane, half_plane};
+
+/// One distinct eigenvalue of A.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SsEigenvalue {
+    /// The eigenvalue (a cluster mean for a multiple one).
+    pub value: Complex64,
+    /// Algebraic multiplicity.
+    pub algebraic: usize,
+    /// Geometric multiplicity (independent eigenvectors).
+    pub geometric: usize,
+    /// True when algebraic = geometric (no Jordan block).
+    pub semisimple: bool,
+}
+
+/// A mode of A (one per real eigenvalue or conjugate pair, upper member), with its shapes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SsMode {
+    /// The eigenvalue λ.
+    pub value: Complex64,
+    /// Natural frequency |λ| (rad/s).
+    pub wn: f64,
+    /// Damping ratio −Re λ/|λ| (NaN at λ = 0).
+    pub zeta: f64,
+    /// Time constant −1/Re λ (s); `None` unless Re λ < 0.
+    pub tau: Option<f64>,
+    /// Mode shapes: an orthonormal basis of the eigenspace (one unit-norm column per
+    /// independent eigenvector), `shapes[j][i]` = component i of vector j.
+    #[serde(skip)]
+    pub shapes: Vec<Vec<Complex64>>,
+    /// ‖Av − λv‖₂/(‖A‖·‖v‖₂) of each shape.
+    pub residuals: Vec<f64>,
+}
+
+/// Rank of a staircase and the tolerance it used.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StaircaseRank {
+    /// Dimension of the controllable (observable) subspace.
+    pub rank: usize,
+    /// The absolute rank tolerance (n²·ε·‖[A B]‖_F, resp. ‖[Aᵀ Cᵀ]‖_F).
+    pub tol: f64,
+}
+
+/// The dc gain of one channel.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DcGain {
+    /// G(0) = D − C·A⁻¹·B (finite).
+    Finite(f64),
+    /// The channel's minimal realisation has an eigenvalue at 0 (within its cluster radius
+    /// ν·(64·n·ε)^(1/m) of 0, see [`crate::numeric::linalg::structure`], or A singular to the
+    /// LU solve): |G(s)| → ∞ as s → 0.
+    Infinite,
+}
+
+/// The state-space analysis of a model (see the [module docs](self)).
+#[derive(Debug, Clone, Serialize)]
+pub struct SsAnalysis {
+    /// States, inputs, outputs.
+    pub n: usize,
+    /// Number of inputs.
+    pub m: usize,
+    /// Number of outputs.
+    pub p: usize,
+    /// Distinct eigenvalues of A with multiplicities.
+    pub eigenvalues: Vec<SsEigenvalue>,
+    /// Controllability staircase of (A, B).
+    pub controllability: StaircaseRank,
+    /// Observability staircase of (A, C).
+    pub observability: StaircaseRank,
+    /// Order of the minimal realisation of the whole model.
+    pub minimal_order: usize,
+    /// Eigenvalues of the removed uncontrollable part.
+    pub uncontrollable_modes: Vec<Complex64>,
+    /// Eigenvalues of the removed unobservable (controllable) part.
+    pub unobservable_modes: Vec<Complex64>,
+    /// Invariant zeros of a square system (m = p), with multiplicities; `None` otherwise.
+    pub invariant_zeros: Option<Vec<(Complex64, usize)>>,
+    /// `dc_gain[j][i]`: the dc gain from input i to output j.
+    pub dc_gain: Vec<Vec<DcGain>>,
+    /// Internal stability: every eigenvalue of A in the open left half plane.
+    pub internally_stable: bool,
+    /// Why (the first eigenvalue that decides it).
+    pub internal_reason: String,
+    /// `bibo_stable[j][i]`: every pole of the channel's minimal realisation in the open left
+    /// half plane.
+    pub bibo_stable: Vec<Vec<bool>>,
+    /// The modes with their shapes.
+    pub modes: Vec<SsMode>,
+}
+
+impl StateSpace {
+    /// The state-space analysis of the whole model, computed once (see [`SsAnalysis`]).
+    ///
+    /// Errors: those of the kernels (practically never for a finite model).
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::StateSpace;
+    /// // Two decoupled first-order lags, the second input reaching only the second state.
+    /// let ss = StateSpace::new(
+    ///     DMatrix::from_row_slice(2, 2, &[-1.0, 0.0, 0.0, -2.0]),
+    ///     DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 1.0]),
+    ///     DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 4.0]),
+    ///     DMatrix::zeros(2, 2),
+    /// ).unwrap();
+    /// let r = ss.analysis().unwrap();
+    /// assert!(r.internally_stable);
+    /// assert_eq!(r.minimal_order, 2);
+    /// use ltikit::analysis::ss::DcGain;
+    /// assert!(matches!(r.dc_gain[1][1], DcGain::Finite(g) if (g - 2.0).abs() < 1e-15));
+    /// assert_eq!(r.modes.len(), 2);
+    /// ```
+    pub fn analysis(&self) -> Result<SsAnalysis> {
+        let (n, m, p) = (self.order(), self.b.ncols(), self.c.nrows());
+        let (a, b, c, d) = (&self.a, &self.b, &self.c, &self.d);
+        let (mut sets, st) = eigenvectors(a)?;
+        let scale = st.scale;
+        // An eigenvalue within its cluster radius of 0 is 0 for a matrix within ε‖A‖ of A
+        // (an integrator, a free translation): made exactly 0 so that it counts as on the axis.
+        for s in &mut sets {
+            if s.value.norm() <= radius(s.algebraic, n, st.scale) {
+                s.value = Complex64::new(0.0, 0.0);
+            }
+        }
+        let eigenvalues: Vec<SsEigenvalue> = sets
+            .iter()
+            .map(|s| SsEigenvalue {
+                value: s.value,
+                algebraic: s.algebraic,
+                geometric: s.vectors.ncols(),
+                semisimple: s.vectors.ncols() == s.algebraic,
+            })
+            .collect();
+        let ctrl = controllability_staircase(a, b, c, None, false)?;
+        let obs = observability_staircase(a, b, c, None, false)?;
+        let min = minimal_realization(a, b, c, d, None)?;
+        let invariant = if m == p && m > 0 {
+            Some(invariant_zeros(a, b, c, d, None)?.distinct)
+        } else {
+            None
+        };
+        let (internally_stable, internal_reason) = internal_stability(&eigenvalues);
+        let mut dc_gain = vec![vec![DcGain::Infinite; m]; p];
+        let mut bibo_stable = vec![vec![true; m]; p];
+        for j in 0..p {
+            for i in 0..m {
+                let ch = self.channel_matrices(i, j);
+                let mr = minimal_realization(&ch.0, &ch.1, &ch.2, &ch.3, None)?;
+                let (at_origin, stable) = if mr.order() == 0 {
+                    (false, true)
+                } else {
+                    // The channel's A comes from A by orthogonal similarities: its rounding
+                    // is relative to ‖A‖, so is the test for an eigenvalue at 0.
+                    let st = eigen_structure(&mr.a)?;
+                    let zero = |c: &EigenCluster| {
+                        c.value.norm() <= radius(c.algebraic, n, scale.max(st.scale))
+                    };
+                    (
+                        st.clusters.iter().any(zero),
+                        st.clusters
+                            .iter()
+                            .all(|c| !zero(c) && half_plane(c.value) == HalfPlane::Left),
+                    )
+                };
+                dc_gain[j][i] = if at_origin {
+                    DcGain::Infinite
+                } else {
+                    dc_of(&mr.a, &mr.b, &mr.c, &mr.d)
+                };
+                bibo_stable[j][i] = stable;
+            }
+        }
+        let modes = sets
+            .iter()
+            .filter(|s| s.value.im >= 0.0)
+            .map(|s| {
+                let l = s.value;
+                SsMode {
+                    value: l,
+                    wn: l.norm(),
+                    zeta: if l.norm() > 0.0 {
+                        -l.re / l.norm()
+                    } else {
+                        f64::NAN
+                    },
+                    tau: (l.re < 0.0).then(|| -1.0 / l.re),
+                    shapes: s
+                        .vectors
+                        .column_iter()
+                        .map(|v| v.iter().copied().collect())
+                        .collect(),
+                    residuals: s.residuals.clone(),
+                }
+            })
+            .collect();
+        Ok(SsAnalysis {
+            n,
+            m,
+            p,
+            eigenvalues,
+            controllability: StaircaseRank {
+                rank: ctrl.dim,
+                tol: ctrl.abs_tol,
+            },
+            observability: StaircaseRank {
+                rank: obs.dim,
+                tol: obs.abs_tol,
+            },
+            minimal_order: min.order(),
+            uncontrollable_modes: min.uncontrollable,
+            unobservable_modes: min.unobservable,
+            invariant_zeros: invariant,
+            dc_gain,
+            internally_stable,
+            internal_reason,
+            bibo_stable,
+            modes,
+        })
+    }
+
+    /// Transmission zeros of the channel from input `input` to output `output` (0-based),
+    /// with multiplicities: the invariant zeros of the channel's minimal realisation.
+    ///
+    /// Errors: a channel that does not exist.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::StateSpace;
+    /// // G(s) = (s − 1)/((s + 2)(s + 3)) in controllable canonical form.
+    /// let ss = StateSpace::new(
+    ///     DMatrix::from_row_slice(2, 2, &[-5.0, -6.0, 1.0, 0.0]),
+    ///     DMatrix::from_row_slice(2, 1, &[1.0, 0.0]),
+    ///     DMatrix::from_row_slice(1, 2, &[1.0, -1.0]),
+    ///     DMatrix::zeros(1, 1),
+    /// ).unwrap();
+    /// let z = ss.channel_zeros(0, 0).unwrap();
+    /// assert!((z[0].0.re - 1.0).abs() < 1e-14 && z[0].1 == 1);
+    /// assert!(ss.channel_zeros(1, 0).is_err());
+    /// ```
+    pub fn channel_zeros(&self, input: usize, output: usize) -> Result<Vec<(Complex64, usize)>> {
+        if input >= self.b.ncols() || output >= self.c.nrows() {
+            return Err(crate::error::LtiError::invalid(format!(
+                "channel input {} → output {} does not exist: the model has inputs 1…{} and outputs 1…{}",
+                input + 1,
+                output + 1,
+                self.b.ncols(),
+                self.c.nrows()
+            )));
+        }
+        let (a, b, c, d) = self.channel_matrices(input, output);
+        Ok(transmission_zeros(&a, &b, &c, &d, None)?.distinct)
+    }
+
+    /// (A, B column `input`, C row `output`, D entry); the indices must exist.
+    fn channel_matrices(
+        &self,
+        input: usize,
+        output: usize,
+    ) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+        (
+            self.a.clone(),
+            self.b.columns(input, 1).clone_owned(),
+            self.c.rows(output, 1).clone_owned(),
+            self.d.view((output, input), (1, 1)).clone_owned(),
+        )
+    }
+}
+
+/// D − C·A⁻¹·B of a SISO minimal realisation, `Infinite` when A is singular to the solve.
+fn dc_of(a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>, d: &DMatrix<f64>) -> DcGain {
+    let d0 = d.get((0, 0)).copied().unwrap_or(0.0);
+    if a.nrows() == 0 {
+        return DcGain::Finite(d0);
+    }
+    let Some(x) = a.clone().lu().solve(b) else {
+        return DcGain::Infinite;
+    };
+    match (c * x).get((0, 0)) {
+        Some(v) if (d0 - v).is_finite() => DcGain::Finite(d0 - v),
+        _ => DcGain::Infinite,
+    }
+}
+
+/// Internal stability from the eigenvalues: all in the open left half plane; an eigenvalue on
+/// the axis makes A marginally stable when semisimple and unstable when defective.
+fn internal_stability(ev: &[SsEigenvalue]) -> (bool, String) {
+    if let Some(e) = ev.iter().find(|e| half_plane(e.value) == HalfPlane::Right) {
+        return (
+            false,
+            format!("unstable: eigenvalue {} in the right half plane", e.value),
+        );
+    }
+    if let Some(e) = ev
+        .iter()
+        .find(|e| half_plane(e.value) == HalfPlane::Axis && !e.semisimple)
+    {
+        return (
+            false,
+            format!(
+                "unstable: eigenvalue {} on the imaginary axis is defective (a Jordan block of algebraic multiplicity {}, geometric {}): the state grows like a polynomial in t",
+                e.value, e.algebraic, e.geometric
+            ),
+        );
+    }
+    if let Some(e) = ev.iter().find(|e| half_plane(e.value) == HalfPlane::Axis) {
+        return (
+            false,
+            format!(
+                "marginally stable: eigenvalue {} on the imaginary axis (semisimple)",
+                e.value
+            ),
+        );
+    }
+    (
+        true,
+        "stable: every eigenvalue of A in the open left half plane".into(),
+    )
+}

@@ -1,0 +1,103 @@
+//! Minimal realisation: the controllable and observable part of (A, B, C, D), with the
+//! removed modes reported.
+//!
+//! # Method
+//! SLICOT `TB01PD`'s order: the [controllability staircase](super::staircase) splits off the
+//! uncontrollable part (its eigenvalues are the *uncontrollable modes*), then the staircase of
+//! the dual of the controllable part splits off the unobservable part (*unobservable modes*:
+//! controllable but not observable). What is left is minimal, and it has the same transfer
+//! matrix: only exactly decoupled (to the rank tolerance) parts are removed, by orthogonal
+//! similarities. A mode that is both uncontrollable and unobservable is reported among the
+//! uncontrollable ones. The removed modes are what a transfer function would show as
+//! cancelled pole–zero pairs.
+
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+use super::schur::schur_eigenvalues;
+use super::staircase::controllability_staircase;
+use crate::error::Result;
+
+/// A minimal realisation and what was removed to get it.
+#[derive(Clone, Debug)]
+pub struct MinimalRealization {
+    /// A of the minimal part (n_min × n_min).
+    pub a: DMatrix<f64>,
+    /// B of the minimal part.
+    pub b: DMatrix<f64>,
+    /// C of the minimal part.
+    pub c: DMatrix<f64>,
+    /// D (unchanged).
+    pub d: DMatrix<f64>,
+    /// Eigenvalues of the removed uncontrollable part.
+    pub uncontrollable: Vec<Complex64>,
+    /// Eigenvalues of the removed unobservable (controllable) part.
+    pub unobservable: Vec<Complex64>,
+    /// Dimension of the controllable part (before the observability step).
+    pub n_controllable: usize,
+    /// The absolute rank tolerances of the two staircases.
+    pub abs_tol: (f64, f64),
+}
+
+impl MinimalRealization {
+    /// Order of the minimal realisation.
+    pub fn order(&self) -> usize {
+        self.a.nrows()
+    }
+}
+
+/// Minimal realisation of (A, B, C, D); `tol` is the relative rank tolerance of the staircases
+/// (`None`: n²·ε, see [`super::staircase`]).
+///
+/// Errors: inconsistent dimensions, non-finite entries, or (practically never) an eigenvalue
+/// iteration that does not converge on a removed part.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use ltikit::numeric::linalg::minimal_realization;
+/// // (s + 1)/((s + 1)(s + 2)) in controllable canonical form: the pole −1 cancels.
+/// let a = DMatrix::from_row_slice(2, 2, &[-3.0, -2.0, 1.0, 0.0]);
+/// let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+/// let c = DMatrix::from_row_slice(1, 2, &[1.0, 1.0]);
+/// let d = DMatrix::zeros(1, 1);
+/// let m = minimal_realization(&a, &b, &c, &d, None).unwrap();
+/// assert_eq!(m.order(), 1);
+/// assert!((m.a[(0, 0)] + 2.0).abs() < 1e-14);
+/// assert!(m.uncontrollable.is_empty());
+/// assert!((m.unobservable[0].re + 1.0).abs() < 1e-14);
+/// ```
+pub fn minimal_realization(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    tol: Option<f64>,
+) -> Result<MinimalRealization> {
+    super::check_system(a, b, c, d)?;
+    let ctrl = controllability_staircase(a, b, c, tol, false)?;
+    let nc = ctrl.dim;
+    let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;
+    let ac = ctrl.a.view((0, 0), (nc, nc)).clone_owned();
+    let bc = ctrl.b.rows(0, nc).clone_owned();
+    let cc = ctrl.c.columns(0, nc).clone_owned();
+    // Observable part of the controllable part: the controllable part of its dual.
+    let obs = controllability_staircase(
+        &ac.transpose(),
+        &cc.transpose(),
+        &bc.transpose(),
+        tol,
+        false,
+    )?;
+    let no = obs.dim;
+    let unobservable = schur_eigenvalues(&obs.removed_block())?;
+    Ok(MinimalRealization {
+        a: obs.a.view((0, 0), (no, no)).transpose(),
+        b: obs.c.columns(0, no).transpose(),
+        c: obs.b.rows(0, no).transpose(),
+        d: d.clone(),
+        uncontrollable,
+        unobservable,
+        n_controllable: nc,
+        abs_tol: (ctrl.abs_tol, obs.abs_tol),
+    })
+}

@@ -1,0 +1,446 @@
+//! Multiplicity structure of the eigenvalues: which computed eigenvalues are one multiple
+//! eigenvalue, and whether it is semisimple (as many eigenvectors as its multiplicity) or
+//! defective (a Jordan block).
+//!
+//! # Method
+//! **Clusters.** A perturbation of size ε‖A‖ moves a simple eigenvalue by ~ε‖A‖ but scatters
+//! an m-fold defective one over a circle of radius ~(ε)^(1/m)‖A‖. Computed eigenvalues are
+//! therefore grouped top-down (components of the graph of links shorter than 2·r_6, split at their
+//! longest spanning-tree link) into clusters whose diameter is at most 2·r_m, m the size, and
+//! r_m = ν·(64·n·ε)^(1/min(m, 6)), ν = max(‖T‖₁, ‖T‖∞) of the balanced Schur form.
+//! The cluster's value is its mean (the trace of its invariant subspace divided by m, which
+//! is accurate to O(ε‖A‖) although the members are not); self-conjugate clusters are made
+//! exactly real and conjugate clusters exact conjugates.
+//!
+//! **Geometric multiplicity** g = dim null(A − λI) is computed on the complex Schur form S
+//! (unitarily similar, so the dimension is the same) without an n×n SVD: the unknowns of
+//! (S − λI)x = 0 at the m cluster positions are free, every other row is solved by
+//! back-substitution, and what remains is an m×m system R·y = 0 whose rows are the residuals
+//! at the cluster positions. With W (n×m) the back-substituted vectors, W = Q_W·R_W, the
+//! singular values of R̃ = R·R_W⁻¹ are the residual norms ‖(S − λI)v‖ of unit vectors
+//! v ∈ span W, so g = #{σᵢ(R̃) ≤ τ} with τ = √ε·ν: λ is an eigenvalue of geometric
+//! multiplicity g of a matrix within distance τ of A. A cluster with g = 0 is not one
+//! eigenvalue: it is split at its longest link and both halves are examined again.
+//! The null vectors of R̃ give a basis of the eigenspace ([`super::eigvec`]).
+
+use nalgebra::{DMatrix, DVector};
+use num_complex::Complex64;
+
+use super::complex_schur::{ComplexSchur, complex_schur};
+use super::schur::{RealSchur, SchurOptions, real_schur};
+use crate::error::Result;
+
+/// Largest cluster size whose radius grows with the size; larger clusters (semisimple ones
+/// such as the identity's) are held to the radius of this size.
+pub const MAX_DEFECTIVE_SIZE: usize = 6;
+
+/// Growth factor K in the cluster radius ν·(K·n·ε)^(1/m).
+const RADIUS_GROWTH: f64 = 64.0;
+
+/// One (possibly multiple) eigenvalue.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EigenCluster {
+    /// The eigenvalue: the mean of the members.
+    pub value: Complex64,
+    /// Algebraic multiplicity (the number of members).
+    pub algebraic: usize,
+    /// Geometric multiplicity (the number of independent eigenvectors), 1 ≤ g ≤ algebraic.
+    pub geometric: usize,
+    /// The computed eigenvalues of the cluster.
+    pub members: Vec<Complex64>,
+    /// Their positions on the diagonal of the complex Schur form.
+    pub positions: Vec<usize>,
+    /// Singular values of the reduced m×m problem (relative to ν), largest first: the last
+    /// `geometric` ones are ≤ √ε, the others are the couplings of the Jordan structure.
+    pub sigma: Vec<f64>,
+}
+
+impl EigenCluster {
+    /// True when the eigenvalue has as many eigenvectors as its multiplicity.
+    pub fn is_semisimple(&self) -> bool {
+        self.geometric == self.algebraic
+    }
+}
+
+/// The eigenvalues of a matrix with their multiplicity structure.
+#[derive(Clone, Debug)]
+pub struct EigenStructure {
+    /// The clusters, in the order of their first member on the Schur diagonal.
+    pub clusters: Vec<EigenCluster>,
+    /// ν = max(‖T‖₁, ‖T‖∞) of the balanced Schur form: the scale of every tolerance.
+    pub scale: f64,
+    /// The rank tolerance τ = √ε·ν of the geometric multiplicity.
+    pub rank_tol: f64,
+}
+
+/// Eigenvalues of a square, finite A grouped into multiple eigenvalues with algebraic and
+/// geometric multiplicities (see the [module docs](self)).
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use ltikit::numeric::linalg::eigen_structure;
+/// // A Jordan block of size 2 at −1 next to a simple eigenvalue −3.
+/// let a = DMatrix::from_row_slice(3, 3, &[-1.0, 1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -3.0]);
+/// let s = eigen_structure(&a).unwrap();
+/// let double = s.clusters.iter().find(|c| c.algebraic == 2).unwrap();
+/// assert!((double.value.re + 1.0).abs() < 1e-14 && double.value.im == 0.0);
+/// assert_eq!(double.geometric, 1);
+/// // The identity: one eigenvalue of multiplicity 3, semisimple.
+/// let s = eigen_structure(&DMatrix::identity(3, 3)).unwrap();
+/// assert_eq!(s.clusters.len(), 1);
+/// assert!(s.clusters[0].is_semisimple() && s.clusters[0].algebraic == 3);
+/// ```
+pub fn eigen_structure(a: &DMatrix<f64>) -> Result<EigenStructure> {
+    let opts = SchurOptions {
+        balance: true,
+        want_q: false,
+        want_t: true,
+    };
+    let real = real_schur(a, opts)?;
+    Ok(structure_of(&real, &complex_schur(&real), false).0)
+}
+
+/// The structure from a real Schur form (with the whole T) and its complex form. With
+/// `want_vectors` it also returns, per cluster, an orthonormal eigenvector basis (n×g) in the
+/// coordinates of the complex Schur form (`None` for a lower conjugate that mirrors its
+/// partner); without, simple eigenvalues are not examined (g = 1) and no basis is returned.
+pub(crate) fn structure_of(
+    real: &RealSchur,
+    cs: &ComplexSchur,
+    want_vectors: bool,
+) -> (EigenStructure, Vec<Option<DMatrix<Complex64>>>) {
+    let n = real.order();
+    let scale = super::norm_1_inf(&real.t);
+    let rank_tol = f64::EPSILON.sqrt() * scale;
+    let ev: Vec<Complex64> = (0..n).map(|k| cs.s[(k, k)]).collect();
+    let mut groups = link_clusters(&ev, scale);
+    let mut clusters = Vec::new();
+    let mut bases = Vec::new();
+    // Upper and self-conjugate clusters first; a lower one is the mirror of its partner when
+    // there is one, and examined on its own otherwise.
+    let mut lower: Vec<Vec<usize>> = Vec::new();
+    let mut lower_pass = false;
+    loop {
+        let Some(g) = groups.pop() else {
+            if lower_pass || lower.is_empty() {
+                break;
+            }
+            lower_pass = true;
+            for g in std::mem::take(&mut lower) {
+                let value = mean(&g, &ev);
+                let partner = clusters.iter().position(|c: &EigenCluster| {
+                    c.algebraic == g.len()
+                        && (c.value.conj() - value).norm() <= radius(g.len(), n, scale)
+                });
+                match partner {
+                    Some(i) => {
+                        let mut c = provisional(&g, &ev, clusters[i].value.conj());
+                        c.geometric = clusters[i].geometric;
+                        c.sigma = clusters[i].sigma.clone();
+                        clusters.push(c);
+                        bases.push(None);
+                    }
+                    None => groups.push(g),
+                }
+            }
+            continue;
+        };
+        let value = mean(&g, &ev);
+        if value.im < 0.0 && !lower_pass {
+            lower.push(g);
+            continue;
+        }
+        if g.len() == 1 && !want_vectors {
+            let mut c = provisional(&g, &ev, value);
+            c.sigma = vec![0.0];
+            clusters.push(c);
+            bases.push(None);
+            continue;
+        }
+        let reduced = reduced_problem(&cs.s, &g, value, scale);
+        let g_mult = reduced.sigma.iter().filter(|&&s| s <= rank_tol).count();
+        if g_mult == 0 && g.len() > 1 {
+            let (left, right) = split_longest_link(&g, &ev);
+            groups.push(left);
+            groups.push(right);
+            continue;
+        }
+        let mut c = provisional(&g, &ev, value);
+        c.geometric = g_mult.max(1);
+        c.sigma = reduced
+            .sigma
+            .iter()
+            .map(|s| s / scale.max(f64::MIN_POSITIVE))
+            .collect();
+        clusters.push(c);
+        bases.push(Some(reduced.null_basis(g_mult.max(1))));
+    }
+    let mut order: Vec<usize> = (0..clusters.len()).collect();
+    order.sort_by_key(|&i| clusters[i].positions.first().copied().unwrap_or(0));
+    let clusters: Vec<EigenCluster> = order.iter().map(|&i| clusters[i].clone()).collect();
+    let bases = order.iter().map(|&i| bases[i].clone()).collect();
+    (
+        EigenStructure {
+            clusters,
+            scale,
+            rank_tol,
+        },
+        bases,
+    )
+}
+
+fn provisional(g: &[usize], ev: &[Complex64], value: Complex64) -> EigenCluster {
+    EigenCluster {
+        value,
+        algebraic: g.len(),
+        geometric: 1,
+        members: g.iter().map(|&k| ev[k]).collect(),
+        positions: g.to_vec(),
+        sigma: Vec::new(),
+    }
+}
+
+/// Cluster radius for a cluster of m members (see the module docs).
+pub(crate) fn radius(m: usize, n: usize, scale: f64) -> f64 {
+    let m = m.clamp(1, MAX_DEFECTIVE_SIZE) as f64;
+    scale * (RADIUS_GROWTH * n.max(1) as f64 * f64::EPSILON).powf(1.0 / m)
+}
+
+/// The cluster mean; exactly real when the cluster is closed under conjugation.
+fn mean(g: &[usize], ev: &[Complex64]) -> Complex64 {
+    let sum: Complex64 = g.iter().map(|&k| ev[k]).sum();
+    let z = sum / g.len() as f64;
+    if is_self_conjugate(g, ev, z) {
+        Complex64::new(z.re, 0.0)
+    } else {
+        z
+    }
+}
+
+/// A cluster is self-conjugate when it has as many members above the real axis as below.
+fn is_self_conjugate(g: &[usize], ev: &[Complex64], _z: Complex64) -> bool {
+    let up = g.iter().filter(|&&k| ev[k].im > 0.0).count();
+    let down = g.iter().filter(|&&k| ev[k].im < 0.0).count();
+    up == down
+}
+
+/// Clustering top-down: the connected components of the graph linking eigenvalues closer
+/// than 2·r_6 (the largest radius), each split at the longest link of its minimum spanning
+/// tree until its diameter is within 2·r_m for its size m.
+///
+/// Top-down, not closest-pairs-first: the m members of a defective eigenvalue lie on a circle
+/// and are about equally far apart (a Jordan block of size 3 scatters into a near-equilateral
+/// triangle), so no pair of them may satisfy the bound r_2 of a pair although the three
+/// together satisfy r_3; a bottom-up merge would never form the triple.
+fn link_clusters(ev: &[Complex64], scale: f64) -> Vec<Vec<usize>> {
+    let n = ev.len();
+    let reach = 2.0 * radius(MAX_DEFECTIVE_SIZE, n, scale);
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| ev[a].re.total_cmp(&ev[b].re));
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
+    for (ia, &a) in order.iter().enumerate() {
+        for &b in &order[ia + 1..] {
+            if ev[b].re - ev[a].re > reach {
+                break;
+            }
+            if (ev[a] - ev[b]).norm() <= reach {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                if ra != rb {
+                    parent[rb] = ra;
+                }
+            }
+        }
+    }
+    let mut components: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for k in 0..n {
+        let r = root(&mut parent, k);
+        components[r].push(k);
+    }
+    let mut work: Vec<Vec<usize>> = components.into_iter().filter(|g| !g.is_empty()).collect();
+    let mut out = Vec::new();
+    while let Some(g) = work.pop() {
+        let diameter = g
+            .iter()
+            .flat_map(|&x| g.iter().map(move |&y| (ev[x] - ev[y]).norm()))
+            .fold(0.0, f64::max);
+        if g.len() > 1 && diameter > 2.0 * radius(g.len(), n, scale) {
+            let (left, right) = split_longest_link(&g, ev);
+            work.push(left);
+            work.push(right);
+        } else {
+            out.push(g);
+        }
+    }
+    for g in &mut out {
+        g.sort_unstable();
+    }
+    out.sort_unstable_by_key(|g| g.first().copied().unwrap_or(0));
+    out
+}
+
+/// Splits a cluster in two at the longest edge of its minimum spanning tree.
+fn split_longest_link(g: &[usize], ev: &[Complex64]) -> (Vec<usize>, Vec<usize>) {
+    // Prim's algorithm, remembering each member's attaching edge length.
+    let m = g.len();
+    let mut in_tree = vec![false; m];
+    let mut best = vec![f64::INFINITY; m];
+    let mut parent = vec![0usize; m];
+    best[0] = 0.0;
+    let mut order = Vec::with_capacity(m);
+    for _ in 0..m {
+        let next = (0..m)
+            .filter(|&i| !in_tree[i])
+            .min_by(|&x, &y| best[x].total_cmp(&best[y]))
+            .unwrap_or(0);
+        in_tree[next] = true;
+        order.push(next);
+        for i in 0..m {
+            let d = (ev[g[i]] - ev[g[next]]).norm();
+            if !in_tree[i] && d < best[i] {
+                best[i] = d;
+                parent[i] = next;
+            }
+        }
+    }
+    let cut = (1..m)
+        .max_by(|&x, &y| best[x].total_cmp(&best[y]))
+        .unwrap_or(1);
+    // The subtree below `cut`: members whose chain of parents reaches it.
+    let below = |mut i: usize| {
+        for _ in 0..m {
+            if i == cut {
+                return true;
+            }
+            if i == 0 {
+                return false;
+            }
+            i = parent[i];
+        }
+        false
+    };
+    let (mut left, mut right) = (Vec::new(), Vec::new());
+    for (i, &k) in g.iter().enumerate() {
+        if below(i) {
+            right.push(k);
+        } else {
+            left.push(k);
+        }
+    }
+    (left, right)
+}
+
+/// The reduced m×m problem of a cluster: W (n×m) and R (m×m), see the module docs.
+pub(crate) struct Reduced {
+    /// Orthonormal basis of span W.
+    q_w: DMatrix<Complex64>,
+    /// Singular values of R̃, largest first.
+    pub sigma: Vec<f64>,
+    /// Right singular vectors of R̃ (columns, in the order of `sigma`).
+    v: DMatrix<Complex64>,
+}
+
+impl Reduced {
+    /// Orthonormal basis (n×g) of the approximate null space: the last g right singular
+    /// vectors mapped through Q_W.
+    pub(crate) fn null_basis(&self, g: usize) -> DMatrix<Complex64> {
+        let m = self.v.ncols();
+        let cols = self.v.columns(m - g.min(m), g.min(m));
+        &self.q_w * cols
+    }
+}
+
+/// Back-substitution with the cluster positions free (see the module docs).
+pub(crate) fn reduced_problem(
+    s: &DMatrix<Complex64>,
+    positions: &[usize],
+    lambda: Complex64,
+    scale: f64,
+) -> Reduced {
+    let n = s.nrows();
+    let m = positions.len();
+    let smin = (f64::EPSILON * scale).max(f64::MIN_POSITIVE * 1e10);
+    let mut w = DMatrix::<Complex64>::zeros(n, m);
+    let mut r = DMatrix::<Complex64>::zeros(m, m);
+    let slot = |j: usize| positions.iter().position(|&p| p == j);
+    for (k, &pk) in positions.iter().enumerate() {
+        let (x, res) = back_substitute(s, pk, lambda, smin, &slot);
+        for (i, xi) in x.iter().enumerate() {
+            w[(i, k)] = *xi;
+        }
+        for (l, v) in res {
+            r[(l, k)] = v;
+        }
+        // x[p] is 1, or smaller when back_substitute rescaled x against overflow.
+        r[(k, k)] = (s[(pk, pk)] - lambda) * x[pk];
+    }
+    let qr = w.clone().qr();
+    let (q_w, r_w) = (qr.q(), qr.r());
+    // R̃ = R·R_W⁻¹ (R_W upper triangular, non-singular: W has a unit entry per column at its
+    // own position and zeros at the others).
+    let rt = match r_w.solve_upper_triangular(&DMatrix::identity(m, m)) {
+        Some(inv) => &r * inv,
+        None => r.clone(),
+    };
+    let svd = rt.svd(false, true);
+    let mut idx: Vec<usize> = (0..m).collect();
+    idx.sort_by(|&a, &b| svd.singular_values[b].total_cmp(&svd.singular_values[a]));
+    let sigma: Vec<f64> = idx.iter().map(|&i| svd.singular_values[i]).collect();
+    let v = match &svd.v_t {
+        Some(vt) => {
+            let vv = vt.adjoint();
+            DMatrix::from_fn(m, m, |i, j| vv[(i, idx[j])])
+        }
+        None => DMatrix::identity(m, m),
+    };
+    Reduced { q_w, sigma, v }
+}
+
+/// Solves (S − λI)x = 0 with x[p] = 1, x[j] = 0 below p and at the other cluster positions
+/// (`slot(j)` is Some for them); returns x (scaled to avoid overflow) and the residuals at
+/// the cluster positions above p as (slot, value).
+pub(crate) fn back_substitute(
+    s: &DMatrix<Complex64>,
+    p: usize,
+    lambda: Complex64,
+    smin: f64,
+    slot: &dyn Fn(usize) -> Option<usize>,
+) -> (DVector<Complex64>, Vec<(usize, Complex64)>) {
+    let n = s.nrows();
+    let mut x = DVector::<Complex64>::zeros(n);
+    x[p] = Complex64::new(1.0, 0.0);
+    // rhs = −S[0..p, p]·x_p, updated column by column (contiguous).
+    let mut rhs: Vec<Complex64> = (0..p).map(|i| -s[(i, p)]).collect();
+    let mut residuals = Vec::new();
+    const BIG: f64 = 1e150;
+    for j in (0..p).rev() {
+        if let Some(l) = slot(j) {
+            residuals.push((l, -rhs[j]));
+            continue;
+        }
+        let mut piv = s[(j, j)] - lambda;
+        if piv.norm() < smin {
+            piv = Complex64::new(smin, 0.0);
+        }
+        let xj = rhs[j] / piv;
+        x[j] = xj;
+        if xj.norm() > BIG {
+            let f = 1.0 / xj.norm();
+            x.iter_mut().for_each(|t| *t *= f);
+            rhs.iter_mut().for_each(|t| *t *= f);
+            residuals.iter_mut().for_each(|t| t.1 *= f);
+        }
+        let xj = x[j];
+        let col = s.column(j);
+        for (t, sij) in rhs[..j].iter_mut().zip(col.iter()) {
+            *t -= sij * xj;
+        }
+    }
+    (x, residuals)
+}

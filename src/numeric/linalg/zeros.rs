@@ -1,0 +1,294 @@
+//! Invariant and transmission zeros: the finite λ where the system pencil
+//! P(λ) = [A − λI  B; C  D] loses rank, for SISO and square MIMO systems (D = 0 or not).
+//!
+//! # Method
+//! Emami-Naeini & Van Dooren (1982), "Computation of zeros of linear multivariable systems",
+//! Automatica 18(4): a structure-preserving reduction by orthogonal transformations that
+//! removes the infinite zeros and leaves a system with D_f invertible, whose finite zeros are
+//! the eigenvalues of the n_f×n_f matrix A_f − B_f·D_f⁻¹·C_f — a plain eigenvalue problem, no
+//! QZ. One reduction step on (A, B, C, D), n states, m inputs, p outputs:
+//! 1. compress the rows of D by a rank-revealing QR: UD = [D₁; 0], D₁ of full row rank ρ, and
+//!    UC = [C₁; C₂]; if ρ = p, stop;
+//! 2. compress the columns of C₂ (a rank-revealing QR of C₂ᵀ): C₂V = [Y 0], Y of full column
+//!    rank μ; apply V as a state similarity, A ← VᵀAV, B ← VᵀB, C ← CV;
+//! 3. the first μ states are determined by the outputs C₂ (Y has full column rank), so their
+//!    columns are eliminated from the pencil together with μ rows of C₂ (a unimodular row
+//!    operation: finite zeros are kept), rows of C₂ beyond μ are zero and dropped; the state
+//!    equations of those μ states carry no λ any more and become outputs:
+//!    A ← A₂₂, B ← B₂, C ← [A₁₂; C₁₂], D ← [B₁; D₁].
+//!
+//! Steps repeat until D has full row rank; the same procedure on the dual (Aᵀ, Cᵀ, Bᵀ, Dᵀ)
+//! then gives D_f of full column rank too, i.e. square and invertible for a system whose
+//! transfer matrix is square and of full normal rank (otherwise an error says so).
+//!
+//! **Tolerance**: ranks are decided by [`super::rrqr`] with tol·‖[A B; C D]‖_F, default
+//! tol = (n + p)(n + m)·ε (SLICOT `AB08ND`). The system is first scaled by powers of two
+//! (A/α, B/β, C/γ, D·α/(βγ); zeros λ = α·λ'), exactly. For a SISO system the number of steps
+//! is the relative degree and the product of the compressed norms the first non-zero
+//! Markov parameter ([`super::markov`]).
+//!
+//! Invariant zeros include the decoupling zeros (uncontrollable and unobservable modes);
+//! [`transmission_zeros`] are the invariant zeros of the minimal realisation.
+
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+use super::minreal::minimal_realization;
+use super::rrqr::rank_revealing_qr;
+use super::structure::eigen_structure;
+use crate::error::{LtiError, Result};
+use crate::numeric::balance::{exponent, ldexp};
+
+/// The finite zeros of a system pencil.
+#[derive(Clone, Debug)]
+pub struct InvariantZeros {
+    /// The finite zeros, each as computed (a multiple zero appears with its scatter).
+    pub zeros: Vec<Complex64>,
+    /// The distinct zeros with their multiplicities (cluster means, see
+    /// [`super::structure`]).
+    pub distinct: Vec<(Complex64, usize)>,
+    /// Zeros at infinity, counted as n − (number of finite zeros) (for SISO: the relative
+    /// degree of the realisation's transfer function).
+    pub n_infinite: usize,
+    /// The relative rank tolerance of the reduction (of ‖[A B; C D]‖_F after the
+    /// power-of-two scaling).
+    pub tol: f64,
+}
+
+/// A system (A, B, C, D) being reduced.
+#[derive(Clone, Debug)]
+pub(crate) struct Sys {
+    pub a: DMatrix<f64>,
+    pub b: DMatrix<f64>,
+    pub c: DMatrix<f64>,
+    pub d: DMatrix<f64>,
+}
+
+impl Sys {
+    fn transpose(&self) -> Sys {
+        Sys {
+            a: self.a.transpose(),
+            b: self.c.transpose(),
+            c: self.b.transpose(),
+            d: self.d.transpose(),
+        }
+    }
+}
+
+/// What one reduction did: per step (ρ, μ, β) with β the (0, 0) entry of the compressed C₂
+/// (for SISO the factor between successive Markov parameters), and the rows dropped as zero.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ReduceLog {
+    pub steps: Vec<(usize, usize, f64)>,
+    pub dropped: usize,
+}
+
+/// Power-of-two scaling of (A, B, C, D): returns the scaled system and (eα, eβ, eγ) with
+/// A/2^eα, B/2^eβ, C/2^eγ, D·2^(eα−eβ−eγ).
+pub(crate) fn scale_system(s: &Sys) -> (Sys, (i32, i32, i32)) {
+    let e = |m: &DMatrix<f64>| exponent(super::norm_1_inf(m)).unwrap_or(0);
+    let (ea, eb, ec) = (e(&s.a), e(&s.b), e(&s.c));
+    let scaled = Sys {
+        a: s.a.map(|x| ldexp(x, -ea)),
+        b: s.b.map(|x| ldexp(x, -eb)),
+        c: s.c.map(|x| ldexp(x, -ec)),
+        d: s.d.map(|x| ldexp(x, ea - eb - ec)),
+    };
+    (scaled, (ea, eb, ec))
+}
+
+/// One full reduction (steps 1–3 of the module docs until D has full row rank).
+pub(crate) fn reduce(mut s: Sys, tol: f64) -> (Sys, ReduceLog) {
+    let mut log = ReduceLog::default();
+    loop {
+        let (n, m, p) = (s.a.nrows(), s.b.ncols(), s.c.nrows());
+        if p == 0 {
+            return (s, log);
+        }
+        let f = rank_revealing_qr(&s.d, tol);
+        let rho = f.rank;
+        for r in &f.reflectors {
+            r.apply_left(&mut s.d, 0..m);
+            r.apply_left(&mut s.c, 0..n);
+        }
+        for j in 0..m {
+            for i in rho..p {
+                s.d[(i, j)] = 0.0;
+            }
+        }
+        if rho == p {
+            return (s, log);
+        }
+        let c2t = s.c.rows(rho, p - rho).transpose();
+        let g = rank_revealing_qr(&c2t, tol);
+        let mu = g.rank;
+        for r in &g.reflectors {
+            r.apply_left(&mut s.a, 0..n);
+            r.apply_right(&mut s.a, 0..n);
+            r.apply_left(&mut s.b, 0..m);
+            r.apply_right(&mut s.c, 0..p);
+        }
+        let beta = if mu > 0 { s.c[(rho, 0)] } else { 0.0 };
+        log.steps.push((rho, mu, beta));
+        log.dropped += p - rho - mu;
+        if mu == 0 {
+            // C₂ is negligible: its rows are zero rows of the pencil.
+            s.c = s.c.rows(0, rho).clone_owned();
+            s.d = s.d.rows(0, rho).clone_owned();
+            return (s, log);
+        }
+        let nr = n - mu;
+        let mut c_new = DMatrix::zeros(mu + rho, nr);
+        c_new
+            .view_mut((0, 0), (mu, nr))
+            .copy_from(&s.a.view((0, mu), (mu, nr)));
+        c_new
+            .view_mut((mu, 0), (rho, nr))
+            .copy_from(&s.c.view((0, mu), (rho, nr)));
+        let mut d_new = DMatrix::zeros(mu + rho, m);
+        d_new.view_mut((0, 0), (mu, m)).copy_from(&s.b.rows(0, mu));
+        d_new
+            .view_mut((mu, 0), (rho, m))
+            .copy_from(&s.d.rows(0, rho));
+        s = Sys {
+            a: s.a.view((mu, mu), (nr, nr)).clone_owned(),
+            b: s.b.rows(mu, nr).clone_owned(),
+            c: c_new,
+            d: d_new,
+        };
+    }
+}
+
+/// Default relative tolerance (n + p)(n + m)·ε of the reduction (SLICOT `AB08ND`).
+pub fn default_tol(n: usize, m: usize, p: usize) -> f64 {
+    ((n + p) * (n + m)).max(1) as f64 * f64::EPSILON
+}
+
+/// Invariant zeros of (A, B, C, D), A n×n, B n×m, C p×n, D p×m with m = p (see the
+/// [module docs](self)); `tol` relative (`None`: (n + p)(n + m)·ε).
+///
+/// Errors: inconsistent dimensions, non-finite entries, a non-square system, a transfer
+/// matrix that is singular for every s (normal rank deficient: the zeros are not isolated).
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use ltikit::numeric::linalg::invariant_zeros;
+/// // G(s) = (s − 1)/((s + 2)(s + 3)) in controllable canonical form: zero at +1.
+/// let a = DMatrix::from_row_slice(2, 2, &[-5.0, -6.0, 1.0, 0.0]);
+/// let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+/// let c = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+/// let z = invariant_zeros(&a, &b, &c, &DMatrix::zeros(1, 1), None).unwrap();
+/// assert_eq!(z.zeros.len(), 1);
+/// assert!((z.zeros[0].re - 1.0).abs() < 1e-14 && z.zeros[0].im == 0.0);
+/// assert_eq!(z.n_infinite, 1);
+/// ```
+pub fn invariant_zeros(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    tol: Option<f64>,
+) -> Result<InvariantZeros> {
+    let (n, m, p) = super::check_system(a, b, c, d)?;
+    if m != p {
+        return Err(LtiError::invalid(format!(
+            "invariant zeros need a square system (as many inputs as outputs), got {p} outputs and {m} inputs"
+        )));
+    }
+    let sys = Sys {
+        a: a.clone(),
+        b: b.clone(),
+        c: c.clone(),
+        d: d.clone(),
+    };
+    let (scaled, (ea, _, _)) = scale_system(&sys);
+    let norm = super::frobenius(
+        scaled
+            .a
+            .iter()
+            .chain(scaled.b.iter())
+            .chain(scaled.c.iter())
+            .chain(scaled.d.iter()),
+    );
+    let rel = tol.unwrap_or_else(|| default_tol(n, m, p));
+    let abs = rel * norm;
+    let (primal, log1) = reduce(scaled, abs);
+    let (dual, log2) = reduce(primal.transpose(), abs);
+    let f = dual.transpose();
+    let (nf, mf, pf) = (f.a.nrows(), f.b.ncols(), f.c.nrows());
+    let not_regular = || {
+        LtiError::invalid(
+            "the transfer matrix is singular for every s (normal rank deficient): its invariant zeros are not isolated",
+        )
+    };
+    // A zero row of the pencil (dropped) means the normal rank is deficient.
+    if mf != pf || log1.dropped + log2.dropped > 0 {
+        return Err(not_regular());
+    }
+    let ldf = f.d.clone().lu();
+    if nf == 0 {
+        if mf > 0 && !ldf.is_invertible() {
+            return Err(not_regular());
+        }
+        return Ok(InvariantZeros {
+            zeros: Vec::new(),
+            distinct: Vec::new(),
+            n_infinite: n,
+            tol: rel,
+        });
+    }
+    let m_f = if mf == 0 {
+        f.a.clone()
+    } else {
+        let x = ldf.solve(&f.c).ok_or_else(not_regular)?;
+        &f.a - &f.b * x
+    };
+    let st = eigen_structure(&m_f)?;
+    let back = |z: Complex64| Complex64::new(ldexp(z.re, ea), ldexp(z.im, ea));
+    let mut zeros = Vec::with_capacity(nf);
+    let mut distinct = Vec::new();
+    for cl in &st.clusters {
+        zeros.extend(cl.members.iter().map(|&z| back(z)));
+        distinct.push((back(cl.value), cl.algebraic));
+    }
+    if let Some(z) = zeros
+        .iter()
+        .find(|z| !(z.re.is_finite() && z.im.is_finite()))
+    {
+        return Err(LtiError::NonFinite {
+            what: "a zero (beyond the range of f64)".into(),
+            value: z.norm(),
+        });
+    }
+    Ok(InvariantZeros {
+        n_infinite: n - zeros.len(),
+        zeros,
+        distinct,
+        tol: rel,
+    })
+}
+
+/// Transmission zeros: the invariant zeros of the [minimal realisation](minimal_realization)
+/// (decoupling zeros removed). `tol` is used for both steps.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use ltikit::numeric::linalg::{invariant_zeros, transmission_zeros};
+/// // (s + 1)/((s + 1)(s + 2)): the invariant zero −1 is a decoupling zero.
+/// let a = DMatrix::from_row_slice(2, 2, &[-3.0, -2.0, 1.0, 0.0]);
+/// let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+/// let c = DMatrix::from_row_slice(1, 2, &[1.0, 1.0]);
+/// let d = DMatrix::zeros(1, 1);
+/// assert_eq!(invariant_zeros(&a, &b, &c, &d, None).unwrap().zeros.len(), 1);
+/// assert!(transmission_zeros(&a, &b, &c, &d, None).unwrap().zeros.is_empty());
+/// ```
+pub fn transmission_zeros(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    tol: Option<f64>,
+) -> Result<InvariantZeros> {
+    let min = minimal_realization(a, b, c, d, tol)?;
+    invariant_zeros(&min.a, &min.b, &min.c, &min.d, tol)
+}
