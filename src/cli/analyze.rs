@@ -196,14 +196,28 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
     }
     s.push('\n');
     if !pz.cancelled.is_empty() {
-        let reduced = f
-            .reduced_tf()
-            .map(|g| g.to_string())
-            .unwrap_or_else(|_| "(too large to print)".into());
-        s.push_str(&format!(
-            "Cancelled: {} (common to numerator and denominator; reduced G = {reduced})\n",
-            roots_text(&pz.cancelled),
-        ));
+        if f.transfer_function().is_none()
+            && f.reduced_poles()
+                .iter()
+                .map(|r| r.multiplicity)
+                .sum::<usize>()
+                > super::text::MAX_PRINTED_ORDER
+        {
+            s.push_str(&format!(
+                "Cancelled: {} (modes removed by the minimal realisation: uncontrollable or unobservable; minimal order {})\n",
+                roots_text(&pz.cancelled),
+                f.reduced_poles().iter().map(|r| r.multiplicity).sum::<usize>()
+            ));
+        } else {
+            let reduced = f
+                .reduced_tf()
+                .map(|g| g.to_string())
+                .unwrap_or_else(|_| "(too large to print)".into());
+            s.push_str(&format!(
+                "Cancelled: {} (common to numerator and denominator; reduced G = {reduced})\n",
+                roots_text(&pz.cancelled),
+            ));
+        }
     }
     s.push_str(&format!(
         "dc gain:   {}\n\n",

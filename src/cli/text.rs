@@ -36,6 +36,9 @@ pub fn vector_text(v: &[f64]) -> String {
     )
 }
 
+/// Orders above which a state-space channel is not printed as a formula.
+pub const MAX_PRINTED_ORDER: usize = 12;
+
 /// "G(s) = …" for a SISO plant: its coefficients, or for a state-space plant its factors and
 /// its size.
 pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
@@ -44,6 +47,19 @@ pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> Strin
     }
     match &plant.model {
         crate::lti::Model::Tf(g) => format!("G(s) = {g}"),
+        crate::lti::Model::Ss(ss)
+            if f.poles().iter().map(|r| r.multiplicity).sum::<usize>() > MAX_PRINTED_ORDER =>
+        {
+            format!(
+                "G(s): a channel of a {}-state model, minimal order {}, gain {} (poles and zeros below)",
+                ss.order(),
+                f.reduced_poles()
+                    .iter()
+                    .map(|r| r.multiplicity)
+                    .sum::<usize>(),
+                crate::poly::fmt_num(f.gain())
+            )
+        }
         crate::lti::Model::Ss(ss) => format!("G(s) = {f}  (state space: {} states)", ss.order()),
     }
 }

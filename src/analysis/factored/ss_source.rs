@@ -103,6 +103,10 @@ fn roots_of_matrix(a: &DMatrix<f64>) -> Result<Vec<Root>> {
             let r = radius(c.algebraic, n, st.scale);
             let v = if c.value.norm() <= r {
                 Complex64::new(0.0, 0.0)
+            } else if c.value.re.abs() <= r {
+                // Likewise a real part within the radius: on the imaginary axis (the undamped
+                // lattice's ±jωₖ come out with real parts of ~1e-16 otherwise).
+                Complex64::new(0.0, c.value.im)
             } else {
                 c.value
             };
