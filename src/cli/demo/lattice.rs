@@ -3,7 +3,7 @@
 //! displacement channel.
 
 use anyhow::Result;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -502,46 +502,92 @@ fn damped_part(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
     Ok(())
 }
 
-/// **The lead's place**: the analysis of the lattice's force → displacement channel (poles
-/// with multiplicities, transmission zeros, minimal realisation, Bode) goes here once the
-/// state-space analysis has landed. Until then this states the channel, the closed-form
-/// expectations the analysis must reproduce, and checks the model's `ss` against the modal
-/// sum G(s) = Σ wₖ/(s² + cₖs + ωₖ²) at a few frequencies.
+/// The force → displacement channel through the state-space layer: the factored form from
+/// the eigenvalues of A, the transmission zeros and the minimal realisation (no coefficients),
+/// checked against the closed-form modal sum G(s) = Σ wₖ/(s² + cₖs + ωₖ²); the whole-model
+/// eigen-structure (degenerate pairs semisimple, the rigid mode a Jordan block); its Bode plot.
 pub fn channel_analysis(ctx: &mut Ctx, md: &mut Md, lat: &Lattice, ss: &StateSpace) -> Result<()> {
     md.h3("The force → displacement channel");
     let Output::Particle(out) = lat.output() else {
         return Ok(());
     };
     let sum = lat.modal_sum(out, lat.input())?;
+    let f = crate::analysis::Factored::from_state_space(ss)?;
+    let whole = ss.analysis()?;
+    let order = |r: &[crate::poly::Root]| r.iter().map(|r| r.multiplicity).sum::<usize>();
+    let minimal = order(f.reduced_poles());
+    let semisimple_pairs = whole
+        .eigenvalues
+        .iter()
+        .filter(|e| e.algebraic == 2 && e.semisimple && e.value.norm() > 0.0)
+        .count();
+    let jordan: Vec<String> = whole
+        .eigenvalues
+        .iter()
+        .filter(|e| !e.semisimple)
+        .map(|e| {
+            format!(
+                "{} (algebraic {}, geometric {})",
+                crate::poly::fmt_root(e.value, 6),
+                e.algebraic,
+                e.geometric
+            )
+        })
+        .collect();
     md.p(&format!(
-        "Force on particle {} → displacement of particle {out}: {} states. In closed form \
-         G(s) = Σₖ wₖ/(s² + cₖ s + ωₖ²) over the {} distinct frequencies; the sine partner of \
-         every degenerate pair has a node at the driven particle (it can be neither excited \
-         nor seen), so a minimal realisation has order {} (the rigid mode p = 0 is a double \
-         pole at 0).",
+        "Force on particle {} → displacement of particle {out}, {} states, analysed without \
+         coefficients (`Factored::from_state_space`: eigenvalues of A by balanced Hessenberg QR, \
+         transmission zeros, minimal realisation). In closed form G(s) = Σₖ wₖ/(s² + cₖ s + \
+         ωₖ²) over the {} distinct frequencies; the sine partner of every degenerate pair has a \
+         node at the driven particle (it can be neither excited nor seen), so the minimal \
+         realisation has order {} — found: {minimal}. The eigenvalues of A: {} degenerate \
+         values ±jωₖ of multiplicity 2, all semisimple (two independent mode shapes each); not \
+         semisimple: {} — the rigid translation p = 0, a Jordan block at 0 (q = c₁ + c₂t), so \
+         the lattice is not internally stable and the channel has a double pole at 0.",
         lat.input(),
         ss.order(),
         sum.omega.len(),
-        sum.minimal_order()
+        sum.minimal_order(),
+        semisimple_pairs,
+        if jordan.is_empty() {
+            "none".to_string()
+        } else {
+            jordan.join(", ")
+        },
     ));
+    ctx.checks.add(
+        "lattice channel: minimal order from the state-space layer vs the modal sum (difference)",
+        format!("{}, particle {} → {out}", describe(lat), lat.input()),
+        (minimal as f64 - sum.minimal_order() as f64).abs(),
+        0.0,
+    );
+    // Every closed-form pole of the reduced G among the reduced poles (relative to ω0).
+    let found: Vec<Complex64> = f.reduced_poles().iter().map(|r| r.value).collect();
+    let pole_err = sum
+        .poles()
+        .iter()
+        .map(|p| {
+            found
+                .iter()
+                .map(|q| (p - q).norm())
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max)
+        / lat.w0();
+    ctx.checks.add(
+        "lattice channel: reduced poles vs the closed form ±jωₖ of the visible modes (relative to ω0)",
+        format!("{}, particle {} → {out}", describe(lat), lat.input()),
+        pole_err,
+        1e-12,
+    );
     let mut err = 0.0f64;
     for w in [0.1, 0.77, 1.3, 2.5] {
         let s = Complex64::new(0.0, w);
-        let n = ss.order();
-        let m = DMatrix::from_fn(n, n, |i, j| {
-            Complex64::from(if i == j { 1.0 } else { 0.0 }) * s - Complex64::from(ss.a[(i, j)])
-        });
-        let b = DVector::from_fn(n, |i, _| Complex64::from(ss.b[(i, 0)]));
-        let x = m
-            .lu()
-            .solve(&b)
-            .ok_or_else(|| anyhow::anyhow!("sI − A is singular at ω = {w}"))?;
-        let g: Complex64 = (0..n).map(|i| x[i] * ss.c[(0, i)]).sum();
         let exact = sum.eval(s);
-        err = err.max((g - exact).norm() / exact.norm());
+        err = err.max((f.eval(s) - exact).norm() / exact.norm());
     }
     ctx.checks.add(
-        "lattice channel C(jωI − A)⁻¹B vs the closed-form modal sum (relative)",
+        "lattice channel G(jω) from the state-space layer vs the closed-form modal sum (relative)",
         format!(
             "{}, particle {} → {out}, 4 frequencies",
             describe(lat),
@@ -550,5 +596,23 @@ pub fn channel_analysis(ctx: &mut Ctx, md: &mut Md, lat: &Lattice, ss: &StateSpa
         err,
         1e-10,
     );
+    let name = "lattice-channel-bode.png";
+    let opts = crate::plot::PlotOptions {
+        title: Some(format!(
+            "Lattice (N = {}): force on particle {} → displacement of particle {out}",
+            lat.n(),
+            lat.input()
+        )),
+        ..Default::default()
+    };
+    crate::cli::plots::bode_figure(
+        &ctx.figure(name),
+        &[(format!("{} states", ss.order()), f)],
+        Some((0.01, 10.0)),
+        false,
+        false,
+        &opts,
+    )?;
+    md.image("Bode diagram of the lattice channel", name);
     Ok(())
 }
