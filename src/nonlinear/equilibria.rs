@@ -311,11 +311,7 @@ fn newton_step(a: &DMatrix<f64>, f: &[f64]) -> Option<DVector<f64>> {
             return Some(dx);
         }
     }
-    let svd = a.clone().svd(true, true);
-    let tol = 1e-13 * svd.singular_values.max().max(f64::MIN_POSITIVE);
-    svd.solve(&rhs, tol)
-        .ok()
-        .filter(|d| d.iter().all(|v| v.is_finite()))
+    crate::numeric::lstsq::min_norm_solve(a, &rhs, 1e-13)
 }
 
 /// The k-th element of the van der Corput sequence in base `b` (Halton coordinate).

@@ -11,6 +11,7 @@ pub mod dd;
 pub mod eig;
 pub mod expm;
 pub mod linalg;
+pub mod lstsq;
 pub mod rk45;
 pub mod scalar;
 pub mod tol;

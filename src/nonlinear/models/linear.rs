@@ -152,9 +152,7 @@ impl SystemInfo for LinearModel {
                 return Some(vec![x.as_slice().to_vec()]);
             }
         }
-        let svd = self.ss.a.clone().svd(true, true);
-        let tol = 1e-12 * svd.singular_values.max().max(f64::MIN_POSITIVE);
-        let x = svd.solve(&rhs, tol).ok()?;
+        let x = crate::numeric::lstsq::min_norm_solve(&self.ss.a, &rhs, 1e-12)?;
         let res = (&self.ss.a * &x - &rhs).amax();
         if res <= 1e-10 * (1.0 + rhs.amax()) {
             Some(vec![x.as_slice().to_vec()])
