@@ -231,3 +231,29 @@ fn issue_14_reproducers_at_the_library_level() {
     let a = DMatrix::from_row_slice(2, 2, &[1e50, 0.0, 1.0, 0.0]);
     assert!(expm(&a).is_err());
 }
+
+#[test]
+fn badly_scaled_two_by_two_keeps_its_small_eigenvalue() {
+    // Spring–mass–damper linearised with C = 1e200 (M = 1, K = 4): λ² + 1e200 λ + 4 = 0 has
+    // the roots −1e200 and −4/1e200 = −4e-200 (product 4, sum −1e200, exact to rounding).
+    let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -1e200]);
+    let mut ev: Vec<f64> = eigenvalues(&a).unwrap().iter().map(|z| z.re).collect();
+    ev.sort_by(f64::total_cmp);
+    assert_eq!(ev[0], -1e200);
+    assert!(
+        (ev[1] + 4e-200).abs() <= 4e-200 * 4.0 * f64::EPSILON,
+        "{ev:?}"
+    );
+    // And the linearisation calls it asymptotically stable (it was "undetermined").
+    let sys = ltikit::nonlinear::build_model("spring-mass-damper", &[("C".into(), 1e200)]).unwrap();
+    let lin = ltikit::nonlinear::linearize(
+        sys.as_ref(),
+        None,
+        &ltikit::nonlinear::EquilibriumSearch::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        lin.equilibria[0].stability,
+        ltikit::nonlinear::LocalStability::AsymptoticallyStable
+    );
+}

@@ -185,8 +185,16 @@ pub(crate) fn eigenvalues_text(e: &[num_complex::Complex64], sig: usize) -> Stri
     let t = 1e-13 * scale;
     let mut groups: Vec<(String, usize)> = Vec::new();
     for z in e {
+        // Rounding noise (below 1e-13 of the largest) is shown as 0, except for a 2×2 matrix,
+        // whose eigenvalues come from an accurately rounded determinant (−4e-200 for
+        // C = 1e200 in the spring–mass–damper is an eigenvalue, not noise).
+        let whole_tiny = e.len() == 2 && z.norm() <= t && z.im == 0.0;
         let z = num_complex::Complex64::new(
-            if z.re.abs() <= t { 0.0 } else { z.re },
+            if z.re.abs() <= t && !whole_tiny {
+                0.0
+            } else {
+                z.re
+            },
             if z.im.abs() <= t { 0.0 } else { z.im },
         );
         if z.im < 0.0 {

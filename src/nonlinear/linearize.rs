@@ -297,8 +297,22 @@ pub fn stability_at(
 ) -> Result<(LocalStability, Vec<Complex64>)> {
     let ss = linearize_at(sys, x, u)?;
     let eigs = sorted_eigenvalues(&ss)?;
-    let (_, stability, _) = local_stability(&eigs, ss.a.norm());
+    let (_, stability, _) = local_stability(&eigs, eigen_scale(&ss.a, &eigs));
     Ok((stability, eigs))
+}
+
+/// The scale against which an eigenvalue counts as zero ([`local_stability`]): ‖A‖_F (the
+/// backward error of a Schur iteration is eps·‖A‖), except for 2×2 matrices, whose eigenvalues
+/// come from the trace and an accurately rounded determinant: there the smaller one is known to
+/// eps·(|ad| + |bc|)/|λ_big| (for C = 1e200 in the spring–mass–damper, λ = −4e-200 is an
+/// eigenvalue, not a zero).
+fn eigen_scale(a: &nalgebra::DMatrix<f64>, eigs: &[Complex64]) -> f64 {
+    let big = eigs.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    if a.nrows() == 2 && big > 0.0 {
+        ((a[(0, 0)] * a[(1, 1)]).abs() + (a[(0, 1)] * a[(1, 0)]).abs()) / big
+    } else {
+        a.norm()
+    }
 }
 
 fn sorted_eigenvalues(ss: &StateSpace) -> Result<Vec<Complex64>> {
@@ -311,7 +325,7 @@ fn sorted_eigenvalues(ss: &StateSpace) -> Result<Vec<Complex64>> {
 pub fn analyze_equilibrium(sys: &dyn DynSystem, eq: &Equilibrium) -> Result<LinearizedEquilibrium> {
     let ss = linearize_at(sys, &eq.x, &eq.u)?;
     let eigs = sorted_eigenvalues(&ss)?;
-    let scale = ss.a.norm();
+    let scale = eigen_scale(&ss.a, &eigs);
     let (hyperbolic, stability, stability_reason) = local_stability(&eigs, scale);
     let siso = ss.b.ncols() == 1 && ss.c.nrows() == 1;
     let tf = if siso { Some(tf_analysis(&ss)?) } else { None };

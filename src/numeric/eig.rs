@@ -77,6 +77,11 @@ pub fn eigenvalues_checked(mut m: DMatrix<f64>) -> Result<Vec<Complex64>> {
     match n {
         0 => return Ok(Vec::new()),
         1 => return Ok(vec![Complex64::new(m[(0, 0)], 0.0)]),
+        2 => {
+            if let Some(ev) = eigenvalues_2x2(m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]) {
+                return Ok(ev);
+            }
+        }
         _ => {}
     }
     balance(&mut m);
@@ -99,6 +104,39 @@ pub fn eigenvalues_checked(mut m: DMatrix<f64>) -> Result<Vec<Complex64>> {
         });
     }
     Ok(ev)
+}
+
+/// Eigenvalues of [[a, b], [c, d]] from the trace and the determinant, without cancellation:
+/// the larger root h ± √(h² − det) (h = tr/2) with the sign of h, the smaller one as det
+/// divided by it — so [[0, 1], [−4, −1e200]] gives −1e200 and −4e-200 (a Schur iteration
+/// returns 0 for the small one: its absolute error is eps·‖A‖ = 2e184). `None` when a product
+/// overflows (the general path then scales).
+fn eigenvalues_2x2(a: f64, b: f64, c: f64, d: f64) -> Option<Vec<Complex64>> {
+    // det = ad − bc by Kahan's difference of products (exact to a few ulps).
+    let w = b * c;
+    let det = a.mul_add(d, -w) + (-b).mul_add(c, w);
+    let h = 0.5 * a + 0.5 * d;
+    if !(det.is_finite() && h.is_finite() && (a * d).is_finite()) {
+        return None;
+    }
+    let re = |x: f64| Complex64::new(x, 0.0);
+    if h == 0.0 {
+        let r = (-det).abs().sqrt();
+        return Some(if det <= 0.0 {
+            vec![re(r), re(-r)]
+        } else {
+            vec![Complex64::new(0.0, r), Complex64::new(0.0, -r)]
+        });
+    }
+    let q = 1.0 - det / h / h; // (h² − det)/h² without forming h²
+    if q >= 0.0 {
+        let big = h + h.signum() * h.abs() * q.sqrt();
+        let small = if big == 0.0 { 0.0 } else { det / big };
+        Some(vec![re(big), re(small)])
+    } else {
+        let im = h.abs() * (-q).sqrt();
+        Some(vec![Complex64::new(h, im), Complex64::new(h, -im)])
+    }
 }
 
 /// Eigenvalues from the capped real Schur iteration, with one retry after a fixed orthogonal
