@@ -6,22 +6,80 @@ use crate::poly::{fmt_root, fmt_sig};
 /// Roots with multiplicities, one entry per conjugate pair: "-1 (×2), -0.2 ± 1.98997j", or
 /// "none".
 pub fn roots_text(r: &[Root]) -> String {
-    let v: Vec<String> = r
-        .iter()
-        .filter(|r| r.value.im >= 0.0)
-        .map(|r| {
-            let m = if r.multiplicity > 1 {
-                format!(" (×{})", r.multiplicity)
-            } else {
-                String::new()
-            };
-            format!("{}{m}", fmt_root(r.value, 6))
-        })
-        .collect();
-    if v.is_empty() {
-        "none".into()
-    } else {
-        v.join(", ")
+    let upper: Vec<&Root> = r.iter().filter(|r| r.value.im >= 0.0).collect();
+    if upper.is_empty() {
+        return "none".into();
+    }
+    // Six significant digits, more when distinct roots would print alike (the exact path keeps
+    // ±j and ±j(1 + 1e-8) apart: they must not read as "±1j, ±1j").
+    let text = |sig: usize| -> Vec<String> {
+        upper
+            .iter()
+            .map(|r| {
+                let m = if r.multiplicity > 1 {
+                    format!(" (×{})", r.multiplicity)
+                } else {
+                    String::new()
+                };
+                format!("{}{m}", fmt_root(r.value, sig))
+            })
+            .collect()
+    };
+    let distinct = |v: &[String]| {
+        let mut w = v.to_vec();
+        w.sort();
+        w.dedup();
+        w.len() == v.len()
+    };
+    let mut v = text(6);
+    for sig in 7..=17 {
+        if distinct(&v) {
+            break;
+        }
+        v = text(sig);
+    }
+    v.join(", ")
+}
+
+/// A polynomial in s from its coefficients as typed (descending powers), e.g.
+/// `s^4 + 2.00000002 s^2 + 1.00000002`; parenthesised when it has several terms.
+pub fn typed_poly(c: &[crate::lti::plant::Coefficient]) -> String {
+    let n = c.len().saturating_sub(1);
+    let mut out = String::new();
+    let mut terms = 0;
+    for (i, coef) in c.iter().enumerate() {
+        if coef.value == 0.0 {
+            continue;
+        }
+        let k = n - i;
+        let t = coef.text.trim();
+        let (neg, mag) = match t.strip_prefix('-') {
+            Some(m) => (true, m),
+            None => (false, t.strip_prefix('+').unwrap_or(t)),
+        };
+        let power = match k {
+            0 => String::new(),
+            1 => "s".into(),
+            _ => format!("s^{k}"),
+        };
+        let body = match (mag == "1" && k > 0, power.is_empty()) {
+            (true, _) => power,
+            (false, true) => mag.to_string(),
+            (false, false) => format!("{mag} {power}"),
+        };
+        out.push_str(match (terms == 0, neg) {
+            (true, true) => "-",
+            (true, false) => "",
+            (false, true) => " - ",
+            (false, false) => " + ",
+        });
+        out.push_str(&body);
+        terms += 1;
+    }
+    match terms {
+        0 => "0".into(),
+        1 => out,
+        _ => format!("({out})"),
     }
 }
 
@@ -46,7 +104,11 @@ pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> Strin
         return format!("{}\n{} = {f}", plant.name, which.formula());
     }
     match &plant.model {
-        crate::lti::Model::Tf(g) => format!("G(s) = {g}"),
+        crate::lti::Model::Tf(g) => match &plant.typed {
+            // As typed: "2.00000002" must not read as "2".
+            Some((num, den)) => format!("G(s) = {} / {}", typed_poly(num), typed_poly(den)),
+            None => format!("G(s) = {g}"),
+        },
         crate::lti::Model::Ss(ss)
             if f.poles().iter().map(|r| r.multiplicity).sum::<usize>() > MAX_PRINTED_ORDER =>
         {
