@@ -257,3 +257,18 @@ fn badly_scaled_two_by_two_keeps_its_small_eigenvalue() {
         ltikit::nonlinear::LocalStability::AsymptoticallyStable
     );
 }
+
+#[test]
+fn nyquist_with_a_subnormal_pole_is_bounded() {
+    // Found by the long fuzz campaign: a pole at −3.9e-322 made the first axis piece start at
+    // log10(0) = −∞ and ask for usize::MAX samples (2.7 GB in 4 s, then killed). Now the
+    // contour is bounded; this one has no finite point to draw.
+    let g = ltikit::TransferFunction::from_descending(
+        &[-4.396047048225206e-298],
+        &[3.006310, 1.18e-321],
+    )
+    .unwrap();
+    if let Ok(n) = g.nyquist() {
+        assert!(n.points.len() <= 200_000, "{}", n.points.len());
+    }
+}

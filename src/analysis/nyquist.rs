@@ -105,7 +105,12 @@ impl Piece {
 
     fn initial(&self) -> usize {
         match *self {
-            Piece::Axis { a, b } => (((b - a) * 60.0).ceil() as usize).max(8),
+            // 60 per decade; a span that is not finite (a log of 0) gets the minimum, and no
+            // piece starts with more than MAX_POINTS samples.
+            Piece::Axis { a, b } if (b - a).is_finite() => {
+                (((b - a) * 60.0).ceil() as usize).clamp(8, MAX_POINTS)
+            }
+            Piece::Axis { .. } => 8,
             Piece::Arc { m, .. } => 16 * m.max(1),
         }
     }
@@ -306,7 +311,7 @@ impl Geometry {
                 continue;
             }
             pieces.push(Piece::Axis {
-                a: start.log10(),
+                a: start.max(f64::MIN_POSITIVE).log10(),
                 b: (w - self.eps[k]).log10(),
             });
             pieces.push(Piece::Arc {
@@ -317,7 +322,7 @@ impl Geometry {
             start = w + self.eps[k];
         }
         pieces.push(Piece::Axis {
-            a: start.log10(),
+            a: start.max(f64::MIN_POSITIVE).log10(),
             b: (1e3 * self.w_hi).log10(),
         });
         let mut positive = Vec::new();

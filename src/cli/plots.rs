@@ -73,8 +73,11 @@ pub fn bode_figure(
             let mut hi: f64 = 0.0;
             for (_, g) in plants {
                 let w = auto_frequency_grid(g, 100)?;
-                lo = lo.min(w[0]);
-                hi = hi.max(w[w.len() - 1]);
+                let (Some(&first), Some(&last)) = (w.first(), w.last()) else {
+                    anyhow::bail!("no frequency range for this plant: give --wmin and --wmax");
+                };
+                lo = lo.min(first);
+                hi = hi.max(last);
             }
             (lo, hi)
         }
