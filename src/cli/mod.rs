@@ -16,6 +16,7 @@ mod plots;
 mod pullin;
 mod residue;
 mod response;
+mod routh;
 mod simulate;
 mod ss_response;
 mod text;
@@ -64,6 +65,9 @@ enum Command {
     Freq(freq::FreqArgs),
     /// Gain and phase margins (all crossings), bandwidth, resonant peak.
     Margins(margins::MarginsArgs),
+    /// Routh–Hurwitz table of the characteristic polynomial (or of D + K·N with --gain K):
+    /// right-half-plane and imaginary-axis root counts, zero-first-element and zero-row cases.
+    Routh(routh::RouthArgs),
     /// Bode diagram PNG (magnitude and continuous phase, margins marked); several plants with
     /// repeated --num/--den or --plant.
     Bode(plots::BodeArgs),
@@ -137,6 +141,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Response(a) => response::run(&a),
         Command::Freq(a) => freq::run(&a),
         Command::Margins(a) => margins::run(&a),
+        Command::Routh(a) => routh::run(&a),
         Command::Bode(a) => plots::bode(&a),
         Command::Step(a) => plots::step(&a),
         Command::Pzmap(a) => plots::pzmap(&a),

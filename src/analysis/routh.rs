@@ -1,0 +1,185 @@
+//! The Routh–Hurwitz table of a polynomial: the number of roots in the open right half plane
+//! from the sign changes of its first column, with the two special cases.
+//!
+//! - **A zero first element** (the rest of its row not all zero): replaced by a small ε > 0
+//!   (ε = [`ZERO_REL_TOL`] times the largest magnitude in the table so far), and the signs
+//!   are read for ε → 0⁺.
+//! - **A row of zeros**: the polynomial has roots symmetric about the origin, those of the
+//!   *auxiliary polynomial* formed from the row above (powers n − k, n − k − 2, …); the zero row
+//!   is replaced by the coefficients of its derivative. The auxiliary polynomial of degree q
+//!   has r right-half-plane roots (the sign changes from its row on), as many left-half-plane
+//!   ones, and q − 2r on the imaginary axis.
+//!
+//! The table is computed in f64; the verdict is checked in `tests/routh.rs` against the roots.
+
+use serde::Serialize;
+
+use crate::error::{LtiError, Result};
+use crate::numeric::tol::ZERO_REL_TOL;
+use crate::poly::Poly;
+
+/// A special case met while building the table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum RouthEvent {
+    /// The first element of the row of s^power was 0 and was replaced by ε.
+    ZeroFirstElement {
+        /// The power of s labelling the row.
+        power: usize,
+        /// The ε used.
+        epsilon: f64,
+    },
+    /// The row of s^power was all zeros: the auxiliary polynomial (descending coefficients,
+    /// from the row above) divides the polynomial; the row became its derivative.
+    ZeroRow {
+        /// The power of s labelling the zero row.
+        power: usize,
+        /// The auxiliary polynomial, descending powers.
+        auxiliary: Vec<f64>,
+        /// Its roots on the imaginary axis.
+        axis_roots: usize,
+    },
+}
+
+/// The Routh table and what it says.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RouthTable {
+    /// Rows from s^n down to s^0 (padded with zeros to one width).
+    pub rows: Vec<Vec<f64>>,
+    /// The power of s labelling each row.
+    pub powers: Vec<usize>,
+    /// Special cases, in the order met.
+    pub events: Vec<RouthEvent>,
+    /// Roots in the open right half plane (sign changes of the first column).
+    pub rhp: usize,
+    /// Roots on the imaginary axis (from auxiliary polynomials).
+    pub axis: usize,
+    /// Roots in the open left half plane.
+    pub lhp: usize,
+}
+
+/// The Routh–Hurwitz table of `p` (degree ≥ 1).
+///
+/// ```
+/// use ltikit::Poly;
+/// use ltikit::analysis::routh;
+/// // s³ + s² + 2s + 8 = (s + 2)(s² − s + 4): two right-half-plane roots.
+/// let t = routh(&Poly::from_descending(&[1.0, 1.0, 2.0, 8.0]).unwrap()).unwrap();
+/// assert_eq!((t.rhp, t.axis, t.lhp), (2, 0, 1));
+/// ```
+pub fn routh(p: &Poly) -> Result<RouthTable> {
+    let c = p.coeffs();
+    let n = p.degree();
+    if n == 0 || c.iter().all(|x| *x == 0.0) {
+        return Err(LtiError::invalid(
+            "the Routh table needs a polynomial of degree ≥ 1",
+        ));
+    }
+    // Roots at s = 0 (trailing zero coefficients) are on the axis; the table is built for the
+    // rest.
+    let zeros_at_origin = c.iter().rev().take_while(|x| **x == 0.0).count();
+    let c = &c[..c.len() - zeros_at_origin];
+    let m = c.len() - 1;
+    let width = m / 2 + 1;
+    let sign = if c[0] < 0.0 { -1.0 } else { 1.0 };
+    let row_of = |start: usize| -> Vec<f64> {
+        (0..width)
+            .map(|j| c.get(start + 2 * j).map_or(0.0, |x| sign * x))
+            .collect()
+    };
+    let mut rows = vec![row_of(0)];
+    if m >= 1 {
+        rows.push(row_of(1));
+    }
+    let mut events = Vec::new();
+    let mut axis = zeros_at_origin;
+    let mut scale = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    for i in 1..=m {
+        // Make row i usable: a zero row, or a zero first element.
+        let big = rows[i].iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let tol = ZERO_REL_TOL * scale;
+        if big <= tol {
+            let power = m - i;
+            let above = m - i + 1;
+            let aux: Vec<f64> = (0..=above)
+                .map(|k| {
+                    if k % 2 == 0 {
+                        rows[i - 1].get(k / 2).copied().unwrap_or(0.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            rows[i] = (0..width)
+                .map(|j| {
+                    let k = 2 * j;
+                    aux.get(k).map_or(0.0, |a| a * (above - k) as f64)
+                })
+                .collect();
+            events.push(RouthEvent::ZeroRow {
+                power,
+                auxiliary: aux,
+                axis_roots: 0, // filled in below
+            });
+        } else if rows[i][0].abs() <= tol {
+            let epsilon = tol.max(f64::MIN_POSITIVE);
+            rows[i][0] = epsilon;
+            events.push(RouthEvent::ZeroFirstElement {
+                power: m - i,
+                epsilon,
+            });
+        }
+        scale = scale.max(rows[i].iter().fold(0.0f64, |a, x| a.max(x.abs())));
+        if i == m {
+            break;
+        }
+        let (r0, r1) = (&rows[i - 1], &rows[i]);
+        let next: Vec<f64> = (0..width)
+            .map(|j| {
+                let a = r0.get(j + 1).copied().unwrap_or(0.0);
+                let b = r1.get(j + 1).copied().unwrap_or(0.0);
+                (r1[0] * a - r0[0] * b) / r1[0]
+            })
+            .collect();
+        if next.iter().any(|x| !x.is_finite()) {
+            return Err(LtiError::invalid(
+                "the Routh table overflows for these coefficients",
+            ));
+        }
+        rows.push(next);
+    }
+    let first: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    let changes = |from: usize| {
+        first[from..]
+            .windows(2)
+            .filter(|w| (w[0] < 0.0) != (w[1] < 0.0))
+            .count()
+    };
+    let rhp = changes(0);
+    // Each auxiliary polynomial of degree q: r RHP roots (sign changes from its row on), r LHP
+    // and q − 2r on the axis.
+    for e in &mut events {
+        if let RouthEvent::ZeroRow {
+            power,
+            auxiliary,
+            axis_roots,
+            ..
+        } = e
+        {
+            let q = auxiliary.len() - 1;
+            let row = m - (*power + 1);
+            let r = changes(row);
+            *axis_roots = q.saturating_sub(2 * r);
+            axis += *axis_roots;
+        }
+    }
+    let powers = (0..rows.len()).map(|i| m - i).collect();
+    Ok(RouthTable {
+        rows,
+        powers,
+        events,
+        rhp,
+        axis,
+        lhp: n.saturating_sub(rhp + axis),
+    })
+}

@@ -1,0 +1,108 @@
+//! `ltikit routh`: the Routh–Hurwitz table of the characteristic polynomial, or of the
+//! closed loop D + K·N with a gain K in unity negative feedback.
+
+use anyhow::{Result, bail};
+use clap::Args;
+use serde::Serialize;
+
+use super::PlantArgs;
+use super::output::{print, print_json};
+use crate::analysis::{RouthEvent, RouthTable, routh};
+use crate::lti::Model;
+use crate::poly::{Poly, fmt_sig, format_poly};
+
+#[derive(Args, Debug)]
+pub struct RouthArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    /// A gain K in unity negative feedback: the table of the closed loop's D + K·N.
+    #[arg(long, value_name = "K", allow_hyphen_values = true)]
+    pub gain: Option<f64>,
+    /// Print one JSON document: {"polynomial", "rows", "powers", "events", "rhp", "axis", "lhp"}.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize)]
+struct Doc<'a> {
+    polynomial: &'a [f64],
+    #[serde(flatten)]
+    table: &'a RouthTable,
+}
+
+pub fn run(a: &RouthArgs) -> Result<()> {
+    let plant = a.plant.single()?;
+    if plant.selection.is_some() {
+        bail!("routh takes the plant itself: give the loop gain with --gain K (no --controller)");
+    }
+    let Model::Tf(g) = &plant.model else {
+        bail!(
+            "routh needs a transfer function (its characteristic polynomial); this plant is a state-space model"
+        );
+    };
+    let p = match a.gain {
+        None => g.den().clone(),
+        Some(k) if k.is_finite() => &g.den().clone() + &g.num().scale(k),
+        Some(k) => bail!("--gain must be finite, got {k}"),
+    };
+    let t = routh(&p)?;
+    if a.json {
+        return print_json(&Doc {
+            polynomial: p.coeffs(),
+            table: &t,
+        });
+    }
+    let mut s = format!("Characteristic polynomial: {}\n\n", format_poly(&p, "s"));
+    let cells: Vec<Vec<String>> = t
+        .rows
+        .iter()
+        .map(|r| r.iter().map(|x| fmt_sig(*x, 6)).collect())
+        .collect();
+    let w = cells
+        .iter()
+        .flatten()
+        .map(|c| c.chars().count())
+        .max()
+        .unwrap_or(1);
+    for (pw, row) in t.powers.iter().zip(&cells) {
+        let row: Vec<String> = row.iter().map(|c| format!("{c:>w$}")).collect();
+        s.push_str(&format!("  s^{pw:<4} {}\n", row.join("  ")));
+    }
+    for e in &t.events {
+        match e {
+            RouthEvent::ZeroFirstElement { power, epsilon } => s.push_str(&format!(
+                "\nRow s^{power}: first element 0, replaced by ε = {} (signs read for ε → 0+)",
+                fmt_sig(*epsilon, 3)
+            )),
+            RouthEvent::ZeroRow {
+                power,
+                auxiliary,
+                axis_roots,
+            } => {
+                let aux = Poly::from_descending(auxiliary)
+                    .map(|q| format_poly(&q, "s"))
+                    .unwrap_or_default();
+                s.push_str(&format!(
+                    "\nRow s^{power}: all zeros — auxiliary polynomial {aux} (roots symmetric about the origin, {axis_roots} on the imaginary axis); the row is its derivative"
+                ));
+            }
+        }
+    }
+    if !t.events.is_empty() {
+        s.push('\n');
+    }
+    s.push_str(&format!(
+        "\nRoots: {} in the open right half plane, {} on the imaginary axis, {} in the open left half plane — {}",
+        t.rhp,
+        t.axis,
+        t.lhp,
+        if t.rhp > 0 {
+            "unstable"
+        } else if t.axis > 0 {
+            "not asymptotically stable"
+        } else {
+            "asymptotically stable"
+        }
+    ));
+    print(&s)
+}

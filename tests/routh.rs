@@ -1,0 +1,107 @@
+//! Routh–Hurwitz tables against textbook cases (root counts by numpy.roots, quoted) and
+//! against the root finder on random polynomials.
+
+use ltikit::Poly;
+use ltikit::analysis::{RouthEvent, routh};
+
+fn counts(c: &[f64]) -> (usize, usize, usize) {
+    let t = routh(&Poly::from_descending(c).unwrap()).unwrap();
+    (t.rhp, t.axis, t.lhp)
+}
+
+#[test]
+fn textbook_tables() {
+    // (rhp, axis, lhp) from numpy.roots.
+    assert_eq!(counts(&[1.0, 1.0, 2.0, 8.0]), (2, 0, 1));
+    assert_eq!(counts(&[1.0, 3.0, 3.0, 1.0]), (0, 0, 3));
+    assert_eq!(counts(&[2.0, -1.0, 0.0, 3.0]), (2, 0, 1));
+    // Zero first element (the s³ row of s⁵ + 2s⁴ + 2s³ + 4s² + 11s + 10).
+    let t = routh(&Poly::from_descending(&[1.0, 2.0, 2.0, 4.0, 11.0, 10.0]).unwrap()).unwrap();
+    assert_eq!((t.rhp, t.axis, t.lhp), (2, 0, 3));
+    assert!(matches!(
+        t.events[0],
+        RouthEvent::ZeroFirstElement { power: 3, .. }
+    ));
+    // Rows of zeros: s⁵ + 2s⁴ + 24s³ + 48s² − 25s − 50 (auxiliary 2s⁴ + 48s² − 50: ±1, ±5j),
+    // s⁴ + s³ + 3s² + 2s + 2 (auxiliary s² + 2: ±j√2), (s² + 1)(s² + 4).
+    let t = routh(&Poly::from_descending(&[1.0, 2.0, 24.0, 48.0, -25.0, -50.0]).unwrap()).unwrap();
+    assert_eq!((t.rhp, t.axis, t.lhp), (1, 2, 2));
+    match &t.events[0] {
+        RouthEvent::ZeroRow {
+            power,
+            auxiliary,
+            axis_roots,
+        } => {
+            assert_eq!(*power, 3);
+            assert_eq!(auxiliary, &vec![2.0, 0.0, 48.0, 0.0, -50.0]);
+            assert_eq!(*axis_roots, 2);
+        }
+        e => panic!("{e:?}"),
+    }
+    assert_eq!(counts(&[1.0, 1.0, 3.0, 2.0, 2.0]), (0, 2, 2));
+    assert_eq!(counts(&[1.0, 0.0, 5.0, 0.0, 4.0]), (0, 4, 0));
+    // Roots at the origin, and a negative leading coefficient.
+    assert_eq!(counts(&[1.0, 3.0, 2.0, 0.0]), (0, 1, 2));
+    assert_eq!(counts(&[-1.0, -1.0, -2.0, -8.0]), (2, 0, 1));
+    assert!(routh(&Poly::from_descending(&[3.0]).unwrap()).is_err());
+}
+
+#[test]
+fn random_polynomials_agree_with_the_roots() {
+    // Products of random real and complex-pair factors with real parts at least 0.1 from the
+    // axis: the count of right-half-plane factors is known by construction.
+    let mut state: u64 = 0x2545_F491_4F6C_DD1D;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..300 {
+        let mut p = Poly::from_descending(&[1.0]).unwrap();
+        let mut rhp = 0;
+        let mut n = 0;
+        for _ in 0..(1 + (next() * 4.0) as usize) {
+            let re = (0.1 + 2.0 * next()) * if next() < 0.4 { 1.0 } else { -1.0 };
+            if re > 0.0 {
+                rhp += 1;
+            }
+            let f = if next() < 0.5 {
+                n += 1;
+                Poly::from_descending(&[1.0, -re]).unwrap()
+            } else {
+                let im = 0.1 + 3.0 * next();
+                if re > 0.0 {
+                    rhp += 1;
+                }
+                n += 2;
+                Poly::from_descending(&[1.0, -2.0 * re, re * re + im * im]).unwrap()
+            };
+            p = &p * &f;
+        }
+        let t = routh(&p).unwrap();
+        assert_eq!(
+            (t.rhp, t.axis, t.lhp),
+            (rhp, 0, n - rhp),
+            "{:?}",
+            p.coeffs()
+        );
+    }
+}
+
+#[test]
+fn the_command_line() {
+    let run = |args: &[&str]| {
+        let mut v = vec!["ltikit", "routh"];
+        v.extend_from_slice(args);
+        ltikit::cli::run_from(v)
+    };
+    assert!(run(&["--den", "1 2 24 48 -25 -50", "--json"]).is_ok());
+    // 1/(s(s + 1)(s + 2)) with K = 6: the closed loop s³ + 3s² + 2s + 6 has ±j√2 (the root
+    // locus crosses the axis at K = 6).
+    assert!(run(&["--num", "1", "--den", "1 3 2 0", "--gain", "6"]).is_ok());
+    let t = routh(&Poly::from_descending(&[1.0, 3.0, 2.0, 6.0]).unwrap()).unwrap();
+    assert_eq!((t.rhp, t.axis, t.lhp), (0, 2, 1));
+    assert!(run(&["--num", "1", "--den", "1 3 2 0", "--gain", "nan"]).is_err());
+    assert!(run(&["--a", "0 1; -4 -0.8", "--b", "0; 1", "--c", "1 0"]).is_err());
+}
