@@ -103,5 +103,45 @@ fn the_command_line() {
     let t = routh(&Poly::from_descending(&[1.0, 3.0, 2.0, 6.0]).unwrap()).unwrap();
     assert_eq!((t.rhp, t.axis, t.lhp), (0, 2, 1));
     assert!(run(&["--num", "1", "--den", "1 3 2 0", "--gain", "nan"]).is_err());
+    assert!(run(&["--num", "1", "--den", "1 4 1 -6", "--gain-range", "--json"]).is_ok());
+    assert!(run(&["--num", "1 0 0 0 0", "--den", "1 3 2 0", "--gain-range"]).is_err());
     assert!(run(&["--a", "0 1; -4 -0.8", "--b", "0; 1", "--c", "1 0"]).is_err());
+}
+
+#[test]
+fn stable_gain_sets_against_a_dense_scan() {
+    use ltikit::analysis::stable_gains;
+    // 1/(s(s+1)(s+2)): (0, 6); (s + 3)/(s(s − 1)): the closed loop s² + (K − 1)s + 3K is
+    // stable for K > 1; 1/((s − 1)(s + 2)(s + 3)): s³ + 4s² + s − 6 + K, Hurwitz for
+    // 6 < K < 10 (K − 6 > 0 and 4·1 > K − 6).
+    let p = |c: &[f64]| Poly::from_descending(c).unwrap();
+    let k = stable_gains(&p(&[1.0]), &p(&[1.0, 3.0, 2.0, 0.0])).unwrap();
+    assert!(
+        k.len() == 1 && k[0].0.abs() < 1e-12 && (k[0].1 - 6.0).abs() < 1e-12,
+        "{k:?}"
+    );
+    let k = stable_gains(&p(&[1.0, 3.0]), &p(&[1.0, -1.0, 0.0])).unwrap();
+    assert!(
+        k.len() == 1 && (k[0].0 - 1.0).abs() < 1e-12 && k[0].1 == f64::INFINITY,
+        "{k:?}"
+    );
+    let d = p(&[1.0, 4.0, 1.0, -6.0]);
+    let k = stable_gains(&p(&[1.0]), &d).unwrap();
+    assert!(
+        k.len() == 1 && (k[0].0 - 6.0).abs() < 1e-12 && (k[0].1 - 10.0).abs() < 1e-12,
+        "{k:?}"
+    );
+    // Dense scan: the closed-loop roots (by the root finder) agree with the set.
+    for i in 0..400 {
+        let g = -5.0 + 0.05 * i as f64;
+        if k.iter()
+            .any(|(lo, hi)| (g - lo).abs() < 1e-6 || (g - hi).abs() < 1e-6)
+        {
+            continue;
+        }
+        let q = &d + &p(&[1.0]).scale(g);
+        let stable = q.roots().unwrap().iter().all(|r| r.value.re < 0.0);
+        let inside = k.iter().any(|(lo, hi)| *lo < g && g < *hi);
+        assert_eq!(stable, inside, "K = {g}");
+    }
 }

@@ -40,7 +40,7 @@ pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use nyquist::{ContourPart, NyquistContour, NyquistPoint, nyquist_contour};
 pub use pfe::{PartialFractions, PfTerm, partial_fractions};
 pub use response::{Response, ResponseSamples};
-pub use routh::{RouthEvent, RouthTable, routh};
+pub use routh::{RouthEvent, RouthTable, routh, stable_gains};
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
 pub use step_info::{StepInfo, StepInfoOptions};
 pub use summary::Analysis;

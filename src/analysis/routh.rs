@@ -183,3 +183,107 @@ pub fn routh(p: &Poly) -> Result<RouthTable> {
         lhp: n.saturating_sub(rhp + axis),
     })
 }
+
+/// The gains K for which D + K·N (unity negative feedback around K·N/D) has every root in the
+/// open left half plane, as open intervals (lo, hi) (±∞ allowed), increasing.
+///
+/// The ends are the gains at which a closed-loop root crosses the imaginary axis — K =
+/// −D(jω)/N(jω) at the real ω ≥ 0 where Im(D(jω)·conj N(jω)) = 0, a polynomial in ω — and the
+/// gain at which the degree drops; each interval between consecutive ends is decided by the
+/// Routh table at an interior gain.
+///
+/// ```
+/// use ltikit::Poly;
+/// use ltikit::analysis::routh::stable_gains;
+/// // 1/(s(s + 1)(s + 2)): stable for 0 < K < 6 (the locus crosses the axis at ±j√2, K = 6).
+/// let n = Poly::from_descending(&[1.0]).unwrap();
+/// let d = Poly::from_descending(&[1.0, 3.0, 2.0, 0.0]).unwrap();
+/// let k = stable_gains(&n, &d).unwrap();
+/// assert_eq!(k.len(), 1);
+/// assert!(k[0].0.abs() < 1e-12 && (k[0].1 - 6.0).abs() < 1e-12);
+/// ```
+pub fn stable_gains(num: &Poly, den: &Poly) -> Result<Vec<(f64, f64)>> {
+    if num.coeffs().iter().all(|x| *x == 0.0) {
+        return Err(LtiError::invalid(
+            "the loop has a zero numerator: no gain acts",
+        ));
+    }
+    if num.degree() > den.degree() {
+        return Err(LtiError::invalid(
+            "the loop is improper (numerator degree above the denominator's)",
+        ));
+    }
+    // D(jω) = Dr(ω) + j·Di(ω) and likewise N; P(ω) = Di·Nr − Dr·Ni.
+    let parts = |p: &Poly| -> Result<(Poly, Poly)> {
+        let c = p.coeffs();
+        let n = c.len() - 1;
+        let mut re = vec![0.0; n + 1];
+        let mut im = vec![0.0; n + 1];
+        for (i, &a) in c.iter().enumerate() {
+            let k = n - i;
+            match k % 4 {
+                0 => re[i] = a,
+                1 => im[i] = a,
+                2 => re[i] = -a,
+                _ => im[i] = -a,
+            }
+        }
+        Ok((Poly::from_descending(&re)?, Poly::from_descending(&im)?))
+    };
+    let (dr, di) = parts(den)?;
+    let (nr, ni) = parts(num)?;
+    let dn = &di * &nr;
+    let nd = (&dr * &ni).scale(-1.0);
+    let p = &dn + &nd;
+    let mut ends: Vec<f64> = Vec::new();
+    if p.coeffs().iter().any(|x| *x != 0.0) && p.degree() > 0 {
+        for r in p.roots()? {
+            let w = r.value;
+            if w.re >= 0.0 && w.im.abs() <= ZERO_REL_TOL.sqrt() * w.norm().max(1.0) {
+                let s = num_complex::Complex64::new(0.0, w.re);
+                let nv = num.eval_complex(s);
+                if nv.norm() > 0.0 {
+                    let k = -(den.eval_complex(s) / nv).re;
+                    if k.is_finite() {
+                        ends.push(k);
+                    }
+                }
+            }
+        }
+    }
+    if num.degree() == den.degree() {
+        ends.push(-den.coeffs()[0] / num.coeffs()[0]);
+    }
+    ends.retain(|k| k.is_finite());
+    ends.sort_by(f64::total_cmp);
+    ends.dedup_by(|a, b| (*a - *b).abs() <= ZERO_REL_TOL * a.abs().max(b.abs()).max(1.0));
+    let mut bounds = vec![f64::NEG_INFINITY];
+    bounds.extend(&ends);
+    bounds.push(f64::INFINITY);
+    let stable_at = |k: f64| -> Result<bool> {
+        let q = &den.clone() + &num.scale(k);
+        if q.degree() < den.degree() {
+            return Ok(false);
+        }
+        let t = routh(&q)?;
+        Ok(t.rhp == 0 && t.axis == 0)
+    };
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for w in bounds.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        let mid = match (lo.is_finite(), hi.is_finite()) {
+            (true, true) => 0.5 * (lo + hi),
+            (false, true) => hi - hi.abs().max(1.0),
+            (true, false) => lo + lo.abs().max(1.0),
+            (false, false) => 0.0,
+        };
+        if stable_at(mid)? {
+            match out.last_mut() {
+                // the same bound, copied: adjacent stable intervals merge
+                Some(last) if last.1.to_bits() == lo.to_bits() => last.1 = hi,
+                _ => out.push((lo, hi)),
+            }
+        }
+    }
+    Ok(out)
+}

@@ -18,7 +18,11 @@ pub struct RouthArgs {
     /// A gain K in unity negative feedback: the table of the closed loop's D + K·N.
     #[arg(long, value_name = "K", allow_hyphen_values = true)]
     pub gain: Option<f64>,
-    /// Print one JSON document: {"polynomial", "rows", "powers", "events", "rhp", "axis", "lhp"}.
+    /// Also the gains K for which the unity-feedback loop D + K·N is stable (open intervals).
+    #[arg(long)]
+    pub gain_range: bool,
+    /// Print one JSON document: {"polynomial", "rows", "powers", "events", "rhp", "axis", "lhp"}
+    /// (and "stable_gains": [[lo, hi], …] with --gain-range; null for an infinite end).
     #[arg(long)]
     pub json: bool,
 }
@@ -28,6 +32,8 @@ struct Doc<'a> {
     polynomial: &'a [f64],
     #[serde(flatten)]
     table: &'a RouthTable,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stable_gains: Option<Vec<[Option<f64>; 2]>>,
 }
 
 pub fn run(a: &RouthArgs) -> Result<()> {
@@ -46,10 +52,21 @@ pub fn run(a: &RouthArgs) -> Result<()> {
         Some(k) => bail!("--gain must be finite, got {k}"),
     };
     let t = routh(&p)?;
+    let gains = if a.gain_range {
+        Some(crate::analysis::stable_gains(g.num(), g.den())?)
+    } else {
+        None
+    };
     if a.json {
+        let finite = |x: f64| x.is_finite().then_some(x);
         return print_json(&Doc {
             polynomial: p.coeffs(),
             table: &t,
+            stable_gains: gains.as_ref().map(|v| {
+                v.iter()
+                    .map(|(lo, hi)| [finite(*lo), finite(*hi)])
+                    .collect()
+            }),
         });
     }
     let mut s = format!("Characteristic polynomial: {}\n\n", format_poly(&p, "s"));
@@ -104,5 +121,30 @@ pub fn run(a: &RouthArgs) -> Result<()> {
             "asymptotically stable"
         }
     ));
+    if let Some(v) = &gains {
+        let text: Vec<String> = v
+            .iter()
+            .map(|(lo, hi)| {
+                let f = |x: f64| {
+                    if x.is_finite() {
+                        fmt_sig(x, 10)
+                    } else if x > 0.0 {
+                        "∞".into()
+                    } else {
+                        "-∞".into()
+                    }
+                };
+                format!("{} < K < {}", f(*lo), f(*hi))
+            })
+            .collect();
+        s.push_str(&format!(
+            "\nStable for (unity negative feedback, D + K·N): {}",
+            if text.is_empty() {
+                "no gain".to_string()
+            } else {
+                text.join(", ")
+            }
+        ));
+    }
     print(&s)
 }
