@@ -213,44 +213,7 @@ pub fn stable_gains(num: &Poly, den: &Poly) -> Result<Vec<(f64, f64)>> {
             "the loop is improper (numerator degree above the denominator's)",
         ));
     }
-    // D(jω) = Dr(ω) + j·Di(ω) and likewise N; P(ω) = Di·Nr − Dr·Ni.
-    let parts = |p: &Poly| -> Result<(Poly, Poly)> {
-        let c = p.coeffs();
-        let n = c.len() - 1;
-        let mut re = vec![0.0; n + 1];
-        let mut im = vec![0.0; n + 1];
-        for (i, &a) in c.iter().enumerate() {
-            let k = n - i;
-            match k % 4 {
-                0 => re[i] = a,
-                1 => im[i] = a,
-                2 => re[i] = -a,
-                _ => im[i] = -a,
-            }
-        }
-        Ok((Poly::from_descending(&re)?, Poly::from_descending(&im)?))
-    };
-    let (dr, di) = parts(den)?;
-    let (nr, ni) = parts(num)?;
-    let dn = &di * &nr;
-    let nd = (&dr * &ni).scale(-1.0);
-    let p = &dn + &nd;
-    let mut ends: Vec<f64> = Vec::new();
-    if p.coeffs().iter().any(|x| *x != 0.0) && p.degree() > 0 {
-        for r in p.roots()? {
-            let w = r.value;
-            if w.re >= 0.0 && w.im.abs() <= ZERO_REL_TOL.sqrt() * w.norm().max(1.0) {
-                let s = num_complex::Complex64::new(0.0, w.re);
-                let nv = num.eval_complex(s);
-                if nv.norm() > 0.0 {
-                    let k = -(den.eval_complex(s) / nv).re;
-                    if k.is_finite() {
-                        ends.push(k);
-                    }
-                }
-            }
-        }
-    }
+    let mut ends: Vec<f64> = axis_crossings(num, den)?.into_iter().map(|c| c.1).collect();
     if num.degree() == den.degree() {
         ends.push(-den.coeffs()[0] / num.coeffs()[0]);
     }
@@ -282,6 +245,76 @@ pub fn stable_gains(num: &Poly, den: &Poly) -> Result<Vec<(f64, f64)>> {
                 // the same bound, copied: adjacent stable intervals merge
                 Some(last) if last.1.to_bits() == lo.to_bits() => last.1 = hi,
                 _ => out.push((lo, hi)),
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Where D + K·N has a root on the imaginary axis: the pairs (ω, K) with ω ≥ 0 real and K
+/// real (of either sign) such that D(jω) + K·N(jω) = 0, increasing in ω. Found as the real
+/// roots of Im(D(jω)·conj N(jω)) — a polynomial in ω — with K = −D(jω)/N(jω) there (ω = 0
+/// included, when N(0) ≠ 0).
+///
+/// ```
+/// use ltikit::Poly;
+/// use ltikit::analysis::routh::axis_crossings;
+/// // 1/(s(s + 1)(s + 2)): s = ±j√2 at K = 6, and s = 0 at K = 0.
+/// let n = Poly::from_descending(&[1.0]).unwrap();
+/// let d = Poly::from_descending(&[1.0, 3.0, 2.0, 0.0]).unwrap();
+/// let c = axis_crossings(&n, &d).unwrap();
+/// assert_eq!(c.len(), 2);
+/// assert!(c[0].0 == 0.0 && c[0].1.abs() < 1e-15);
+/// assert!((c[1].0 - 2f64.sqrt()).abs() < 1e-14 && (c[1].1 - 6.0).abs() < 1e-13);
+/// ```
+pub fn axis_crossings(num: &Poly, den: &Poly) -> Result<Vec<(f64, f64)>> {
+    if num.is_zero() {
+        return Ok(Vec::new());
+    }
+    // D(jω) = Dr(ω) + j·Di(ω) and likewise N; P(ω) = Di·Nr − Dr·Ni.
+    let parts = |p: &Poly| -> Result<(Poly, Poly)> {
+        let c = p.coeffs();
+        let n = c.len() - 1;
+        let mut re = vec![0.0; n + 1];
+        let mut im = vec![0.0; n + 1];
+        for (i, &a) in c.iter().enumerate() {
+            let k = n - i;
+            match k % 4 {
+                0 => re[i] = a,
+                1 => im[i] = a,
+                2 => re[i] = -a,
+                _ => im[i] = -a,
+            }
+        }
+        Ok((Poly::from_descending(&re)?, Poly::from_descending(&im)?))
+    };
+    let (dr, di) = parts(den)?;
+    let (nr, ni) = parts(num)?;
+    let p = &(&di * &nr) + &(&dr * &ni).scale(-1.0);
+    if p.is_zero() || p.degree() == 0 {
+        // N and D in phase at every ω (e.g. N = 1, D = s² + 1: roots on the axis for a whole
+        // range of K): no isolated crossing. (P is odd in ω, so a nonzero constant P cannot
+        // occur.)
+        return Ok(Vec::new());
+    }
+    // P is odd: ω = 0 is always among its roots.
+    let mut omegas: Vec<f64> = Vec::new();
+    for r in p.roots()? {
+        let w = r.value;
+        if w.re >= 0.0 && w.im.abs() <= ZERO_REL_TOL.sqrt() * w.norm().max(1.0) {
+            omegas.push(w.re);
+        }
+    }
+    omegas.sort_by(f64::total_cmp);
+    omegas.dedup();
+    let mut out = Vec::new();
+    for w in omegas {
+        let s = num_complex::Complex64::new(0.0, w);
+        let nv = num.eval_complex(s);
+        if nv.norm() > 0.0 {
+            let k = -(den.eval_complex(s) / nv).re;
+            if k.is_finite() {
+                out.push((w, k));
             }
         }
     }

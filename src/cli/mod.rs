@@ -16,6 +16,7 @@ mod plots;
 mod pullin;
 mod residue;
 mod response;
+mod rlocus;
 mod routh;
 mod simulate;
 mod ss_response;
@@ -68,6 +69,9 @@ enum Command {
     /// Routh–Hurwitz table of the characteristic polynomial (or of D + K·N with --gain K):
     /// right-half-plane and imaginary-axis root counts, zero-first-element and zero-row cases.
     Routh(routh::RouthArgs),
+    /// Root locus of 1 + K·L (L = G, or C·G with --controller): asymptotes, break points,
+    /// imaginary-axis crossings, departure/arrival angles, stable gains; PNG with -o.
+    Rlocus(rlocus::RlocusArgs),
     /// Bode diagram PNG (magnitude and continuous phase, margins marked); several plants with
     /// repeated --num/--den or --plant.
     Bode(plots::BodeArgs),
@@ -142,6 +146,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Freq(a) => freq::run(&a),
         Command::Margins(a) => margins::run(&a),
         Command::Routh(a) => routh::run(&a),
+        Command::Rlocus(a) => rlocus::run(&a),
         Command::Bode(a) => plots::bode(&a),
         Command::Step(a) => plots::step(&a),
         Command::Pzmap(a) => plots::pzmap(&a),

@@ -42,6 +42,7 @@ mod output;
 mod projection;
 mod pzmap;
 mod raster;
+mod rlocus;
 mod step;
 mod style;
 mod text;
@@ -55,6 +56,7 @@ pub use heatmap::{ColorMap, HeatMap, MAX_HEATMAP_CELLS, heatmap_png};
 pub use nyquist::{NyquistSeries, nyquist_png};
 pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};
 pub use pzmap::{PzMap, pzmap_png};
+pub use rlocus::{RootLocusPlot, rlocus_png};
 pub use step::{StepSeries, step_png};
 pub use style::{Color, LineStyle, MarkerShape, PALETTE, series_color};
 pub use xy::{

@@ -217,7 +217,7 @@ pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Resu
 }
 
 /// [`xy_png`] with extra legend rows (marker swatches) after the curves.
-fn xy_png_with(
+pub(super) fn xy_png_with(
     path: &Path,
     plot: &XyPlot,
     extra: &[LegendEntry],
