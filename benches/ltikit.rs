@@ -107,6 +107,40 @@ fn bode_png(bencher: Bencher) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Root locus of an order-10 plant (the fixed degree-10 polynomial over the degree-4 one):
+/// roots of D + K·N at 1000 fixed gains, matched into branches (issue 13's target: < 20 ms),
+/// and the whole `root_locus` (features + adaptive trace).
+mod rlocus {
+    use crate::common;
+    use divan::{Bencher, black_box};
+    use ltikit::Poly;
+    use ltikit::analysis::rlocus::{RootLocusOptions, root_locus, trace_at_gains};
+
+    fn plant() -> (Poly, Poly) {
+        (
+            Poly::from_descending(&common::root_poly(4)).unwrap(),
+            Poly::from_descending(&common::root_poly(10)).unwrap(),
+        )
+    }
+
+    #[divan::bench(sample_count = 20)]
+    fn order10_1000_gains(bencher: Bencher) {
+        let (n, d) = plant();
+        let gains: Vec<f64> = (0..1000)
+            .map(|i| 10f64.powf(-3.0 + 6.0 * i as f64 / 999.0))
+            .collect();
+        bencher.bench(|| trace_at_gains(black_box(&n), black_box(&d), &gains).unwrap());
+    }
+
+    #[divan::bench(sample_count = 20)]
+    fn order10_full(bencher: Bencher) {
+        let (n, d) = plant();
+        bencher.bench(|| {
+            root_locus(black_box(&n), black_box(&d), &RootLocusOptions::default()).unwrap()
+        });
+    }
+}
+
 /// State space at scale: the seed's periodic lattice, N = 128 (256 states), one channel.
 mod ss {
     use crate::common::ss as lattice;

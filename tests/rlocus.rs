@@ -254,3 +254,110 @@ fn bad_loops_are_refused() {
     assert!(root_locus(&poly(&[1.0, 0.0, 0.0]), &poly(&[1.0, 1.0]), &opts).is_err());
     assert!(root_locus(&poly(&[2.0]), &poly(&[3.0]), &opts).is_err());
 }
+
+fn ltikit(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(args)
+        .output()
+        .expect("the ltikit binary runs")
+}
+
+#[test]
+fn cli_text_json_and_png() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("rlocus_cli");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("l.png");
+    let out = ltikit(&[
+        "rlocus",
+        "--den",
+        "1 3 2 0",
+        "--gain",
+        "6",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for needle in [
+        "Asymptotes: 3 from σ = -1 at -60°, 60°, 180°",
+        "σ = -0.4226497308 (break-away, 2 branches) at K = 0.3849001795",
+        "s = ±1.414213562j at K = 6",
+        "Closed loop stable for: 0 < K < 6",
+        // at K = 6: s³ + 3s² + 2s + 6 = (s + 3)(s² + 2)
+        "Closed-loop poles at K = 6: ±1.41421j, -3",
+    ] {
+        assert!(text.contains(needle), "{needle}\n{text}");
+    }
+    let b = std::fs::read(&png).unwrap();
+    assert!(b.len() > 1000 && b.starts_with(b"\x89PNG\r\n\x1a\n"));
+    // JSON: the features, the stable gains, the branches as [re, im] per gain
+    let out = ltikit(&["rlocus", "--den", "1 3 2 0", "--json", "--gain", "1"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let gains = v["gains"].as_array().unwrap();
+    let branches = v["branches"].as_array().unwrap();
+    assert_eq!(branches.len(), 3);
+    assert!(
+        branches
+            .iter()
+            .all(|b| b.as_array().unwrap().len() == gains.len())
+    );
+    assert_eq!(v["stable_gains"][0][0].as_f64(), Some(0.0));
+    assert!(rel(v["stable_gains"][0][1].as_f64().unwrap(), 6.0) < 1e-10);
+    assert_eq!(v["at_gain"]["poles"].as_array().unwrap().len(), 3);
+    assert_eq!(v["break_points"][0]["kind"], "break_away");
+    // a controller: the locus of 1 + K·C·G
+    let out = ltikit(&[
+        "rlocus",
+        "--den",
+        "1 1 0",
+        "--controller",
+        "pd:kp=1,kd=0.5,tf=0",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // L = (0.5 s + 1)/(s² + s): one zero at −2
+    assert!(rel(v["zeros"][0]["value"][0].as_f64().unwrap(), -2.0) < 1e-12);
+}
+
+#[test]
+fn cli_errors_are_one_line_and_leave_no_file() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("rlocus_bad");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("bad.png");
+    let cases: &[(&[&str], &str)] = &[
+        (&["--num", "0", "--den", "1 2"], "nonzero numerator"),
+        (&["--num", "1 0 0", "--den", "1 2"], "proper"),
+        (&["--num", "2", "--den", "3"], "degree ≥ 1"),
+        (&["--den", "1 3 2 0", "--gain", "nan"], "finite"),
+        (&["--den", "1 3 2 0", "--max-gains", "3"], "--max-gains"),
+        (&["--den", "1 3 2 0", "--closed-loop"], "do not apply"),
+        // deg N = deg D: at K = 2 the leading term of (s + 1) + K·(−0.5 s + 1) vanishes
+        (
+            &["--num", "-0.5 1", "--den", "1 1", "--gain", "2"],
+            "infinity",
+        ),
+    ];
+    for (args, needle) in cases {
+        let mut all = vec!["rlocus"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", png.to_str().unwrap()]);
+        let out = ltikit(&all);
+        assert_eq!(out.status.code(), Some(1), "{all:?}");
+        assert!(out.stdout.is_empty());
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            err.starts_with("error:") && err.contains(needle),
+            "{all:?}: {err}"
+        );
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(!png.exists(), "{all:?} left a file");
+    }
+}

@@ -15,7 +15,7 @@ use crate::analysis::rlocus::{BreakKind, RootLocus, RootLocusOptions};
 use crate::analysis::stable_gains;
 use crate::lti::controller::LoopSystem;
 use crate::plot::{PlotOptions, RootLocusPlot, parse_size, rlocus_png};
-use crate::poly::{Poly, Root, fmt_root, fmt_sig};
+use crate::poly::{HalfPlane, Poly, Root, fmt_root, fmt_sig};
 
 #[derive(Args, Debug)]
 pub struct RlocusArgs {
@@ -61,7 +61,8 @@ struct AtGain<'a> {
 struct Doc<'a> {
     #[serde(flatten)]
     locus: &'a RootLocus,
-    stable_gains: Vec<[Option<f64>; 2]>,
+    /// `null` when not computed (a loop of order above the limit).
+    stable_gains: Option<Vec<[Option<f64>; 2]>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     at_gain: Option<AtGain<'a>>,
 }
@@ -110,7 +111,10 @@ pub fn run(a: &RlocusArgs) -> Result<()> {
         }
         Some(k) => bail!("--gain must be finite, got {k}"),
     };
-    let gains = on_locus(stable_gains(&num, &den)?, a.negative);
+    // the stable-gain set needs the crossing polynomial (degree ≤ deg N + deg D)
+    let gains = (num.degree() + den.degree() <= crate::poly::MAX_ORDER)
+        .then(|| stable_gains(&num, &den).map(|g| on_locus(g, a.negative)))
+        .transpose()?;
     if let (Some(path), Some(o)) = (&a.output, &opts) {
         let label = plant.name.clone();
         rlocus_png(
@@ -129,20 +133,31 @@ pub fn run(a: &RlocusArgs) -> Result<()> {
         let doc = Doc {
             locus: &locus,
             stable_gains: gains
-                .iter()
-                .map(|(l, h)| [finite(*l), finite(*h)])
-                .collect(),
+                .as_ref()
+                .map(|g| g.iter().map(|(l, h)| [finite(*l), finite(*h)]).collect()),
             at_gain: at.as_ref().map(|(k, r)| AtGain { gain: *k, poles: r }),
         };
         return print_json(&json_value(&doc)?);
     }
     let mut s = format!("{}\n\n", g_text(&plant, &f));
-    s.push_str(&report(&locus, &gains, &num, &den));
+    s.push_str(&report(&locus, gains.as_deref(), &num, &den));
     if let Some((k, r)) = &at {
+        // roots on the imaginary axis to the library's tolerance print with Re = 0 (the JSON
+        // keeps the computed values)
+        let shown: Vec<Root> = r
+            .iter()
+            .map(|x| {
+                let mut x = *x;
+                if x.half_plane() == HalfPlane::Axis {
+                    x.value.re = 0.0;
+                }
+                x
+            })
+            .collect();
         s.push_str(&format!(
             "\nClosed-loop poles at K = {}: {}",
             fmt_sig(*k, 10),
-            roots_text(r)
+            roots_text(&shown)
         ));
     }
     if let Some(path) = &a.output {
@@ -184,7 +199,7 @@ fn angles_text(v: &[f64]) -> String {
 }
 
 /// The text report of the features.
-fn report(l: &RootLocus, gains: &[(f64, f64)], num: &Poly, den: &Poly) -> String {
+fn report(l: &RootLocus, gains: Option<&[(f64, f64)]>, num: &Poly, den: &Poly) -> String {
     let mut s = format!(
         "Root locus of D(s) + K·N(s) = 0 (unity negative feedback around K·L), K from 0 to {}\n  D(s) = {}\n  N(s) = {}\n",
         if l.negative { "−∞" } else { "∞" },
@@ -277,18 +292,23 @@ fn report(l: &RootLocus, gains: &[(f64, f64)], num: &Poly, den: &Poly) -> String
     };
     s.push_str(&angle_block("Departure angles", &l.departures));
     s.push_str(&angle_block("Arrival angles", &l.arrivals));
-    let text: Vec<String> = gains
-        .iter()
-        .map(|(lo, hi)| format!("{} < K < {}", k_text(*lo), k_text(*hi)))
-        .collect();
-    s.push_str(&format!(
-        "Closed loop stable for: {} (Routh–Hurwitz)\n",
-        if text.is_empty() {
-            "no gain on this locus".to_string()
-        } else {
-            text.join(", ")
-        }
-    ));
+    if let Some(gains) = gains {
+        let text: Vec<String> = gains
+            .iter()
+            .map(|(lo, hi)| format!("{} < K < {}", k_text(*lo), k_text(*hi)))
+            .collect();
+        s.push_str(&format!(
+            "Closed loop stable for: {} (Routh–Hurwitz)\n",
+            if text.is_empty() {
+                "no gain on this locus".to_string()
+            } else {
+                text.join(", ")
+            }
+        ));
+    }
+    for n in &l.notes {
+        s.push_str(&format!("Note: {n}\n"));
+    }
     s.push_str(&format!(
         "Traced: {} gains, {} branches\n",
         l.branches.gains.len(),

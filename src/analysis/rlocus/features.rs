@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use crate::error::Result;
 use crate::numeric::tol::ZERO_REL_TOL;
-use crate::poly::{Poly, Root};
+use crate::poly::{MAX_ORDER, Poly, Root};
 
 /// The asymptotes of the branches that go to infinity.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -173,10 +173,15 @@ fn vanishes(p: &Poly, x: f64) -> bool {
 
 /// Real roots σ of R = N·D′ − N′·D with K = −D(σ)/N(σ) of the locus's sign (points where
 /// D or N vanishes — multiple poles at K = 0, multiple zeros at K = ∞ — are not break points).
-pub(super) fn break_points(num: &Poly, den: &Poly, sign: f64) -> Result<Vec<BreakPoint>> {
+///
+/// `None` when N·D′ − N′·D is of degree above [`MAX_ORDER`] (not computed).
+pub(super) fn break_points(num: &Poly, den: &Poly, sign: f64) -> Result<Option<Vec<BreakPoint>>> {
     let r = &(num * &den.derivative()) + &(&num.derivative() * den).scale(-1.0);
     if r.is_zero() || r.degree() == 0 {
-        return Ok(Vec::new());
+        return Ok(Some(Vec::new()));
+    }
+    if r.degree() > MAX_ORDER {
+        return Ok(None);
     }
     let mut out = Vec::new();
     for root in r.roots()? {
@@ -212,23 +217,29 @@ pub(super) fn break_points(num: &Poly, den: &Poly, sign: f64) -> Result<Vec<Brea
         });
     }
     out.sort_by(|a, b| a.s.total_cmp(&b.s));
-    Ok(out)
+    Ok(Some(out))
 }
 
 /// The imaginary-axis crossings on this locus: K of the locus's sign, and K ≠ 0 (a pole on
-/// the axis at K = 0 is an open-loop pole, not a crossing).
-pub(super) fn crossings(num: &Poly, den: &Poly, sign: f64) -> Result<Vec<LocusCrossing>> {
-    Ok(super::super::routh::axis_crossings(num, den)?
-        .into_iter()
-        .filter(|(w, k)| {
-            let at_pole = {
-                let s = Complex64::new(0.0, *w);
-                den.eval_complex(s).norm() <= ZERO_REL_TOL * den.eval_abs(*w)
-            };
-            *k * sign > 0.0 && !at_pole
-        })
-        .map(|(omega, gain)| LocusCrossing { omega, gain })
-        .collect())
+/// the axis at K = 0 is an open-loop pole, not a crossing). `None` when the crossing
+/// polynomial Im(D(jω)·conj N(jω)) could be of degree above [`MAX_ORDER`] (not computed).
+pub(super) fn crossings(num: &Poly, den: &Poly, sign: f64) -> Result<Option<Vec<LocusCrossing>>> {
+    if num.degree() + den.degree() > MAX_ORDER {
+        return Ok(None);
+    }
+    Ok(Some(
+        super::super::routh::axis_crossings(num, den)?
+            .into_iter()
+            .filter(|(w, k)| {
+                let at_pole = {
+                    let s = Complex64::new(0.0, *w);
+                    den.eval_complex(s).norm() <= ZERO_REL_TOL * den.eval_abs(*w)
+                };
+                *k * sign > 0.0 && !at_pole
+            })
+            .map(|(omega, gain)| LocusCrossing { omega, gain })
+            .collect(),
+    ))
 }
 
 #[cfg(test)]
@@ -244,7 +255,9 @@ mod tests {
         // (s + 2)(s + 3)/(s(s + 1)): break-away between 0 and −1, break-in between −2 and −3.
         // R = N·D′ − N′·D = (s² + 5s + 6)(2s + 1) − (2s + 5)(s² + s) = 4s² + 12s + 6 (÷2:
         // 2s² + 6s + 3), roots (−3 ± √3)/2.
-        let b = break_points(&p(&[1.0, 5.0, 6.0]), &p(&[1.0, 1.0, 0.0]), 1.0).unwrap();
+        let b = break_points(&p(&[1.0, 5.0, 6.0]), &p(&[1.0, 1.0, 0.0]), 1.0)
+            .unwrap()
+            .unwrap();
         assert_eq!(b.len(), 2);
         let s3 = 3f64.sqrt();
         assert!((b[0].s - (-3.0 - s3) / 2.0).abs() < 1e-14);

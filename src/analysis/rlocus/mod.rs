@@ -77,6 +77,8 @@ pub struct RootLocus {
     /// When deg N = deg D: the gain −d/n (ratio of the leading coefficients) at which a
     /// branch leaves through infinity, if it is on this locus.
     pub escape_gain: Option<f64>,
+    /// What was not computed and why.
+    pub notes: Vec<String>,
     /// The traced branches.
     #[serde(flatten)]
     pub branches: Branches,
@@ -114,8 +116,29 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
     // the 180° locus when K·k0 > 0, the 0° locus otherwise
     let base = if sign * k0 > 0.0 { 180.0 } else { 0.0 };
     let asymptotes = features::asymptotes(num, den, base);
-    let break_points = features::break_points(num, den, sign)?;
-    let crossings = features::crossings(num, den, sign)?;
+    let mut notes = Vec::new();
+    let break_points = match features::break_points(num, den, sign)? {
+        Some(b) => b,
+        None => {
+            notes.push(format!(
+                "break points not computed: N·D′ − N′·D has degree {} > {}",
+                num.degree() + den.degree() - 1,
+                crate::poly::MAX_ORDER
+            ));
+            Vec::new()
+        }
+    };
+    let crossings = match features::crossings(num, den, sign)? {
+        Some(c) => c,
+        None => {
+            notes.push(format!(
+                "imaginary-axis crossings not computed: their polynomial has degree up to {} > {}",
+                num.degree() + den.degree(),
+                crate::poly::MAX_ORDER
+            ));
+            Vec::new()
+        }
+    };
     let departures = features::departures(&red_poles, &red_zeros, base);
     let arrivals = features::arrivals(&red_poles, &red_zeros, base);
     let escape_gain = (num.degree() == den.degree())
@@ -154,6 +177,7 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
         departures,
         arrivals,
         escape_gain,
+        notes,
         branches,
     })
 }

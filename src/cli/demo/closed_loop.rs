@@ -1,6 +1,7 @@
 //! The closed-loop section: a PID controller on the spring–mass–damper (closed-loop poles,
 //! step metrics of T, margins and robustness of L, checks against the closed-form
-//! characteristic polynomial) and an unstable pole cancelled by the controller, flagged.
+//! characteristic polynomial), an unstable pole cancelled by the controller, flagged, and the
+//! root loci of the quarter-car suspension (`rlocus.rs`).
 
 use anyhow::Result;
 use num_complex::Complex64;
@@ -23,7 +24,8 @@ pub fn section(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
          with `--loop`, `--closed-loop`, `--sensitivity` or `--control-sensitivity`.",
     );
     pid(ctx, md)?;
-    hidden(ctx, md)
+    hidden(ctx, md)?;
+    super::rlocus::section(ctx, md)
 }
 
 fn pid(ctx: &mut Ctx, md: &mut Md) -> Result<()> {

@@ -7,6 +7,7 @@ mod linear;
 mod md;
 mod mechanics;
 mod nonlinear;
+mod rlocus;
 mod seed;
 mod verify;
 
