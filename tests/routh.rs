@@ -145,3 +145,85 @@ fn stable_gain_sets_against_a_dense_scan() {
         assert_eq!(stable, inside, "K = {g}");
     }
 }
+
+#[test]
+fn repeated_axis_roots_are_counted_once() {
+    // (s² + 1)²: two nested zero rows (auxiliaries s⁴ + 2s² + 1, then s² + 1); 4 axis roots,
+    // not 6. (s² + 1)²(s + 1) and (s² + 4)(s² + 1)² likewise (root counts by construction).
+    assert_eq!(counts(&[1.0, 0.0, 2.0, 0.0, 1.0]), (0, 4, 0));
+    assert_eq!(counts(&[1.0, 1.0, 2.0, 2.0, 1.0, 1.0]), (0, 4, 1));
+    assert_eq!(counts(&[1.0, 0.0, 6.0, 0.0, 9.0, 0.0, 4.0]), (0, 6, 0));
+}
+
+#[test]
+fn the_float_table_agrees_with_exact_counts() {
+    // Integer polynomials, many with repeated factors on the axis ((s² + a)^k) and at the
+    // origin: the f64 table against the exact rational Routh–Hurwitz counts
+    // (ExactPoly::half_plane_counts, Cauchy indices in exact arithmetic).
+    use ltikit::poly::exact::ExactPoly;
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = |m: i64| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % (2 * m as u64 + 1)) as i64 - m
+    };
+    let mul = |a: &[f64], b: &[f64]| {
+        let mut out = vec![0.0; a.len() + b.len() - 1];
+        for (i, x) in a.iter().enumerate() {
+            for (j, y) in b.iter().enumerate() {
+                out[i + j] += x * y;
+            }
+        }
+        out
+    };
+    let mut disagree = Vec::new();
+    for case in 0..400 {
+        let mut p = vec![1.0];
+        for _ in 0..(1 + next(2).unsigned_abs()) {
+            let q: Vec<f64> = match next(3) {
+                -3 | -2 => vec![1.0, 0.0, (1 + next(4).abs()) as f64],
+                -1 => vec![1.0, 0.0],
+                _ => vec![1.0, next(5) as f64, next(6) as f64],
+            };
+            p = mul(&p, &q);
+        }
+        let e = ExactPoly::from_f64_descending(&p)
+            .unwrap()
+            .half_plane_counts()
+            .unwrap();
+        let t = routh(&Poly::from_descending(&p).unwrap()).unwrap();
+        if (t.rhp, t.axis, t.lhp) != (e.rhp, e.axis, e.lhp) {
+            disagree.push((case, p));
+        }
+    }
+    assert!(
+        disagree.is_empty(),
+        "{} cases: {:?}",
+        disagree.len(),
+        &disagree[..disagree.len().min(5)]
+    );
+}
+
+#[test]
+fn the_command_line_confirms_in_exact_arithmetic() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(["routh", "--den", "1 0 2.00000002 0 1.00000002", "--json"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // s⁴ + 2.00000002 s² + 1.00000002 = (s² + 1)(s² + 1.00000002): four distinct roots on the
+    // axis, decided on the typed decimals
+    assert_eq!(v["exact"]["axis"], 4);
+    assert_eq!(v["exact"]["rhp"], 0);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(["routh", "--den", "1 1 2 8"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("Confirmed in exact rational arithmetic"),
+        "{text}"
+    );
+}

@@ -157,7 +157,10 @@ pub fn routh(p: &Poly) -> Result<RouthTable> {
     };
     let rhp = changes(0);
     // Each auxiliary polynomial of degree q: r RHP roots (sign changes from its row on), r LHP
-    // and q − 2r on the axis.
+    // and q − 2r on the axis. Below the first zero row the table is that of the first
+    // auxiliary polynomial, so a later zero row (repeated axis roots, e.g. (s² + 1)²) belongs
+    // to a divisor of it: its roots are among the first's and are not counted again.
+    let mut counted = false;
     for e in &mut events {
         if let RouthEvent::ZeroRow {
             power,
@@ -170,7 +173,10 @@ pub fn routh(p: &Poly) -> Result<RouthTable> {
             let row = m - (*power + 1);
             let r = changes(row);
             *axis_roots = q.saturating_sub(2 * r);
-            axis += *axis_roots;
+            if !counted {
+                axis += *axis_roots;
+                counted = true;
+            }
         }
     }
     let powers = (0..rows.len()).map(|i| m - i).collect();

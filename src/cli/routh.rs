@@ -27,11 +27,22 @@ pub struct RouthArgs {
     pub json: bool,
 }
 
+/// Root counts decided in exact rational arithmetic.
+#[derive(Serialize, Clone, Copy, PartialEq, Eq)]
+struct Exact {
+    rhp: usize,
+    axis: usize,
+    lhp: usize,
+}
+
 #[derive(Serialize)]
 struct Doc<'a> {
     polynomial: &'a [f64],
     #[serde(flatten)]
     table: &'a RouthTable,
+    /// The counts in exact rational arithmetic of the coefficients as typed (null when beyond
+    /// the exact path's budget).
+    exact: Option<Exact>,
     #[serde(skip_serializing_if = "Option::is_none")]
     stable_gains: Option<Vec<[Option<f64>; 2]>>,
 }
@@ -52,6 +63,7 @@ pub fn run(a: &RouthArgs) -> Result<()> {
         Some(k) => bail!("--gain must be finite, got {k}"),
     };
     let t = routh(&p)?;
+    let exact = exact_counts(&plant, g, a.gain);
     let gains = if a.gain_range {
         Some(crate::analysis::stable_gains(g.num(), g.den())?)
     } else {
@@ -62,6 +74,7 @@ pub fn run(a: &RouthArgs) -> Result<()> {
         return print_json(&Doc {
             polynomial: p.coeffs(),
             table: &t,
+            exact,
             stable_gains: gains.as_ref().map(|v| {
                 v.iter()
                     .map(|(lo, hi)| [finite(*lo), finite(*hi)])
@@ -108,19 +121,36 @@ pub fn run(a: &RouthArgs) -> Result<()> {
     if !t.events.is_empty() {
         s.push('\n');
     }
+    let f64_counts = Exact {
+        rhp: t.rhp,
+        axis: t.axis,
+        lhp: t.lhp,
+    };
+    // the exact counts decide when they exist
+    let c = exact.unwrap_or(f64_counts);
     s.push_str(&format!(
         "\nRoots: {} in the open right half plane, {} on the imaginary axis, {} in the open left half plane — {}",
-        t.rhp,
-        t.axis,
-        t.lhp,
-        if t.rhp > 0 {
+        c.rhp,
+        c.axis,
+        c.lhp,
+        if c.rhp > 0 {
             "unstable"
-        } else if t.axis > 0 {
+        } else if c.axis > 0 {
             "not asymptotically stable"
         } else {
             "asymptotically stable"
         }
     ));
+    s.push_str(&match exact {
+        Some(e) if e == f64_counts => {
+            "\nConfirmed in exact rational arithmetic (the coefficients as typed).".to_string()
+        }
+        Some(_) => format!(
+            "\nThe floating-point table read {} / {} / {}; exact rational arithmetic on the coefficients as typed decides the counts above.",
+            t.rhp, t.axis, t.lhp
+        ),
+        None => "\nNot confirmed in exact arithmetic (beyond the exact path's budget).".to_string(),
+    });
     if let Some(v) = &gains {
         let text: Vec<String> = v
             .iter()
@@ -147,4 +177,43 @@ pub fn run(a: &RouthArgs) -> Result<()> {
         ));
     }
     print(&s)
+}
+
+/// The root counts of D (or D + K·N) in exact rational arithmetic: the coefficients as typed
+/// when the plant was given by them, otherwise the f64 values (exact binary fractions); `None`
+/// beyond the exact path's budget.
+fn exact_counts(
+    plant: &crate::lti::Plant,
+    g: &crate::TransferFunction,
+    gain: Option<f64>,
+) -> Option<Exact> {
+    use crate::poly::exact::{ExactPoly, Rational};
+    let (num, den) = match &plant.typed {
+        Some((n, d)) => {
+            let texts = |c: &[crate::lti::plant::Coefficient]| {
+                c.iter().map(|x| x.text.clone()).collect::<Vec<_>>()
+            };
+            (
+                ExactPoly::parse_descending(&texts(n)).ok()?,
+                ExactPoly::parse_descending(&texts(d)).ok()?,
+            )
+        }
+        None => (
+            ExactPoly::from_f64_descending(g.num().coeffs()).ok()?,
+            ExactPoly::from_f64_descending(g.den().coeffs()).ok()?,
+        ),
+    };
+    let p = match gain {
+        None => den,
+        Some(k) => {
+            let k = ExactPoly::from_rationals(&[Rational::from_f64(k).ok()?]).ok()?;
+            &den + &(&k * &num)
+        }
+    };
+    let h = p.half_plane_counts().ok()?;
+    Some(Exact {
+        rhp: h.rhp,
+        axis: h.axis,
+        lhp: h.lhp,
+    })
 }
