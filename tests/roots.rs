@@ -293,3 +293,21 @@ fn roots_beyond_f64_are_an_error_not_infinity() {
     // 1e-300 s + 1e300: the root −1e600 is not a double.
     assert!(poly(&[1e-300, 1e300]).roots().is_err());
 }
+
+#[test]
+fn a_multiple_root_among_many_on_a_circle_is_still_found() {
+    // (s + 1)⁴·(s + 3)²·Π(s² − 2·0.9·cos θₖ·s + 0.81) for 30 angles θₖ: 66 roots, the simple
+    // ones 0.9·e^(±jθₖ) close enough that the grouping links the whole circle (the case the
+    // derivative stage's work bound is for). The multiplicities must survive the bound.
+    let mut p = &pow(&poly(&[1.0, 1.0]), 4) * &pow(&poly(&[1.0, 3.0]), 2);
+    for k in 0..30 {
+        let th = std::f64::consts::PI * (k as f64 + 0.5) / 31.0;
+        p = &p * &poly(&[1.0, -1.8 * th.cos(), 0.81]);
+    }
+    let r = p.roots().unwrap();
+    let (d1, m1) = closest(&r, C::new(-1.0, 0.0));
+    let (d3, m3) = closest(&r, C::new(-3.0, 0.0));
+    assert_eq!((m1, m3), (4, 2), "{r:?}");
+    assert!(d1 < 1e-8 && d3 < 1e-8, "{d1} {d3}");
+    assert_eq!(r.iter().map(|x| x.multiplicity).sum::<usize>(), 66);
+}

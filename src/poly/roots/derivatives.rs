@@ -10,6 +10,10 @@ use super::refine::factor_of;
 use super::{Found, GROUP_REL};
 use crate::poly::Poly;
 
+/// The derivative stage's work bound, in full-degree eigenvalue problems (see
+/// [`structure_from_derivatives`]).
+pub(super) const DERIVATIVE_WORK: f64 = 6.0;
+
 /// Second stage for overlapping clusters. An m-fold root of q is a simple — and usually well
 /// conditioned — root of q^(m−1). For m from `max_mult` down to 2, the roots of q^(m−1) at
 /// which q, …, q^(m−2) vanish to rounding level are claimed as m-fold roots; the claimed factors
@@ -19,10 +23,26 @@ pub(super) fn structure_from_derivatives(q: &Poly, max_mult: usize) -> Option<Ve
     let n = q.degree();
     let mut claimed: Vec<Found> = Vec::new();
     let mut weight = 0;
+    // Work bound: each m costs an eigenvalue problem of degree n − m + 1 (~10·deg³ flops) and
+    // the candidates' confirmation. A random polynomial of degree ~170 has its roots near a
+    // circle, 2π/n apart: the grouping links them all, max_mult ≈ n, and trying every m cost
+    // ~140 eigenvalue problems (0.6 s). The search stops after DERIVATIVE_WORK·n³ (as many
+    // full-degree problems) — the multiplicities below that m are not looked for, and the
+    // caller's checks decide between the claimed structure and simple roots (a multiplicity
+    // may be missed, never invented).
+    let budget = DERIVATIVE_WORK * (n as f64).powi(3);
+    let mut work = 0.0;
     for m in (2..=max_mult.min(n)).rev() {
+        if weight >= n {
+            break;
+        }
         let d = q.nth_derivative(m - 1);
         if d.degree() == 0 {
             continue;
+        }
+        work += (d.degree() as f64).powi(3);
+        if work > budget {
+            break;
         }
         for z in candidates(&d).ok()? {
             if z.im < 0.0 {
