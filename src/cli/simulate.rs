@@ -4,12 +4,12 @@ use anyhow::{Result, bail};
 use clap::Args;
 use serde::Serialize;
 
-use super::output::{print, print_json};
+use super::output::{Stream, json_number, print, print_json};
 use super::parse;
 use crate::analysis::Input;
 use crate::error::abbreviate;
 use crate::nonlinear::{
-    ConservedDrift, InputSignal, Simulation, build_model, sample_times, simulate,
+    ConservedDrift, InputSignal, Simulation, build_model, sample_times, simulate, simulate_each,
 };
 use crate::numeric::rk45::Rk45Options;
 
@@ -220,28 +220,158 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
         max_steps: a.max_steps,
         ..Default::default()
     };
-    let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
-    picture(a, sys.as_ref(), &sim)?;
-    if a.json {
-        let mut j = SimulationJson::from(&sim);
-        j.x0 = &x0;
-        print_json(&j)
-    } else {
-        let mut text = csv(&sim);
-        if a.x0.is_none() || a.t_end.is_none() {
-            text.push_str(&format!(
-                "# x0 = {} and t_end = {} s{}\n",
-                super::text::vector_text(&x0),
-                t_end,
-                match (a.x0.is_none(), a.t_end.is_none()) {
-                    (true, true) => " are the model's defaults",
-                    (true, false) => ": x0 is the model's default",
-                    _ => ": t_end is the model's default",
-                }
-            ));
+    let defaults = defaults_note(a, &x0, t_end);
+    if let Some(path) = &a.output {
+        // The picture needs every sample: simulate whole, draw, then report.
+        let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
+        picture(a, sys.as_ref(), &sim)?;
+        if a.json {
+            let mut j = SimulationJson::from(&sim);
+            j.x0 = &x0;
+            return print_json(&j);
         }
-        print(&text)
+        let mut text = format!(
+            "Figure: {} ({} samples, {} steps)\n",
+            path.display(),
+            sim.t.len(),
+            sim.stats.steps
+        );
+        text.push_str(&csv_footer(sim.stop.as_ref(), &sim.conserved));
+        text.push_str(&defaults);
+        return print(&text);
     }
+    let mut out = Stream::stdout();
+    if a.json {
+        return stream_json(out, sys.as_ref(), &x0, &input, &times, &opts);
+    }
+    // CSV, written as it is computed: memory does not grow with --points.
+    let mut open = out.put(&csv_header(&sys.state_names(), &sys.output_names()))?;
+    let mut row = String::new();
+    let s = simulate_each(sys.as_ref(), &x0, &input, &times, &opts, &mut |t, x, y| {
+        csv_row(t, x, y, &mut row);
+        if row.len() >= 1 << 16 {
+            open = out.put(&row).map_err(|e| crate::error::LtiError::invalid(e.to_string()))?;
+            row.clear();
+        }
+        Ok(open)
+    })?;
+    if open && !s.ended_by_sink {
+        out.put(&row)?;
+        out.put(&csv_footer(s.stop.as_ref(), &s.conserved))?;
+        out.put(&defaults)?;
+    }
+    out.finish()
+}
+
+/// The `# …` line saying which of x0 and t_end are the model's defaults (empty when both
+/// were given).
+fn defaults_note(a: &SimulateArgs, x0: &[f64], t_end: f64) -> String {
+    if a.x0.is_some() && a.t_end.is_some() {
+        return String::new();
+    }
+    format!(
+        "# x0 = {} and t_end = {} s{}\n",
+        super::text::vector_text(x0),
+        t_end,
+        match (a.x0.is_none(), a.t_end.is_none()) {
+            (true, true) => " are the model's defaults",
+            (true, false) => ": x0 is the model's default",
+            _ => ": t_end is the model's default",
+        }
+    )
+}
+
+/// The JSON document, with the samples kept as flat arrays of numbers (8 bytes each, no
+/// per-sample allocation) and written as it is formatted; the same document as
+/// [`SimulationJson`] through `print_json`.
+fn stream_json(
+    mut out: Stream,
+    sys: &dyn crate::nonlinear::DynSystem,
+    x0: &[f64],
+    input: &crate::nonlinear::InputSignal,
+    times: &[f64],
+    opts: &Rk45Options,
+) -> Result<()> {
+    let (nx, ny) = (sys.nx(), sys.ny());
+    let mut t = Vec::with_capacity(times.len());
+    let mut xs = Vec::with_capacity(times.len().saturating_mul(nx));
+    let mut ys = Vec::with_capacity(times.len().saturating_mul(ny));
+    let s = simulate_each(sys, x0, input, times, opts, &mut |ti, x, y| {
+        t.push(ti);
+        xs.extend_from_slice(x);
+        ys.extend_from_slice(y);
+        Ok(true)
+    })?;
+    let head = serde_json::json!({
+        "model": s.model,
+        "state_names": s.state_names,
+        "output_names": s.output_names,
+    });
+    let mut text = String::from("{\n");
+    for (k, v) in head.as_object().into_iter().flatten() {
+        text.push_str(&format!("  {}: ", serde_json::Value::String(k.clone())));
+        super::output::pretty(v, 1, &mut text);
+        text.push_str(",\n");
+    }
+    text.push_str("  \"t\": [");
+    let mut open = out.put(&text)?;
+    text.clear();
+    for (i, v) in t.iter().enumerate() {
+        if !open {
+            return out.finish();
+        }
+        if i > 0 {
+            text.push_str(", ");
+        }
+        text.push_str(&json_number(*v));
+        if text.len() >= 1 << 16 {
+            open = out.put(&text)?;
+            text.clear();
+        }
+    }
+    text.push_str("],\n");
+    for (key, flat, width) in [("x", &xs, nx), ("y", &ys, ny)] {
+        text.push_str(&format!("  \"{key}\": ["));
+        let rows = if width == 0 { 0 } else { flat.len() / width };
+        for r in 0..rows {
+            text.push_str(if r == 0 { "\n    [" } else { ",\n    [" });
+            for (j, v) in flat[r * width..(r + 1) * width].iter().enumerate() {
+                if j > 0 {
+                    text.push_str(", ");
+                }
+                text.push_str(&json_number(*v));
+            }
+            text.push(']');
+            if text.len() >= 1 << 16 {
+                if !out.put(&text)? {
+                    return out.finish();
+                }
+                text.clear();
+            }
+        }
+        text.push_str(if rows == 0 { "],\n" } else { "\n  ],\n" });
+    }
+    let mut tail = serde_json::json!({
+        "x0": x0,
+        "steps": s.stats.steps,
+        "rejected_steps": s.stats.rejections,
+        "stopped": s.stop.as_ref().map(|st| serde_json::json!({"t": st.t, "reason": st.reason})),
+    });
+    if !s.conserved.is_empty() {
+        if let Some(m) = tail.as_object_mut() {
+            m.insert("conserved".into(), super::output::json_value(&s.conserved)?);
+        }
+    }
+    let tail = super::output::json_value(&tail)?;
+    let entries: Vec<_> = tail.as_object().into_iter().flatten().collect();
+    for (i, (k, v)) in entries.iter().enumerate() {
+        text.push_str(&format!("  {}: ", serde_json::Value::String((*k).clone())));
+        super::output::pretty(v, 1, &mut text);
+        text.push_str(if i + 1 < entries.len() { ",\n" } else { "\n" });
+    }
+    text.push_str("}\n");
+    out.put(&text)?;
+    out.finish()
 }
 
 #[derive(Serialize)]
@@ -287,11 +417,11 @@ impl<'a> From<&'a Simulation> for SimulationJson<'a> {
     }
 }
 
-/// CSV with a header line: t, the states, the outputs (prefixed y: when a name repeats).
-pub fn csv(s: &Simulation) -> String {
+/// The CSV header line: t, the states, the outputs (prefixed y: when a name repeats).
+fn csv_header(state_names: &[String], output_names: &[String]) -> String {
     let mut header = vec!["t".to_string()];
-    header.extend(s.state_names.iter().cloned());
-    for n in &s.output_names {
+    header.extend(state_names.iter().cloned());
+    for n in output_names {
         if header.contains(n) {
             header.push(format!("y:{n}"));
         } else {
@@ -300,17 +430,26 @@ pub fn csv(s: &Simulation) -> String {
     }
     let mut out = header.join(",");
     out.push('\n');
-    for (i, t) in s.t.iter().enumerate() {
-        let mut row = vec![format!("{t}")];
-        row.extend(s.states[i].iter().map(|x| format!("{x}")));
-        row.extend(s.outputs[i].iter().map(|y| format!("{y}")));
-        out.push_str(&row.join(","));
-        out.push('\n');
+    out
+}
+
+/// One CSV row, appended to `out`.
+fn csv_row(t: f64, x: &[f64], y: &[f64], out: &mut String) {
+    use std::fmt::Write;
+    let _ = write!(out, "{t}");
+    for v in x.iter().chain(y) {
+        let _ = write!(out, ",{v}");
     }
-    if let Some(st) = &s.stop {
+    out.push('\n');
+}
+
+/// The `# …` lines after the samples: where the simulation stopped, conserved drifts.
+fn csv_footer(stop: Option<&crate::nonlinear::SimulationStop>, conserved: &[ConservedDrift]) -> String {
+    let mut out = String::new();
+    if let Some(st) = stop {
         out.push_str(&format!("# stopped at t = {}: {}\n", st.t, st.reason));
     }
-    for c in &s.conserved {
+    for c in conserved {
         out.push_str(&format!(
             "# conserved {}: {} at t = 0, drift {:.3e} (relative {:.3e})\n",
             c.name,

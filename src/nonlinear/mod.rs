@@ -66,7 +66,10 @@ pub use pullin::{PullInDiagram, find_pull_in, mems_pullin};
 pub use registry::{ModelInfo, ModelKind, build_model, model_info, model_names, models};
 pub use rigid_motion::FreeRigidMotion;
 pub use signal::InputSignal;
-pub use simulate::{ConservedDrift, Simulation, SimulationStop, sample_times, simulate};
+pub use simulate::{
+    ConservedDrift, SampleSink, Simulation, SimulationStop, SimulationSummary, sample_times,
+    simulate, simulate_each,
+};
 pub use system::{
     BoxedSystem, Derivatives2, DynSystem, Jacobians, NonlinearSystem, Scalar, SystemInfo,
     check_point, conserved_quantities, derivative, jacobians,

@@ -124,6 +124,7 @@ pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
 /// If x0 is in the model's domain ([`SystemInfo::in_domain`]) and the trajectory leaves it,
 /// the simulation stops there: the samples end with the last state inside the domain (located
 /// by bisection on the dense output to ~1e-14 s) and [`Simulation::stop`] says when and why.
+/// [`simulate_each`] hands the samples over one by one instead of keeping them.
 ///
 /// ```
 /// use ltikit::nonlinear::{simulate, sample_times, InputSignal, models::VanDerPol};
@@ -140,46 +141,100 @@ pub fn simulate(
     times: &[f64],
     opts: &Rk45Options,
 ) -> Result<Simulation> {
-    check_point(sys, x0, &vec![0.0; sys.nu()])?;
-    input.check(sys.nu())?;
+    let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
+    let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
+    let mut outputs: Vec<Vec<f64>> = Vec::with_capacity(times.len());
+    let s = simulate_each(sys, x0, input, times, opts, &mut |t, x, y| {
+        t_out.push(t);
+        states.push(x.to_vec());
+        outputs.push(y.to_vec());
+        Ok(true)
+    })?;
+    Ok(Simulation {
+        model: s.model,
+        state_names: s.state_names,
+        output_names: s.output_names,
+        t: t_out,
+        states,
+        outputs,
+        stats: s.stats,
+        stop: s.stop,
+        conserved: s.conserved,
+    })
+}
+
+/// What a simulation reports besides its samples ([`simulate_each`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SimulationSummary {
+    /// Model name.
+    pub model: String,
+    /// State names.
+    pub state_names: Vec<String>,
+    /// Output names.
+    pub output_names: Vec<String>,
+    /// Samples handed over.
+    pub samples: usize,
+    /// Integrator work.
+    pub stats: Rk45Stats,
+    /// Set when the simulation ended before the last requested time.
+    pub stop: Option<SimulationStop>,
+    /// The drift of each conserved quantity (see [`Simulation::conserved`]).
+    pub conserved: Vec<ConservedDrift>,
+    /// The sink asked to stop (e.g. the reader of the output has gone).
+    pub ended_by_sink: bool,
+}
+
+/// One sample handed over by [`simulate_each`]: time, state, output. `Ok(false)` stops the
+/// simulation (the samples so far stand); an error ends it with that error.
+pub type SampleSink<'a> = dyn FnMut(f64, &[f64], &[f64]) -> Result<bool> + 'a;
+
+/// [`simulate`] without keeping the samples: each one goes to `sink` as soon as it is
+/// computed, so memory does not grow with the number of samples (the CLI streams CSV this
+/// way).
+///
+/// ```
+/// use ltikit::nonlinear::{simulate_each, sample_times, InputSignal, models::VanDerPol};
+/// use ltikit::numeric::rk45::Rk45Options;
+/// let t = sample_times(20.0, 2001).unwrap();
+/// let mut last = vec![];
+/// let s = simulate_each(&VanDerPol, &[0.1, 0.0], &InputSignal::none(), &t,
+///     &Rk45Options::default(), &mut |_, x, _| { last = x.to_vec(); Ok(true) }).unwrap();
+/// assert_eq!(s.samples, 2001);
+/// assert!((last[0].hypot(last[1]) - 1.0).abs() < 1e-6); // on the unit-circle limit cycle
+/// ```
+pub fn simulate_each(
+    sys: &dyn DynSystem,
+    x0: &[f64],
+    input: &InputSignal,
+    times: &[f64],
+    opts: &Rk45Options,
+    sink: &mut SampleSink<'_>,
+) -> Result<SimulationSummary> {
+    let check_domain = check_start(sys, x0, input, times)?;
     let Some(&t_end) = times.last() else {
         return Err(LtiError::invalid("no sample times given"));
     };
-    check_finite(|| "the end time".into(), t_end)?;
-    if t_end <= 0.0 {
-        return Err(LtiError::InvalidTime {
-            value: t_end,
-            reason: "the end time must be > 0".into(),
-        });
-    }
-    check_sample_times(times, 0.0, t_end)?;
-
     let segments = segments(input, t_end);
-    let n = sys.nx();
-    let check_domain = sys.in_domain(x0);
-    if !check_domain {
-        // Outside the domain the equations may be singular: say so rather than report a NaN.
-        let mut dx = vec![0.0; n];
-        sys.eval_f(x0, &input.at(0.0), &mut dx);
-        if dx.iter().any(|v| !v.is_finite()) {
-            return Err(LtiError::invalid(format!(
-                "the initial state {x0:?} is outside the model's domain{}, where its equations \
-                 are singular",
-                sys.domain_note()
-                    .map(|d| format!(" ({d})"))
-                    .unwrap_or_default()
-            )));
-        }
-    }
     let mut tracker = DriftTracker::new(sys, x0, input);
-    let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
-    let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
+    let mut out = Emit {
+        sys,
+        input,
+        sink,
+        y: vec![0.0; sys.ny()],
+        last_t: None,
+        count: 0,
+        error: None,
+        ended: false,
+    };
     let mut stats = Rk45Stats::default();
     let mut stop: Option<SimulationStop> = None;
     let mut x = x0.to_vec();
     let mut next = 0;
     let nseg = segments.len();
+    let n = sys.nx();
     let mut u = vec![0.0; sys.nu()];
+    let mut xs = vec![0.0; n];
+    let mut buf = vec![0.0; n];
     for (k, &(ta, tb, varying)) in segments.iter().enumerate() {
         // Samples in [ta, tb] (the last segment takes everything left).
         let seg_end = if k + 1 == nseg {
@@ -188,11 +243,11 @@ pub fn simulate(
             next + times[next..].iter().take_while(|&&t| t <= tb).count()
         };
         let outcome = integrate(
-            |t, xs: &[f64], dx: &mut [f64]| {
+            |t, xv: &[f64], dx: &mut [f64]| {
                 // A segment before the start holds `before` up to its end (the jump belongs
                 // to the next segment).
                 input.eval(if varying { t.max(ta) } else { ta }, &mut u);
-                sys.eval_f(xs, &u, dx)
+                sys.eval_f(xv, &u, dx)
             },
             ta,
             &x,
@@ -200,13 +255,11 @@ pub fn simulate(
             opts,
             |step| {
                 tracker.observe(sys, step.state_end());
-                let mut buf = vec![0.0; n];
                 let cut = (check_domain && !sys.in_domain(step.state_end()))
                     .then(|| leave_time(sys, step, &mut buf));
                 let limit = cut.unwrap_or(step.t_end());
                 while next < seg_end && times[next] <= limit {
                     let ts = times[next];
-                    let mut xs = vec![0.0; n];
                     if ts >= step.t_end() {
                         xs.copy_from_slice(step.state_end());
                     } else if ts <= step.t_start() {
@@ -214,16 +267,16 @@ pub fn simulate(
                     } else {
                         step.eval(ts, &mut xs);
                     }
-                    t_out.push(ts);
-                    states.push(xs);
                     next += 1;
+                    if !out.emit(ts, &xs) {
+                        return StepControl::Stop;
+                    }
                 }
                 match cut {
                     Some(tc) => {
                         step.eval(tc, &mut buf);
-                        if t_out.last().is_none_or(|&t| t < tc) {
-                            t_out.push(tc);
-                            states.push(buf);
+                        if out.last_t.is_none_or(|t| t < tc) {
+                            out.emit(tc, &buf);
                         }
                         stop = Some(SimulationStop {
                             t: tc,
@@ -237,29 +290,100 @@ pub fn simulate(
         )?;
         stats.add(&outcome.stats);
         x = outcome.x;
-        if stop.is_some() {
+        if let Some(e) = out.error.take() {
+            return Err(e);
+        }
+        if stop.is_some() || out.ended {
             break;
         }
         next = seg_end;
     }
-
-    let mut outputs = Vec::with_capacity(t_out.len());
-    for (t, xs) in t_out.iter().zip(&states) {
-        let mut y = vec![0.0; sys.ny()];
-        sys.eval_h(xs, &input.at(*t), &mut y);
-        outputs.push(y);
-    }
-    Ok(Simulation {
+    Ok(SimulationSummary {
         model: SystemInfo::model_name(sys),
         state_names: sys.state_names(),
         output_names: sys.output_names(),
-        t: t_out,
-        states,
-        outputs,
+        samples: out.count,
         stats,
         stop,
         conserved: tracker.finish(sys),
+        ended_by_sink: out.ended,
     })
+}
+
+/// The checks before a simulation; true when the domain is to be watched (x0 inside it).
+fn check_start(
+    sys: &dyn DynSystem,
+    x0: &[f64],
+    input: &InputSignal,
+    times: &[f64],
+) -> Result<bool> {
+    check_point(sys, x0, &vec![0.0; sys.nu()])?;
+    input.check(sys.nu())?;
+    let Some(&t_end) = times.last() else {
+        return Err(LtiError::invalid("no sample times given"));
+    };
+    check_finite(|| "the end time".into(), t_end)?;
+    if t_end <= 0.0 {
+        return Err(LtiError::InvalidTime {
+            value: t_end,
+            reason: "the end time must be > 0".into(),
+        });
+    }
+    check_sample_times(times, 0.0, t_end)?;
+    let check_domain = sys.in_domain(x0);
+    if !check_domain {
+        // Outside the domain the equations may be singular: say so rather than report a NaN.
+        let mut dx = vec![0.0; sys.nx()];
+        sys.eval_f(x0, &input.at(0.0), &mut dx);
+        if dx.iter().any(|v| !v.is_finite()) {
+            return Err(LtiError::invalid(format!(
+                "the initial state {x0:?} is outside the model's domain{}, where its equations \
+                 are singular",
+                sys.domain_note()
+                    .map(|d| format!(" ({d})"))
+                    .unwrap_or_default()
+            )));
+        }
+    }
+    Ok(check_domain)
+}
+
+/// Hands samples to the sink with their outputs; remembers a stop request or an error.
+struct Emit<'s, 'k> {
+    sys: &'s dyn DynSystem,
+    input: &'s InputSignal,
+    sink: &'s mut SampleSink<'k>,
+    y: Vec<f64>,
+    last_t: Option<f64>,
+    count: usize,
+    error: Option<LtiError>,
+    ended: bool,
+}
+
+impl Emit<'_, '_> {
+    /// False when the simulation must stop.
+    fn emit(&mut self, t: f64, x: &[f64]) -> bool {
+        if self.ended || self.error.is_some() {
+            return false;
+        }
+        self.sys.eval_h(x, &self.input.at(t), &mut self.y);
+        self.last_t = Some(t);
+        match (self.sink)(t, x, &self.y) {
+            Ok(true) => {
+                self.count += 1;
+                true
+            }
+            Ok(false) => {
+                self.count += 1;
+                self.ended = true;
+                false
+            }
+            Err(e) => {
+                self.error = Some(e);
+                false
+            }
+        }
+    }
 }
 
 /// The running drift of the conserved quantities (tracked only for zero input).
