@@ -244,24 +244,44 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
     if a.json {
         return stream_json(out, sys.as_ref(), &x0, &input, &times, &opts);
     }
-    // CSV, written as it is computed: memory does not grow with --points.
-    let mut open = out.put(&csv_header(&sys.state_names(), &sys.output_names()))?;
-    let mut row = String::new();
-    let s = simulate_each(sys.as_ref(), &x0, &input, &times, &opts, &mut |t, x, y| {
-        csv_row(t, x, y, &mut row);
-        if row.len() >= 1 << 16 {
-            open = out.put(&row).map_err(|e| crate::error::LtiError::invalid(e.to_string()))?;
-            row.clear();
+    // CSV, written as it is computed: memory does not grow with --points. The first
+    // HOLD_BYTES are held back, so a simulation that fails early (a step limit, a NaN) prints
+    // nothing but the error; one that fails after that ends its CSV with a `# error:` line.
+    let mut text = csv_header(&sys.state_names(), &sys.output_names());
+    let mut streaming = false;
+    let mut open = true;
+    let result = simulate_each(sys.as_ref(), &x0, &input, &times, &opts, &mut |t, x, y| {
+        csv_row(t, x, y, &mut text);
+        if text.len() >= if streaming { 1 << 16 } else { HOLD_BYTES } {
+            streaming = true;
+            open = out
+                .put(&text)
+                .map_err(|e| crate::error::LtiError::invalid(e.to_string()))?;
+            text.clear();
         }
         Ok(open)
-    })?;
+    });
+    let s = match result {
+        Ok(s) => s,
+        Err(e) => {
+            if streaming && open {
+                out.put(&text)?;
+                out.put(&format!("# error: {e}\n"))?;
+                out.finish()?;
+            }
+            return Err(e.into());
+        }
+    };
     if open && !s.ended_by_sink {
-        out.put(&row)?;
-        out.put(&csv_footer(s.stop.as_ref(), &s.conserved))?;
-        out.put(&defaults)?;
+        text.push_str(&csv_footer(s.stop.as_ref(), &s.conserved));
+        text.push_str(&defaults);
+        out.put(&text)?;
     }
     out.finish()
 }
+
+/// CSV bytes held back before `simulate` starts streaming (see `run`).
+const HOLD_BYTES: usize = 8 << 20;
 
 /// The `# …` line saying which of x0 and t_end are the model's defaults (empty when both
 /// were given).
@@ -332,7 +352,7 @@ fn stream_json(
     text.push_str("],\n");
     for (key, flat, width) in [("x", &xs, nx), ("y", &ys, ny)] {
         text.push_str(&format!("  \"{key}\": ["));
-        let rows = if width == 0 { 0 } else { flat.len() / width };
+        let rows = flat.len().checked_div(width).unwrap_or(0);
         for r in 0..rows {
             text.push_str(if r == 0 { "\n    [" } else { ",\n    [" });
             for (j, v) in flat[r * width..(r + 1) * width].iter().enumerate() {
@@ -444,7 +464,10 @@ fn csv_row(t: f64, x: &[f64], y: &[f64], out: &mut String) {
 }
 
 /// The `# …` lines after the samples: where the simulation stopped, conserved drifts.
-fn csv_footer(stop: Option<&crate::nonlinear::SimulationStop>, conserved: &[ConservedDrift]) -> String {
+fn csv_footer(
+    stop: Option<&crate::nonlinear::SimulationStop>,
+    conserved: &[ConservedDrift],
+) -> String {
     let mut out = String::new();
     if let Some(st) = stop {
         out.push_str(&format!("# stopped at t = {}: {}\n", st.t, st.reason));

@@ -8,7 +8,7 @@
 use anyhow::{Result, bail};
 use serde::Serialize;
 
-use super::output::{print, print_json};
+use super::output::{Stream, json_number, json_value, pretty};
 use super::response::ResponseArgs;
 use super::{Plant, parse};
 use crate::analysis::Input;
@@ -20,22 +20,8 @@ use crate::poly::fmt_sig;
 /// Most values (times × (outputs + states) × responses) of one state-space response.
 pub const MAX_RESPONSE_VALUES: usize = 10_000_000;
 
-/// One response of the JSON document.
-#[derive(Serialize)]
-struct ResponseJson {
-    /// The excited input (1-based), or None for the initial-state response and lsim.
-    input: Option<usize>,
-    input_name: Option<String>,
-    /// "step", "impulse", "initial" or "lsim".
-    kind: &'static str,
-    t: Vec<f64>,
-    /// `y[j]`: output j at every time.
-    y: Vec<Vec<f64>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    x: Option<Vec<Vec<f64>>>,
-}
-
-/// The `response` JSON document of a state-space plant.
+/// The head of the `response` JSON document of a state-space plant (its `responses` are
+/// written by [`stream_json`]).
 #[derive(Serialize)]
 struct SsResponseJson {
     model: &'static str,
@@ -45,7 +31,6 @@ struct SsResponseJson {
     outputs: Vec<String>,
     state_names: Vec<String>,
     x0: Option<Vec<f64>>,
-    responses: Vec<ResponseJson>,
 }
 
 /// True when `response` goes the state-space way for this plant and these options.
@@ -138,8 +123,9 @@ pub fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
             responses.push((None, "initial", "initial state x(0) = x0, u = 0".into(), f));
         }
     }
+    let mut out = Stream::stdout();
     if a.json {
-        return print_json(&SsResponseJson {
+        let head = SsResponseJson {
             model: "state-space",
             name: plant.name.clone(),
             states: ss.order(),
@@ -147,29 +133,118 @@ pub fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
             outputs: outputs.clone(),
             state_names: plant.signals.states.clone(),
             x0,
-            responses: responses
-                .into_iter()
-                .map(|(i, kind, _, r)| ResponseJson {
-                    input: i.map(|i| i + 1),
-                    input_name: i.and_then(|i| inputs.get(i).cloned()),
-                    kind,
-                    t: r.t,
-                    y: r.y,
-                    x: r.x,
-                })
-                .collect(),
-        });
+        };
+        return stream_json(out, &head, &inputs, &responses);
     }
-    let mut s = super::channels::plant_header(plant);
+    // The text report, written table by table and row block by row block.
+    let mut open = out.put(&super::channels::plant_header(plant))?;
     for (_, _, head, r) in &responses {
-        s.push_str(&format!("\n── {head}\n"));
-        s.push_str(&table(r, &outputs, &plant.signals.states));
+        if !open {
+            break;
+        }
+        open = out.put(&format!("\n── {head}\n"))?;
+        open = open && table(r, &outputs, &plant.signals.states, &mut out)?;
     }
-    s.push_str(
-        "\nValues by exact discretisation (matrix exponential of the augmented matrix and a \
-         recursion).\n",
-    );
-    print(&s)
+    if open {
+        out.put(
+            "\nValues by exact discretisation (matrix exponential of the augmented matrix and a \
+             recursion).\n",
+        )?;
+    }
+    out.finish()
+}
+
+/// One response of the JSON document, and its head fields.
+type Labelled = (Option<usize>, &'static str, String, SsTimeResponse);
+
+/// The JSON document, formatted as `print_json` would and written as it is formatted (the
+/// numbers are not copied into a JSON tree).
+fn stream_json(
+    mut out: Stream,
+    head: &SsResponseJson,
+    inputs: &[String],
+    responses: &[Labelled],
+) -> Result<()> {
+    let mut text = String::from("{\n");
+    let v = json_value(head)?;
+    for (k, x) in v.as_object().into_iter().flatten() {
+        text.push_str(&format!("  {}: ", serde_json::Value::String(k.clone())));
+        pretty(x, 1, &mut text);
+        text.push_str(",\n");
+    }
+    text.push_str("  \"responses\": [");
+    for (n, (i, kind, _, r)) in responses.iter().enumerate() {
+        text.push_str(if n == 0 { "\n    {\n" } else { ",\n    {\n" });
+        let fields = serde_json::json!({
+            "input": i.map(|i| i + 1),
+            "input_name": i.and_then(|i| inputs.get(i).cloned()),
+            "kind": kind,
+        });
+        for (k, x) in fields.as_object().into_iter().flatten() {
+            text.push_str(&format!("      {}: ", serde_json::Value::String(k.clone())));
+            pretty(x, 3, &mut text);
+            text.push_str(",\n");
+        }
+        text.push_str("      \"t\": ");
+        if !numbers(&mut out, &mut text, &r.t)? {
+            return out.finish();
+        }
+        text.push_str(",\n      \"y\": ");
+        if !rows(&mut out, &mut text, &r.y)? {
+            return out.finish();
+        }
+        if let Some(x) = &r.x {
+            text.push_str(",\n      \"x\": ");
+            if !rows(&mut out, &mut text, x)? {
+                return out.finish();
+            }
+        }
+        text.push_str("\n    }");
+    }
+    text.push_str(if responses.is_empty() {
+        "]\n}\n"
+    } else {
+        "\n  ]\n}\n"
+    });
+    out.put(&text)?;
+    out.finish()
+}
+
+/// `[a, b, …]` appended to `text`, flushed to `out` in blocks; false once the reader has gone.
+fn numbers(out: &mut Stream, text: &mut String, v: &[f64]) -> Result<bool> {
+    text.push('[');
+    for (i, x) in v.iter().enumerate() {
+        if i > 0 {
+            text.push_str(", ");
+        }
+        text.push_str(&json_number(*x));
+        if text.len() >= 1 << 16 {
+            if !out.put(text)? {
+                return Ok(false);
+            }
+            text.clear();
+        }
+    }
+    text.push(']');
+    Ok(true)
+}
+
+/// An array of number arrays, one per line (at the indentation of a response's fields).
+fn rows(out: &mut Stream, text: &mut String, v: &[Vec<f64>]) -> Result<bool> {
+    if v.is_empty() {
+        text.push_str("[]");
+        return Ok(true);
+    }
+    text.push_str("[\n");
+    for (j, row) in v.iter().enumerate() {
+        text.push_str("        ");
+        if !numbers(out, text, row)? {
+            return Ok(false);
+        }
+        text.push_str(if j + 1 < v.len() { ",\n" } else { "\n" });
+    }
+    text.push_str("      ]");
+    Ok(true)
 }
 
 /// The model, or its chosen channel.
@@ -264,8 +339,14 @@ pub fn auto_span(ss: &StateSpace) -> Result<f64> {
     })
 }
 
-/// A table: t, every output, and the states when kept.
-fn table(r: &SsTimeResponse, outputs: &[String], states: &[String]) -> String {
+/// A table: t, every output, and the states when kept; written to `out` in blocks. False
+/// once the reader has gone.
+fn table(
+    r: &SsTimeResponse,
+    outputs: &[String],
+    states: &[String],
+    out: &mut Stream,
+) -> Result<bool> {
     let mut cols: Vec<(&str, &Vec<f64>)> =
         outputs.iter().map(String::as_str).zip(r.y.iter()).collect();
     let generated: Vec<String>;
@@ -291,6 +372,12 @@ fn table(r: &SsTimeResponse, outputs: &[String], states: &[String]) -> String {
             s.push_str(&format!("  {:>w$}", fmt_sig(x, 10), w = width(name)));
         }
         s.push('\n');
+        if s.len() >= 1 << 16 {
+            if !out.put(&s)? {
+                return Ok(false);
+            }
+            s.clear();
+        }
     }
-    s
+    out.put(&s)
 }
