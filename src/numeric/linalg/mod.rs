@@ -30,6 +30,7 @@ pub mod hessenberg;
 pub mod householder;
 pub mod markov;
 pub mod minreal;
+pub mod modal;
 pub mod rrqr;
 pub mod schur;
 pub mod staircase;
