@@ -146,6 +146,7 @@ mod ss {
     use crate::common::ss as lattice;
     use divan::{Bencher, black_box};
     use ltikit::analysis::Factored;
+    use ltikit::numeric::linalg::modal::ModalForm;
     use ltikit::numeric::linalg::{HessenbergResponse, eigen_structure};
     use num_complex::Complex64;
 
@@ -174,6 +175,31 @@ mod ss {
         bencher.bench(|| {
             let h = HessenbergResponse::new(&ss.a, &ss.b, &ss.c, &ss.d).unwrap();
             h.eval_siso_many(black_box(&s)).unwrap()
+        });
+    }
+
+    /// The modal form: decomposition (once per model) and G(jω) at 10 000 frequencies.
+    #[divan::bench(sample_count = 10)]
+    fn freq_modal_decomposition(bencher: Bencher) {
+        let ss = lattice::lattice();
+        bencher.bench(|| ModalForm::new(black_box(&ss.a), &ss.b, &ss.c, &ss.d).unwrap());
+    }
+
+    /// G(jω) at 10 000 frequencies from the modal form (sums of simple fractions).
+    #[divan::bench(sample_count = 10)]
+    fn freq_modal_eval(bencher: Bencher) {
+        let ss = lattice::lattice();
+        let m = ModalForm::new(&ss.a, &ss.b, &ss.c, &ss.d).unwrap().unwrap();
+        let ch = m.channel(0, 0);
+        let s: Vec<Complex64> = lattice::freq_grid(10_000)
+            .iter()
+            .map(|&w| Complex64::new(0.0, w))
+            .collect();
+        bencher.bench(|| {
+            black_box(&s)
+                .iter()
+                .map(|&x| ch.eval(x))
+                .collect::<Vec<_>>()
         });
     }
 

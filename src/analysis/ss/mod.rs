@@ -5,6 +5,7 @@
 //! factored core.)
 
 pub mod freq;
+pub mod modal_time;
 pub mod report;
 pub mod time;
 

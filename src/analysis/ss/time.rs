@@ -15,6 +15,7 @@ use crate::analysis::time::check_times;
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
 use crate::numeric::expm;
+use crate::numeric::linalg::modal::ModalForm;
 
 /// Samples of the outputs (and optionally the states) of a state-space model.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -183,6 +184,18 @@ impl March<'_> {
 }
 
 impl StateSpace {
+    /// The modal form for the step, impulse and initial responses: models of order ≥
+    /// [`MODAL_MIN_ORDER`](super::modal_time::MODAL_MIN_ORDER) without the states asked for,
+    /// when the form is safe ([`ModalForm::new`]); `None` sends them to the dense march.
+    fn modal_for(&self, states: bool) -> Option<ModalForm> {
+        if states || self.order() < super::modal_time::MODAL_MIN_ORDER {
+            return None;
+        }
+        ModalForm::new(&self.a, &self.b, &self.c, &self.d)
+            .ok()
+            .flatten()
+    }
+
     fn check_input(&self, input: usize) -> Result<()> {
         if input >= self.n_inputs() {
             return Err(LtiError::invalid(format!(
@@ -216,6 +229,15 @@ impl StateSpace {
     ) -> Result<SsTimeResponse> {
         self.check_input(input)?;
         check_times(t)?;
+        if let Some(mf) = self.modal_for(states) {
+            let z0 = vec![num_complex::Complex64::new(0.0, 0.0); self.order()];
+            let y = super::modal_time::march(&mf, z0, Some(input), t)?;
+            return Ok(SsTimeResponse {
+                t: t.to_vec(),
+                y,
+                x: None,
+            });
+        }
         let m = self.n_inputs();
         let mut u = DVector::zeros(m);
         u[input] = 1.0;
@@ -265,6 +287,15 @@ impl StateSpace {
     }
 
     fn free(&self, x0: DVector<f64>, t: &[f64], states: bool) -> Result<SsTimeResponse> {
+        if let Some(mf) = self.modal_for(states) {
+            let z0 = mf.modal_coordinates(x0.as_slice());
+            let y = super::modal_time::march(&mf, z0, None, t)?;
+            return Ok(SsTimeResponse {
+                t: t.to_vec(),
+                y,
+                x: None,
+            });
+        }
         let zero = DVector::zeros(self.n_inputs());
         March {
             ss: self,
