@@ -109,7 +109,8 @@ pub(super) fn march(
         let dt = ti - now;
         if dt > 0.0 {
             let tol = 8.0 * f64::EPSILON * ti.max(dt);
-            if !((map_h - dt).abs() <= tol) {
+            // a new step length (NaN at the start compares false: no map yet)
+            if map_h.is_nan() || (map_h - dt).abs() > tol {
                 maps = mf
                     .blocks
                     .iter()
@@ -123,12 +124,12 @@ pub(super) fn march(
             }
             for (blk, mp) in mf.blocks.iter().zip(&maps) {
                 let (i0, k) = (blk.start, blk.lambda.nrows());
-                for r in 0..k {
+                for (r, slot) in tmp.iter_mut().enumerate().take(k) {
                     let mut acc = mp.f[r];
                     for c in 0..k {
                         acc += mp.e[(r, c)] * z[i0 + c];
                     }
-                    tmp[r] = acc;
+                    *slot = acc;
                 }
                 z[i0..i0 + k].copy_from_slice(&tmp[..k]);
             }
