@@ -97,6 +97,8 @@ fn plant(r: &mut Rng) -> Vec<String> {
             "--c".into(),
             "1 0".into(),
         ],
+        3 | 4 => state_space(r),
+        5 | 6 => model(r),
         _ => {
             let den = poly(r, degree);
             let num_degree = degree.min(4 + r.below(degree + 1));
@@ -106,6 +108,96 @@ fn plant(r: &mut Rng) -> Vec<String> {
     }
 }
 
+/// A state-space plant: random sizes (sometimes mismatched), entries from the hostile
+/// coefficient generator, MIMO at times.
+fn state_space(r: &mut Rng) -> Vec<String> {
+    let n = 1 + r.below(6) as usize;
+    let (m, p) = (1 + r.below(3) as usize, 1 + r.below(3) as usize);
+    fn rows(r: &mut Rng, rows: usize, cols: usize) -> String {
+        (0..rows)
+            .map(|_| {
+                (0..cols)
+                    .map(|_| coefficient(r))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect::<Vec<_>>()
+            .join("; ")
+    }
+    let a = rows(r, n, n);
+    // one in five with a size that does not fit
+    let bad = r.below(5) == 0;
+    let b = rows(r, if bad { n + 1 } else { n }, m);
+    let c = rows(r, p, n);
+    let d = rows(r, p, m);
+    let mut v = vec![format!("--a={a}"), format!("--b={b}"), format!("--c={c}")];
+    if r.below(2) == 0 {
+        v.push(format!("--d={d}"));
+    }
+    if r.below(3) == 0 {
+        v.push(format!(
+            "--channel={},{}",
+            1 + r.below(m as u64 + 1),
+            1 + r.below(p as u64 + 1)
+        ));
+    }
+    v
+}
+
+/// A textbook model with extreme, negative, unknown or missing parameters.
+fn model(r: &mut Rng) -> Vec<String> {
+    let (name, params): (&str, &[&str]) = match r.below(7) {
+        0 => ("spring-mass-damper", &["M", "C", "K"]),
+        1 => ("second-order", &["wn", "zeta"]),
+        2 => ("tank", &["A", "r"]),
+        3 => ("rc", &["R", "C"]),
+        4 => ("rlc", &["R", "L", "C"]),
+        5 => ("two-dof", &["M1", "M2", "K1", "K2", "C"]),
+        _ => (
+            "lattice",
+            &["N", "alpha", "beta", "m", "input", "output", "periodic"],
+        ),
+    };
+    let mut v = vec!["--model".into(), name.into()];
+    for _ in 0..r.below(4) {
+        let key = if r.below(8) == 0 {
+            "Q".to_string()
+        } else {
+            r.pick(params).to_string()
+        };
+        let val = match r.below(6) {
+            0 => coefficient(r),
+            1 => r
+                .pick(&["0", "-1", "1e300", "1e-300", "nan", "inf", "3000", "2.5"])
+                .into(),
+            _ => format!("{}", 1 + r.below(20)),
+        };
+        v.push(format!("--param={key}={val}"));
+    }
+    v
+}
+
+/// A controller spec: valid kinds with hostile values, unknown kinds and parameters.
+fn controller(r: &mut Rng) -> String {
+    let v = || ["0", "1", "-1", "2.5", "1e300", "1e-300", "nan", "-0.01"];
+    let kind = r.pick(&["p", "pi", "pd", "pid", "lead", "lag", "pidd", "", "pid:"]);
+    let keys: &[&str] = match kind {
+        "p" => &["kp"],
+        "pi" => &["kp", "ki"],
+        "pd" => &["kp", "kd", "tf"],
+        "pid" => &["kp", "ki", "kd", "tf"],
+        "lead" | "lag" => &["k", "z", "p"],
+        _ => &["kp", "x"],
+    };
+    let mut parts: Vec<String> = Vec::new();
+    for k in keys {
+        if r.below(6) != 0 {
+            parts.push(format!("{k}={}", r.pick(&v())));
+        }
+    }
+    format!("{kind}:{}", parts.join(","))
+}
+
 /// The command line of case `k`, and the picture it may write.
 fn case(r: &mut Rng, dir: &std::path::Path, k: usize) -> (Vec<String>, Option<PathBuf>) {
     let png = dir.join(format!("case{k}.png"));
@@ -113,9 +205,13 @@ fn case(r: &mut Rng, dir: &std::path::Path, k: usize) -> (Vec<String>, Option<Pa
     let mut out = None;
     let cmd = r.pick(&[
         "analyze", "residue", "response", "freq", "margins", "bode", "step", "pzmap", "nyquist",
+        "routh", "rlocus",
     ]);
     args.push(cmd.into());
     args.extend(plant(r));
+    if r.below(6) == 0 {
+        args.push(format!("--controller={}", controller(r)));
+    }
     match cmd {
         "response" => {
             args.push("--json".into());
@@ -139,6 +235,30 @@ fn case(r: &mut Rng, dir: &std::path::Path, k: usize) -> (Vec<String>, Option<Pa
             args.push("--json".into());
             if r.below(2) == 0 {
                 args.push("--w=0 1e-300 1 1e300".into());
+            }
+        }
+        "routh" => {
+            args.push("--json".into());
+            if r.below(2) == 0 {
+                args.push("--gain-range".into());
+            }
+            if r.below(3) == 0 {
+                args.push(format!("--gain={}", coefficient(r)));
+            }
+        }
+        "rlocus" => {
+            if r.below(3) == 0 {
+                args.push(format!("--gain={}", coefficient(r)));
+            }
+            if r.below(4) == 0 {
+                args.push("--negative".into());
+            }
+            if r.below(2) == 0 {
+                args.push("--json".into());
+            } else {
+                args.push("-o".into());
+                args.push(png.display().to_string());
+                out = Some(png);
             }
         }
         "bode" | "step" | "pzmap" | "nyquist" => {
@@ -220,8 +340,36 @@ fn hostile_plants_at_every_command() {
         if secs > slowest.0 {
             slowest = (secs, args.clone());
         }
+        if secs > 5.0 {
+            // slow cases in full, to reproduce
+            use std::io::Write;
+            if let Ok(mut f) = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(dir.join("slow.jsonl"))
+            {
+                let _ = writeln!(
+                    f,
+                    "{secs:.2} {}",
+                    serde_json::to_string(&args).unwrap_or_default()
+                );
+            }
+        }
         let short: Vec<String> = args.iter().map(|a| a.chars().take(120).collect()).collect();
-        let mut fail = |why: String| failures.push(format!("{short:?}: {why}"));
+        let full = serde_json::to_string(&args).unwrap_or_default();
+        let log = dir.join("failures.jsonl");
+        let mut fail = |why: String| {
+            // the whole command line, to reproduce (the report abbreviates it)
+            use std::io::Write;
+            if let Ok(mut f) = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(&log)
+            {
+                let _ = writeln!(f, "{full}");
+            }
+            failures.push(format!("{short:?}: {why}"));
+        };
         match code {
             None => fail(format!("no exit within {budget:?}")),
             Some(c @ 0..=2) => by_code[c as usize] += 1,

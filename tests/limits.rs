@@ -76,10 +76,11 @@ fn the_documented_limits_are_the_code_s() {
     assert!(row(section, "MAX_RECORD_BYTES").contains("1 MiB"));
     let exact = row(section, "MAX_EXACT_DEGREE");
     assert!(exact.contains(&format!(
-        "{}, {}, {}, {}",
+        "{}, {}, {}, {}, {}",
         ltikit::poly::exact::MAX_DIGITS,
         ltikit::poly::exact::MAX_EXPONENT,
         ltikit::poly::exact::MAX_EXACT_DEGREE,
-        ltikit::poly::exact::MAX_EXACT_BITS
+        ltikit::poly::exact::MAX_EXACT_BITS,
+        grouped(ltikit::poly::exact::MAX_EXACT_WORK as u64)
     )));
 }

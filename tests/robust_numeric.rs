@@ -272,3 +272,45 @@ fn nyquist_with_a_subnormal_pole_is_bounded() {
         assert!(n.points.len() <= 200_000, "{}", n.points.len());
     }
 }
+
+#[test]
+fn overflowing_schur_forms_do_not_reach_a_panicking_svd() {
+    // Found by the CLI fuzzer (seed 20261124, case 312): eigenvalues near 1e298 made the
+    // eigen-structure's reduced problem overflow and nalgebra's `svd()` panicked ("Singular
+    // value was NaN"). Now the SVD runs on a scaled copy with a cap, and an overflowed block
+    // keeps its eigenvalues simple.
+    let a = nalgebra::DMatrix::from_row_slice(
+        3,
+        3,
+        &[
+            2.0,
+            0.0,
+            0.000928,
+            3.863538767256927e-167,
+            1.6176470106156244e238,
+            68.855146,
+            3.1525814145940795e298,
+            -8.081031924361808e-299,
+            7.972305912785204e298,
+        ],
+    );
+    let r = std::panic::catch_unwind(|| ltikit::numeric::linalg::eigen_structure(&a));
+    assert!(r.is_ok(), "panicked");
+}
+
+#[test]
+fn the_exact_path_refuses_big_degree_times_bits() {
+    // Found by the CLI fuzzer: degree 49 with decimals spanning 1e±300 (~2000-bit integer
+    // coefficients) kept the exact path busy for 11.5 s; degree × bits is now bounded and the
+    // numerical path runs instead.
+    use ltikit::poly::exact::{ExactPoly, MAX_EXACT_WORK};
+    let tokens: Vec<String> = (0..50)
+        .map(|k| format!("{}e{}", 1 + k % 7, if k % 2 == 0 { 290 } else { -290 }))
+        .collect();
+    let p = ExactPoly::parse_descending(&tokens).unwrap();
+    let e = p.half_plane_counts().unwrap_err().to_string();
+    assert!(e.contains(&MAX_EXACT_WORK.to_string()), "{e}");
+    // a small one stays exact
+    let q = ExactPoly::parse_descending(&["1", "2e-300", "1e300"]).unwrap();
+    assert!(q.half_plane_counts().is_ok());
+}

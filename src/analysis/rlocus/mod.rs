@@ -16,7 +16,7 @@
 //!   angle condition (with multiplicity μ: μ angles 360°/μ apart); roots that N and D share
 //!   are closed-loop poles for every K and listed as fixed.
 //!
-//! The branches ([`trace`]) are the roots of D + K·N at adaptively chosen gains, matched
+//! The branches (`trace.rs`) are the roots of D + K·N at adaptively chosen gains, matched
 //! from one gain to the next.
 
 mod features;

@@ -147,7 +147,18 @@ fn real_basis(v: &DMatrix<Complex64>, g: usize) -> DMatrix<Complex64> {
         let z = v[(i, j / 2)];
         if j % 2 == 0 { z.re } else { z.im }
     });
-    let svd = stacked.svd(true, false);
+    // (nalgebra's `svd()` panics on a NaN singular value: non-finite input keeps `v`)
+    if stacked.iter().any(|x| !x.is_finite()) {
+        return v.clone();
+    }
+    let Some(svd) = stacked.try_svd(
+        true,
+        false,
+        f64::EPSILON,
+        crate::numeric::lstsq::MAX_SVD_ITER,
+    ) else {
+        return v.clone();
+    };
     let Some(u) = svd.u else {
         return v.clone();
     };

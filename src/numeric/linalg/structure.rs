@@ -388,7 +388,35 @@ pub(crate) fn reduced_problem(
         Some(inv) => &r * inv,
         None => r.clone(),
     };
-    let svd = rt.svd(false, true);
+    // The SVD on an exactly scaled copy (singular values scale back linearly), capped; an
+    // overflowed entry (eigenvalues near the top of the f64 range) or no convergence leaves
+    // the cluster at full rank — split into simple eigenvalues later: a multiplicity may be
+    // missed, never invented. (nalgebra's `svd()` panics on a NaN singular value.)
+    let amax = rt
+        .iter()
+        .fold(0.0f64, |a, z| a.max(z.re.abs()).max(z.im.abs()));
+    let full_rank = |m: usize| Reduced {
+        q_w: q_w.clone(),
+        sigma: vec![f64::INFINITY; m],
+        v: DMatrix::identity(m, m),
+    };
+    if !(amax.is_finite() && amax > 0.0) {
+        return full_rank(m);
+    }
+    let k = -(amax.log2().floor() as i32);
+    let rt = rt.map(|z| z * 2f64.powi(k));
+    let Some(mut svd) = rt.try_svd(
+        false,
+        true,
+        f64::EPSILON,
+        crate::numeric::lstsq::MAX_SVD_ITER,
+    ) else {
+        return full_rank(m);
+    };
+    if svd.singular_values.iter().any(|x| !x.is_finite()) {
+        return full_rank(m);
+    }
+    svd.singular_values.apply(|x| *x *= 2f64.powi(-k));
     let mut idx: Vec<usize> = (0..m).collect();
     idx.sort_by(|&a, &b| svd.singular_values[b].total_cmp(&svd.singular_values[a]));
     let sigma: Vec<f64> = idx.iter().map(|&i| svd.singular_values[i]).collect();
