@@ -392,11 +392,31 @@ fn hostile_plants_at_every_command() {
             }
         }
         if let Some(p) = &png {
+            // a MIMO pole-zero map writes one file per channel, FILE-i-j.png
+            let channel_files: Vec<PathBuf> = std::fs::read_dir(&dir)
+                .map(|d| {
+                    d.filter_map(|e| e.ok().map(|e| e.path()))
+                        .filter(|f| {
+                            f.file_name()
+                                .and_then(|n| n.to_str())
+                                .is_some_and(|n| n.starts_with(&format!("case{k}-")))
+                        })
+                        .collect()
+                })
+                .unwrap_or_default();
+            let is_png =
+                |f: &PathBuf| std::fs::read(f).is_ok_and(|b| b.starts_with(b"\x89PNG\r\n\x1a\n"));
             match (code, std::fs::read(p)) {
                 (Some(0), Ok(bytes)) if bytes.starts_with(b"\x89PNG\r\n\x1a\n") => {}
+                (Some(0), Err(_))
+                    if !channel_files.is_empty() && channel_files.iter().all(is_png) => {}
                 (Some(0), _) => fail("success without a whole PNG".into()),
                 (_, Ok(_)) => fail("a failed plot left a file".into()),
+                _ if !channel_files.is_empty() => fail("a failed plot left channel files".into()),
                 _ => {}
+            }
+            for f in channel_files {
+                let _ = std::fs::remove_file(f);
             }
         }
     }

@@ -292,12 +292,15 @@ fn run(
             .map(|(a, b)| (a - b).norm() / scale.max(a.norm().min(b.norm())))
             .fold(0.0, f64::max);
         let used = t.gains.len() - start + pending.len();
-        if moved > MAX_STEP && used + 2 < room && kb - ka > 1e-12 * kb {
-            let mid = if ka > 0.0 {
-                (ka * kb).sqrt()
-            } else {
-                kb / 16.0
-            };
+        // the geometric mean in logarithms (ka·kb can underflow or overflow); a step that
+        // cannot be split inside (ka, kb) is taken as it is
+        let mid = if ka > 0.0 {
+            (0.5 * (ka.ln() + kb.ln())).exp()
+        } else {
+            kb / 16.0
+        };
+        let splittable = mid > ka && mid < kb && kb - ka > 1e-12 * kb;
+        if moved > MAX_STEP && used + 2 < room && splittable {
             pending.push((kb, Some(rb)));
             pending.push((mid, None));
             continue;
