@@ -361,3 +361,26 @@ fn cli_errors_are_one_line_and_leave_no_file() {
         assert!(!png.exists(), "{all:?} left a file");
     }
 }
+
+#[test]
+fn extreme_gains_do_not_stall_the_trace() {
+    // Found by the CLI fuzzer: with K·N tiny next to D the first gains are ~1e-295, the
+    // geometric mean ka·kb underflowed to 0 and the step subdivision never ended. Now the
+    // trace finishes within its gain budget.
+    for (num, den) in [
+        (vec![1.1859678500658364e293], vec![-0.026768, 0.0, -1.0]),
+        (
+            vec![1.0, -1.013351772014754e-192],
+            vec![-3.203955378494507e-295, -0.273849],
+        ),
+        (vec![3.990219], vec![4.57e-321, -3.4038723315191824e-296]),
+    ] {
+        let opts = RootLocusOptions {
+            negative: false,
+            max_gains: 500,
+        };
+        if let Ok(l) = root_locus(&poly(&num), &poly(&den), &opts) {
+            assert!(l.branches.gains.len() <= 500);
+        }
+    }
+}
