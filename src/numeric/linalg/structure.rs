@@ -400,7 +400,15 @@ pub(crate) fn reduced_problem(
         sigma: vec![f64::INFINITY; m],
         v: DMatrix::identity(m, m),
     };
-    if !(amax.is_finite() && amax > 0.0) {
+    if amax == 0.0 {
+        // R̃ = 0: every direction is null (e.g. a multiple of the identity)
+        return Reduced {
+            q_w,
+            sigma: vec![0.0; m],
+            v: DMatrix::identity(m, m),
+        };
+    }
+    if !amax.is_finite() {
         return full_rank(m);
     }
     let k = -(amax.log2().floor() as i32);
