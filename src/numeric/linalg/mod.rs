@@ -10,6 +10,7 @@
 //! | [`schur`] | A = D·Q·T·Qᵀ·D⁻¹ with eigenvalues | balancing + power-of-two scaling + the two above, capped, one retry after a Householder similarity |
 //! | [`complex_schur`] | complex triangular Schur form | one unitary rotation per 2×2 block |
 //! | [`structure`] | multiplicities of eigenvalues | size-dependent clustering, dim null(A − λI) from a reduced m×m problem |
+//! | [`second_order`] | mechanical structure [[0, I], [−G, −E]] | symmetric eigenproblem of half the order (diagonal symmetrisation, classical damping) |
 //! | [`eigvec`] | eigenvectors (mode shapes) with residuals | back-substitution on the Schur form |
 //! | [`freqresp`] | C(sI − A)⁻¹B + D at many s | one Hessenberg reduction, then an O(n²) elimination per s |
 //! | [`rrqr`] | numerical rank | Householder QR with column pivoting |
@@ -33,6 +34,7 @@ pub mod minreal;
 pub mod modal;
 pub mod rrqr;
 pub mod schur;
+pub mod second_order;
 pub mod staircase;
 pub mod structure;
 pub mod zeros;

@@ -74,7 +74,9 @@ pub struct EigenStructure {
 }
 
 /// Eigenvalues of a square, finite A grouped into multiple eigenvalues with algebraic and
-/// geometric multiplicities (see the [module docs](self)).
+/// geometric multiplicities (see the [module docs](self)). A matrix with the mechanical
+/// structure of [`super::second_order`] gets its structure from the modes (a symmetric
+/// eigenproblem of half the order) instead of the Schur form.
 ///
 /// ```
 /// use nalgebra::DMatrix;
@@ -91,6 +93,16 @@ pub struct EigenStructure {
 /// assert!(s.clusters[0].is_semisimple() && s.clusters[0].algebraic == 3);
 /// ```
 pub fn eigen_structure(a: &DMatrix<f64>) -> Result<EigenStructure> {
+    if a.iter().all(|x| x.is_finite())
+        && let Some(so) = super::second_order::SecondOrder::detect(a)
+    {
+        return Ok(so.eigen_structure());
+    }
+    general_eigen_structure(a)
+}
+
+/// [`eigen_structure`] by the Schur form alone, whatever the structure of A.
+pub fn general_eigen_structure(a: &DMatrix<f64>) -> Result<EigenStructure> {
     let opts = SchurOptions {
         balance: true,
         want_q: false,

@@ -1,0 +1,643 @@
+//! Second-order (mechanical) structure: A = [[0, I], [−G, −E]] — positions q, then velocities
+//! q̇, with q̈ = −G·q − E·q̇ + … — where one positive diagonal similarity makes the stiffness G
+//! and the damping E symmetric, and they commute (classical damping: none, Rayleigh
+//! E = αI + βG, or any E with the same modes). Such a model is a set of uncoupled modes
+//! η̈ₖ + γₖ·η̇ₖ + λₖ·ηₖ = …, found by a *symmetric* eigenproblem of half the order, whose
+//! eigenvalues and vectors are accurate to ε‖G‖ whatever their multiplicity.
+//!
+//! This is what MATLAB's `mechss` does for models given as M, C, K; here the structure is
+//! recognised in A itself, so a model built by hand, from a plant file or by
+//! [`crate::lti::lattice`] gets it without asking.
+//!
+//! # Recognition
+//! 1. A is 2d×2d, its upper-left d×d block is exactly zero and its upper-right block exactly
+//!    the identity (the states are positions, then their velocities).
+//! 2. G = −A₂₁ and E = −A₂₂ are symmetric, or become symmetric under one diagonal similarity
+//!    S = Δ·G·Δ⁻¹ (Δ = diag(δ), δ > 0: the square roots of the masses when G = M⁻¹K with M
+//!    diagonal), found along a spanning forest of the coupling graph (δⱼ² = δᵢ²·gᵢⱼ/gⱼᵢ) and
+//!    then checked on every entry: |sᵢⱼ − sⱼᵢ| ≤ [`SYM_REL`]·max(|sᵢⱼ|, |sⱼᵢ|).
+//! 3. S_G = V·Λ·Vᵀ (nalgebra's `SymmetricEigen`, capped). Within each group of equal λ
+//!    (single linkage at [`snap_tol`]) the damping VᵀS_E·V is diagonalised as well; the model is
+//!    accepted when what is left off the diagonal of VᵀS_E·V is at most the same tolerance
+//!    (the damping does not couple the modes) and the residual ‖S_G·V − V·Λ‖ is too.
+//!
+//! # The modes
+//! Mode k has stiffness λₖ and damping γₖ; both are snapped within [`snap_tol`] — to 0, and
+//! the members of a group of equal values to their mean (a matrix within that distance of A
+//! has them exactly: a free translation, degenerate pairs). Its eigenvalues are the roots of
+//! μ² + γμ + λ = 0, formed without cancellation; when they are closer than the cluster
+//! diameter of [`super::structure`] (2·ν·(64nε)^(1/2)) the mode is *critical*: one double
+//! eigenvalue −γ/2 with a single eigenvector (the 2×2 block is a companion matrix, never
+//! diagonal): a Jordan block, like the rigid-body mode λ = γ = 0.
+
+use nalgebra::{DMatrix, SymmetricEigen};
+use num_complex::Complex64;
+
+use super::structure::{EigenCluster, EigenStructure};
+
+/// Relative asymmetry accepted in the symmetrised stiffness and damping (rounding of the
+/// model's own construction, e.g. M⁻¹K formed in floating point).
+pub const SYM_REL: f64 = 64.0 * f64::EPSILON;
+
+/// Growth factor of the snapping tolerance (as [`super::structure`]'s cluster radius).
+const GROWTH: f64 = 64.0;
+
+/// One mode η̈ + γη̇ + λη = … of a second-order model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SecondOrderMode {
+    /// Stiffness λ (rad²/s²): an eigenvalue of G.
+    pub stiffness: f64,
+    /// Damping γ (1/s): the matching eigenvalue of E.
+    pub damping: f64,
+    /// The two eigenvalues of A of this mode: the upper one of a complex pair first; for a
+    /// real pair the one nearer 0 first; equal for a critical mode.
+    pub roots: [Complex64; 2],
+    /// True when the two roots are one double eigenvalue with one eigenvector (a Jordan block).
+    pub critical: bool,
+}
+
+/// A state-space matrix recognised as second order (see the [module docs](self)).
+#[derive(Clone, Debug)]
+pub struct SecondOrder {
+    /// Degrees of freedom d (A is 2d × 2d).
+    pub dof: usize,
+    /// X_q = Δ⁻¹·V (d × d): column k is mode k's shape in the position coordinates.
+    pub shapes: DMatrix<f64>,
+    /// X_q⁻¹ = Vᵀ·Δ.
+    pub shapes_inv: DMatrix<f64>,
+    /// The modes, in order of increasing stiffness.
+    pub modes: Vec<SecondOrderMode>,
+    /// ν = max(‖A‖₁, ‖A‖∞): the scale of the tolerances.
+    pub scale: f64,
+}
+
+/// The absolute tolerance within which values of a symmetric d×d matrix of norm `norm` are
+/// equal (or 0): 64·(2d)·ε·norm — the cluster radius of a simple eigenvalue of A.
+pub fn snap_tol(dof: usize, norm: f64) -> f64 {
+    GROWTH * (2 * dof) as f64 * f64::EPSILON * norm
+}
+
+/// max row sum of |m| (m symmetric: also the 1-norm).
+fn norm_inf(m: &DMatrix<f64>) -> f64 {
+    m.row_iter()
+        .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// The diagonal δ making Δ·G·Δ⁻¹ and Δ·E·Δ⁻¹ symmetric, or `None`.
+fn symmetrizer(g: &DMatrix<f64>, e: &DMatrix<f64>) -> Option<Vec<f64>> {
+    let d = g.nrows();
+    let close = |x: f64, y: f64| (x - y).abs() <= SYM_REL * x.abs().max(y.abs());
+    let symmetric = |m: &DMatrix<f64>| (0..d).all(|j| (0..j).all(|i| close(m[(i, j)], m[(j, i)])));
+    if symmetric(g) && symmetric(e) {
+        return Some(vec![1.0; d]);
+    }
+    // δⱼ² = δᵢ²·mᵢⱼ/mⱼᵢ along a spanning forest of the coupling graph (G, else E).
+    let mut m2 = vec![f64::NAN; d];
+    for root in 0..d {
+        if !m2[root].is_nan() {
+            continue;
+        }
+        m2[root] = 1.0;
+        let mut stack = vec![root];
+        while let Some(i) = stack.pop() {
+            for j in 0..d {
+                if j == i || !m2[j].is_nan() {
+                    continue;
+                }
+                let ratio = if g[(i, j)] != 0.0 || g[(j, i)] != 0.0 {
+                    g[(i, j)] / g[(j, i)]
+                } else if e[(i, j)] != 0.0 || e[(j, i)] != 0.0 {
+                    e[(i, j)] / e[(j, i)]
+                } else {
+                    continue;
+                };
+                let v = m2[i] * ratio;
+                if !(v.is_finite() && v > 0.0) {
+                    return None;
+                }
+                m2[j] = v;
+                stack.push(j);
+            }
+        }
+    }
+    let delta: Vec<f64> = m2.iter().map(|v| v.sqrt()).collect();
+    let ok = |m: &DMatrix<f64>| {
+        (0..d).all(|j| {
+            (0..j).all(|i| {
+                close(
+                    delta[i] * m[(i, j)] / delta[j],
+                    delta[j] * m[(j, i)] / delta[i],
+                )
+            })
+        })
+    };
+    (ok(g) && ok(e)).then_some(delta)
+}
+
+/// Δ·M·Δ⁻¹, symmetrised.
+fn symmetrized(m: &DMatrix<f64>, delta: &[f64]) -> DMatrix<f64> {
+    let d = m.nrows();
+    DMatrix::from_fn(d, d, |i, j| {
+        0.5 * (delta[i] * m[(i, j)] / delta[j] + delta[j] * m[(j, i)] / delta[i])
+    })
+}
+
+/// Symmetric eigen decomposition with an iteration cap, eigenvalues ascending.
+fn sym_eig(m: DMatrix<f64>) -> Option<(Vec<f64>, DMatrix<f64>)> {
+    let d = m.nrows();
+    let eig = SymmetricEigen::try_new(m, f64::EPSILON, 64 * d.max(8))?;
+    let mut order: Vec<usize> = (0..d).collect();
+    order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+    let values = order.iter().map(|&k| eig.eigenvalues[k]).collect();
+    let vectors = DMatrix::from_fn(d, d, |i, j| eig.eigenvectors[(i, order[j])]);
+    Some((values, vectors))
+}
+
+/// Groups of consecutive sorted values within `tol` (single linkage): index ranges.
+fn runs(values: &[f64], tol: f64) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < values.len() {
+        let mut j = i + 1;
+        while j < values.len() && values[j] - values[j - 1] <= tol {
+            j += 1;
+        }
+        out.push((i, j));
+        i = j;
+    }
+    out
+}
+
+/// Sets every member of each run to the run's mean, and values within `tol` of 0 to 0.
+fn snap(values: &mut [f64], ranges: &[(usize, usize)], tol: f64) {
+    for &(a, b) in ranges {
+        let mut m = values[a..b].iter().sum::<f64>() / (b - a) as f64;
+        if m.abs() <= tol || values[a..b].iter().any(|v| v.abs() <= tol) {
+            m = 0.0;
+        }
+        values[a..b].iter_mut().for_each(|v| *v = m);
+    }
+}
+
+impl SecondOrderMode {
+    /// The mode with stiffness λ and damping γ; `critical_tol` bounds |μ₁ − μ₂| for a double
+    /// root.
+    fn new(stiffness: f64, damping: f64, critical_tol: f64) -> SecondOrderMode {
+        let (l, g) = (stiffness, damping);
+        let c = |re: f64, im: f64| Complex64::new(re, im);
+        // disc = γ² − 4λ without cancellation: (γ − 2√λ)(γ + 2√λ) for λ > 0
+        let disc = if l > 0.0 {
+            let r = 2.0 * l.sqrt();
+            (g.abs() - r) * (g.abs() + r)
+        } else {
+            g * g - 4.0 * l
+        };
+        if disc.abs().sqrt() <= critical_tol {
+            let mu = c(-0.5 * g, 0.0);
+            return SecondOrderMode {
+                stiffness: l,
+                damping: g,
+                roots: [mu, mu],
+                critical: true,
+            };
+        }
+        let roots = if disc < 0.0 {
+            let w = 0.5 * (-disc).sqrt();
+            [c(-0.5 * g, w), c(-0.5 * g, -w)]
+        } else {
+            // q = −(γ + sign(γ)·√disc)/2 is the root of larger magnitude, λ/q the other
+            let sq = disc.sqrt();
+            let q = -0.5 * (g + if g >= 0.0 { sq } else { -sq });
+            let small = if q == 0.0 { 0.0 } else { l / q };
+            [c(small, 0.0), c(q, 0.0)]
+        };
+        SecondOrderMode {
+            stiffness: l,
+            damping: g,
+            roots,
+            critical: false,
+        }
+    }
+
+    /// The mode's 2×2 block [[0, 1], [−λ, −γ]] in the coordinates (η, η̇).
+    pub fn block(&self) -> [[f64; 2]; 2] {
+        [[0.0, 1.0], [-self.stiffness, -self.damping]]
+    }
+}
+
+impl SecondOrder {
+    /// Recognises the second-order structure of `a` (see the [module docs](self)); `None` when
+    /// `a` does not have it (or the symmetric eigenproblem does not converge, practically
+    /// never). `a` must be finite.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::numeric::linalg::second_order::SecondOrder;
+    /// // Two unit masses between walls, springs k = 1, Rayleigh damping E = 0.1·G:
+    /// // G = [[2, −1], [−1, 2]], modes λ = 1, 3 with γ = 0.1, 0.3.
+    /// let a = DMatrix::from_row_slice(4, 4, &[
+    ///     0.0, 0.0, 1.0, 0.0,
+    ///     0.0, 0.0, 0.0, 1.0,
+    ///     -2.0, 1.0, -0.2, 0.1,
+    ///     1.0, -2.0, 0.1, -0.2,
+    /// ]);
+    /// let so = SecondOrder::detect(&a).unwrap();
+    /// assert_eq!(so.dof, 2);
+    /// assert!((so.modes[0].stiffness - 1.0).abs() < 1e-15 && (so.modes[1].stiffness - 3.0).abs() < 1e-15);
+    /// assert!((so.modes[1].damping - 0.3).abs() < 1e-15);
+    /// // a general matrix is not second order
+    /// assert!(SecondOrder::detect(&DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 0.0])).is_none());
+    /// ```
+    pub fn detect(a: &DMatrix<f64>) -> Option<SecondOrder> {
+        let n = a.nrows();
+        if n < 2 || n % 2 != 0 || !a.is_square() {
+            return None;
+        }
+        let d = n / 2;
+        // exact zero and identity blocks on top (bitwise: the structure is exact or absent)
+        #[allow(clippy::float_cmp)]
+        for j in 0..n {
+            for i in 0..d {
+                let want = if j == d + i { 1.0 } else { 0.0 };
+                if a[(i, j)] != want {
+                    return None;
+                }
+            }
+        }
+        let g = DMatrix::from_fn(d, d, |i, j| -a[(d + i, j)]);
+        let e = DMatrix::from_fn(d, d, |i, j| -a[(d + i, d + j)]);
+        let delta = symmetrizer(&g, &e)?;
+        let sg = symmetrized(&g, &delta);
+        let se = symmetrized(&e, &delta);
+        let (norm_g, norm_e) = (norm_inf(&sg), norm_inf(&se));
+        let (tol_g, tol_e) = (snap_tol(d, norm_g), snap_tol(d, norm_e));
+        let (mut lam, mut v) = sym_eig(sg.clone())?;
+        // residual of the stiffness decomposition
+        let resid =
+            &sg * &v - &v * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&lam));
+        let r = resid.amax();
+        if r.is_nan() || r > tol_g.max(f64::MIN_POSITIVE) {
+            return None;
+        }
+        let groups = runs(&lam, tol_g);
+        snap(&mut lam, &groups, tol_g);
+        // the damping in the stiffness modes, diagonalised within each group of equal λ
+        let mut gam = vec![0.0; d];
+        if norm_e > 0.0 {
+            let mut ev = v.transpose() * &se * &v;
+            for &(i0, i1) in &groups {
+                let k = i1 - i0;
+                if k > 1 {
+                    let block = DMatrix::from_fn(k, k, |i, j| {
+                        0.5 * (ev[(i0 + i, i0 + j)] + ev[(i0 + j, i0 + i)])
+                    });
+                    let (_, w) = sym_eig(block)?;
+                    let cols = v.columns(i0, k) * &w;
+                    v.columns_mut(i0, k).copy_from(&cols);
+                }
+            }
+            if groups.iter().any(|&(i0, i1)| i1 - i0 > 1) {
+                ev = v.transpose() * &se * &v;
+            }
+            let mut off = 0.0f64;
+            for j in 0..d {
+                for i in 0..d {
+                    if i != j {
+                        off = off.max(ev[(i, j)].abs());
+                    }
+                }
+                gam[j] = ev[(j, j)];
+            }
+            if off.is_nan() || off > tol_e {
+                return None;
+            }
+            // equal damping within a stiffness group (sorted there for the runs)
+            for &(i0, i1) in &groups {
+                let mut idx: Vec<usize> = (i0..i1).collect();
+                idx.sort_by(|&x, &y| gam[x].total_cmp(&gam[y]));
+                let sorted: Vec<f64> = idx.iter().map(|&k| gam[k]).collect();
+                let mut vals = sorted.clone();
+                let r = runs(&sorted, tol_e);
+                snap(&mut vals, &r, tol_e);
+                for (slot, &k) in idx.iter().enumerate() {
+                    gam[k] = vals[slot];
+                }
+            }
+        }
+        let scale = super::norm_1_inf(a);
+        // the cluster diameter of a double eigenvalue (structure.rs: 2·r₂)
+        let critical_tol = 2.0 * super::structure::radius(2, n, scale);
+        let modes = lam
+            .iter()
+            .zip(&gam)
+            .map(|(&l, &g)| SecondOrderMode::new(l, g, critical_tol))
+            .collect();
+        let shapes = DMatrix::from_fn(d, d, |i, j| v[(i, j)] / delta[i]);
+        let shapes_inv = DMatrix::from_fn(d, d, |i, j| v[(j, i)] * delta[j]);
+        Some(SecondOrder {
+            dof: d,
+            shapes,
+            shapes_inv,
+            modes,
+            scale,
+        })
+    }
+
+    /// Order 2d of A.
+    pub fn order(&self) -> usize {
+        2 * self.dof
+    }
+
+    /// The eigenvalues of A grouped into multiple eigenvalues: roots of different modes within
+    /// the simple-eigenvalue radius of [`super::structure`] share a cluster (semisimple: one
+    /// eigenvector per mode); a critical mode adds two to the algebraic and one to the
+    /// geometric multiplicity. Positions are 2k, 2k + 1 for mode k; `sigma` holds, per
+    /// critical mode, the non-zero singular value of its block minus the eigenvalue (relative
+    /// to ν) and then one 0 per eigenvector.
+    pub fn eigen_structure(&self) -> EigenStructure {
+        let n = self.order();
+        let scale = self.scale;
+        // (value, position, mode critical)
+        let mut ev: Vec<(Complex64, usize, bool)> = Vec::with_capacity(n);
+        for (k, m) in self.modes.iter().enumerate() {
+            ev.push((m.roots[0], 2 * k, m.critical));
+            ev.push((m.roots[1], 2 * k + 1, m.critical));
+        }
+        let tol = super::structure::radius(1, n, scale);
+        // single linkage on the real part order, then by distance
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&a, &b| ev[a].0.re.total_cmp(&ev[b].0.re));
+        let mut label: Vec<usize> = (0..n).collect();
+        fn find(l: &mut [usize], i: usize) -> usize {
+            let mut r = i;
+            while l[r] != r {
+                r = l[r];
+            }
+            l[i] = r;
+            r
+        }
+        for (x, &i) in order.iter().enumerate() {
+            for &j in &order[x + 1..] {
+                if ev[j].0.re - ev[i].0.re > tol {
+                    break;
+                }
+                if (ev[i].0 - ev[j].0).norm() <= tol {
+                    let (ri, rj) = (find(&mut label, i), find(&mut label, j));
+                    if ri != rj {
+                        label[ri.max(rj)] = ri.min(rj);
+                    }
+                }
+            }
+        }
+        let mut clusters: Vec<EigenCluster> = Vec::new();
+        let mut index_of: Vec<Option<usize>> = vec![None; n];
+        for (i, &(value, pos, critical)) in ev.iter().enumerate() {
+            let r = find(&mut label, i);
+            let ci = match index_of[r] {
+                Some(ci) => ci,
+                None => {
+                    clusters.push(EigenCluster {
+                        value: Complex64::new(0.0, 0.0),
+                        algebraic: 0,
+                        geometric: 0,
+                        members: Vec::new(),
+                        positions: Vec::new(),
+                        sigma: Vec::new(),
+                    });
+                    index_of[r] = Some(clusters.len() - 1);
+                    clusters.len() - 1
+                }
+            };
+            let c = &mut clusters[ci];
+            c.members.push(value);
+            c.positions.push(pos);
+            c.algebraic += 1;
+            // a critical mode's two roots: one eigenvector (counted at its first root)
+            if !critical || pos % 2 == 0 {
+                c.geometric += 1;
+            }
+            if critical && pos % 2 == 0 {
+                let m = &self.modes[pos / 2];
+                let mu = m.roots[0].re;
+                // ‖[[−μ, 1], [−λ, −γ − μ]]‖_F (rank 1)
+                let s =
+                    (mu * mu + 1.0 + m.stiffness * m.stiffness + (m.damping + mu).powi(2)).sqrt();
+                c.sigma.push(s / scale.max(f64::MIN_POSITIVE));
+            }
+        }
+        for c in &mut clusters {
+            let sum: Complex64 = c.members.iter().sum();
+            let mean = sum / c.members.len() as f64;
+            let self_conj = c.members.iter().all(|z| {
+                c.members
+                    .iter()
+                    .any(|w| (w.conj() - z).norm() <= tol || w.conj() == *z)
+            });
+            c.value = if self_conj {
+                Complex64::new(mean.re, 0.0)
+            } else {
+                mean
+            };
+            c.sigma.sort_by(|a, b| b.total_cmp(a));
+            c.sigma.extend(std::iter::repeat_n(0.0, c.geometric));
+        }
+        // exact conjugate values for mirrored clusters
+        let values: Vec<Complex64> = clusters.iter().map(|c| c.value).collect();
+        for c in &mut clusters {
+            if c.value.im < 0.0
+                && let Some(up) = values
+                    .iter()
+                    .find(|v| v.im > 0.0 && (v.conj() - c.value).norm() <= tol)
+            {
+                c.value = up.conj();
+            }
+        }
+        EigenStructure {
+            clusters,
+            scale,
+            rank_tol: f64::EPSILON.sqrt() * scale,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::float_cmp)] // exact zeros are the contract
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// [[0, I], [−G, −E]].
+    fn assemble(g: &DMatrix<f64>, e: &DMatrix<f64>) -> DMatrix<f64> {
+        let d = g.nrows();
+        let mut a = DMatrix::zeros(2 * d, 2 * d);
+        for i in 0..d {
+            a[(i, d + i)] = 1.0;
+            for j in 0..d {
+                a[(d + i, j)] = -g[(i, j)];
+                a[(d + i, d + j)] = -e[(i, j)];
+            }
+        }
+        a
+    }
+
+    /// The periodic chain's Ω-matrix negated: 2 on the diagonal, −1 to the neighbours (ring).
+    fn ring(d: usize) -> DMatrix<f64> {
+        let mut g = DMatrix::zeros(d, d);
+        for i in 0..d {
+            g[(i, i)] = 2.0;
+            g[(i, (i + 1) % d)] -= 1.0;
+            g[(i, (i + d - 1) % d)] -= 1.0;
+        }
+        g
+    }
+
+    #[test]
+    fn periodic_ring_modes_and_structure() {
+        // λ_p = 4 sin²(πp/N): p and N − p degenerate, p = 0 the free translation.
+        let d = 32;
+        let so = SecondOrder::detect(&assemble(&ring(d), &DMatrix::zeros(d, d))).unwrap();
+        let mut want: Vec<f64> = (0..d)
+            .map(|p| 4.0 * (PI * p as f64 / d as f64).sin().powi(2))
+            .collect();
+        want.sort_by(f64::total_cmp);
+        for (m, w) in so.modes.iter().zip(&want) {
+            assert!((m.stiffness - w).abs() < 1e-14, "{} vs {w}", m.stiffness);
+            assert_eq!(m.damping, 0.0);
+        }
+        assert_eq!(
+            so.modes[0].stiffness, 0.0,
+            "the free translation is exactly 0"
+        );
+        assert!(so.modes[0].critical);
+        let st = so.eigen_structure();
+        let zero = st.clusters.iter().find(|c| c.value.norm() == 0.0).unwrap();
+        assert_eq!((zero.algebraic, zero.geometric), (2, 1));
+        // ±jω_p of multiplicity 2 (semisimple) for p = 1 … N/2 − 1, simple ±2j
+        let doubles = st
+            .clusters
+            .iter()
+            .filter(|c| c.algebraic == 2 && c.geometric == 2)
+            .count();
+        assert_eq!(doubles, 2 * (d / 2 - 1));
+        for c in &st.clusters {
+            assert_eq!(c.value.re, 0.0, "undamped: on the axis exactly");
+        }
+        let top = st.clusters.iter().find(|c| c.value.im > 1.999).unwrap();
+        assert_eq!(top.algebraic, 1);
+        assert!((top.value.im - 2.0).abs() < 1e-14, "{}", top.value.im - 2.0);
+    }
+
+    #[test]
+    fn rayleigh_damping_is_recognised_and_diagonal() {
+        let d = 10;
+        let mut g = DMatrix::zeros(d, d);
+        for i in 0..d {
+            g[(i, i)] = 2.0;
+            if i + 1 < d {
+                g[(i, i + 1)] = -1.0;
+                g[(i + 1, i)] = -1.0;
+            }
+        }
+        let e = DMatrix::identity(d, d) * 0.05 + &g * 0.02;
+        let so = SecondOrder::detect(&assemble(&g, &e)).unwrap();
+        for (k, m) in so.modes.iter().enumerate() {
+            let w = 4.0 * (PI * (k + 1) as f64 / (2.0 * (d + 1) as f64)).sin().powi(2);
+            assert!((m.stiffness - w).abs() < 1e-14);
+            assert!((m.damping - (0.05 + 0.02 * w)).abs() < 1e-15);
+            // the roots satisfy μ² + γμ + λ = 0
+            for mu in m.roots {
+                assert!((mu * mu + m.damping * mu + m.stiffness).norm() < 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    fn diagonal_masses_are_symmetrised() {
+        // M = diag(1, 4), K = [[3, −1], [−1, 1]]: G = M⁻¹K is not symmetric.
+        let k = DMatrix::from_row_slice(2, 2, &[3.0, -1.0, -1.0, 1.0]);
+        let minv = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![1.0, 0.25]));
+        let g = &minv * &k;
+        let so = SecondOrder::detect(&assemble(&g, &DMatrix::zeros(2, 2))).unwrap();
+        // eigenvalues of M⁻¹K: λ² − 3.25λ + 0.5 = 0
+        let disc = (3.25f64 * 3.25 - 2.0).sqrt();
+        let want = [(3.25 - disc) / 2.0, (3.25 + disc) / 2.0];
+        for (m, w) in so.modes.iter().zip(want) {
+            assert!((m.stiffness - w).abs() < 1e-14);
+        }
+        // the shapes are eigenvectors of G: G·x = λ·x
+        for (kk, m) in so.modes.iter().enumerate() {
+            let x = so.shapes.column(kk);
+            let r = &g * x - x * m.stiffness;
+            assert!(r.amax() < 1e-14);
+        }
+        let id = &so.shapes_inv * &so.shapes;
+        assert!((id - DMatrix::identity(2, 2)).amax() < 1e-15);
+    }
+
+    #[test]
+    fn coupling_damping_and_general_matrices_are_refused() {
+        // one damper on the first mass of a 3-chain: does not commute with G
+        let mut g = DMatrix::zeros(3, 3);
+        for i in 0..3 {
+            g[(i, i)] = 2.0;
+            if i + 1 < 3 {
+                g[(i, i + 1)] = -1.0;
+                g[(i + 1, i)] = -1.0;
+            }
+        }
+        let mut e = DMatrix::zeros(3, 3);
+        e[(0, 0)] = 0.3;
+        assert!(SecondOrder::detect(&assemble(&g, &e)).is_none());
+        // not the block pattern
+        let mut a = assemble(&g, &DMatrix::zeros(3, 3));
+        a[(0, 0)] = 1e-300;
+        assert!(SecondOrder::detect(&a).is_none());
+        // a sign pattern no positive diagonal can symmetrise
+        let g = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, -1.0, 1.0]);
+        assert!(SecondOrder::detect(&assemble(&g, &DMatrix::zeros(2, 2))).is_none());
+        // odd order
+        assert!(SecondOrder::detect(&DMatrix::zeros(3, 3)).is_none());
+    }
+
+    #[test]
+    fn critical_and_overdamped_modes() {
+        // one dof: λ = 1, γ = 2 (critical: −1 double, a Jordan block); λ = 1, γ = 3 (−0.38, −2.62)
+        let crit =
+            SecondOrder::detect(&DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -1.0, -2.0])).unwrap();
+        assert!(crit.modes[0].critical);
+        assert_eq!(crit.modes[0].roots[0], Complex64::new(-1.0, 0.0));
+        let st = crit.eigen_structure();
+        assert_eq!(st.clusters.len(), 1);
+        assert_eq!((st.clusters[0].algebraic, st.clusters[0].geometric), (2, 1));
+        let over =
+            SecondOrder::detect(&DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -1.0, -3.0])).unwrap();
+        let r = over.modes[0].roots;
+        let s5 = 5f64.sqrt();
+        assert!((r[0].re - (-3.0 + s5) / 2.0).abs() < 1e-16);
+        assert!((r[1].re - (-3.0 - s5) / 2.0).abs() < 1e-15);
+        // negative stiffness (an inverted pendulum): ±1 real
+        let inv =
+            SecondOrder::detect(&DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 1.0, 0.0])).unwrap();
+        let mut re: Vec<f64> = inv.modes[0].roots.iter().map(|z| z.re).collect();
+        re.sort_by(f64::total_cmp);
+        assert_eq!(re, vec![-1.0, 1.0]);
+    }
+
+    #[test]
+    fn shared_root_of_two_modes_is_a_semisimple_double_eigenvalue() {
+        // modes (λ, γ) = (2, 3): roots −1, −2 and (3, 4): roots −1, −3 — as G = diag(2, 3),
+        // E = diag(3, 4): −1 is a double eigenvalue with two eigenvectors.
+        let g = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![2.0, 3.0]));
+        let e = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![3.0, 4.0]));
+        let so = SecondOrder::detect(&assemble(&g, &e)).unwrap();
+        let st = so.eigen_structure();
+        let m1 = st
+            .clusters
+            .iter()
+            .find(|c| (c.value.re + 1.0).abs() < 1e-14)
+            .unwrap();
+        assert_eq!((m1.algebraic, m1.geometric), (2, 2));
+        assert_eq!(st.clusters.len(), 3);
+    }
+}
