@@ -5,6 +5,10 @@
 //! of models of order ≥ [`MODAL_MIN_ORDER`] when the modal form is safe and the states are
 //! not asked for; otherwise [`super::time`]'s dense march.
 //!
+//! 1×1 blocks are marched as scalar *tracks*: blocks of equal λ share one free and one forced
+//! track, and a conjugate pair with exactly conjugate data is one track counted twice — the
+//! lattice's 256 states are 65 tracks for one channel.
+//!
 //! Block maps: e^(λh) and h·φ₁(λh)·b̂ (φ₁(z) = (e^z − 1)/z with e^z − 1 formed without
 //! cancellation) for 1×1 blocks; the exponential of the augmented block [[Λh, b̂h], [0, 0]]
 //! (Taylor series after scaling, then squaring) for larger ones.
@@ -87,11 +91,88 @@ fn block_map(lambda: &DMatrix<C>, b: &[C], h: f64) -> Result<BlockMap> {
     })
 }
 
+/// A scalar track of the march: w(t) of one 1×1 block value λ — free (w(0) = 1, ẇ = λw) or
+/// forced by the unit input (w(0) = 0, ẇ = λw + 1) — and what each output sees of it.
+/// 1×1 blocks with the same λ share their tracks (their contributions are multiples of the
+/// same two functions of t), and a track whose coefficients are exactly the conjugates of
+/// another's is dropped, its partner counted twice (the outputs are real).
+struct Track {
+    lambda: C,
+    forced: bool,
+    /// Output coefficients (p), already doubled for a track that stands for a conjugate pair.
+    coef: Vec<C>,
+}
+
+/// The tracks of the 1×1 blocks, and the indices of the larger blocks.
+fn tracks(mf: &ModalForm, z0: &[C], input: Option<usize>) -> (Vec<Track>, Vec<usize>) {
+    let p = mf.c.nrows();
+    let mut out: Vec<Track> = Vec::new();
+    let mut general = Vec::new();
+    // group 1×1 blocks by their exact value (blocks of equal value are adjacent in the
+    // second-order form; a map keeps the general case linear too)
+    let mut index: std::collections::HashMap<(u64, u64, bool), usize> =
+        std::collections::HashMap::new();
+    for (bi, blk) in mf.blocks.iter().enumerate() {
+        if blk.lambda.nrows() != 1 {
+            general.push(bi);
+            continue;
+        }
+        let (i, l) = (blk.start, blk.lambda[(0, 0)]);
+        let parts = [
+            (false, z0[i]),
+            (true, input.map_or(C::new(0.0, 0.0), |col| mf.b[(i, col)])),
+        ];
+        for (forced, w) in parts {
+            if w == C::new(0.0, 0.0) {
+                continue;
+            }
+            let key = (l.re.to_bits(), l.im.to_bits(), forced);
+            let k = *index.entry(key).or_insert_with(|| {
+                out.push(Track {
+                    lambda: l,
+                    forced,
+                    coef: vec![C::new(0.0, 0.0); p],
+                });
+                out.len() - 1
+            });
+            for (j, c) in out[k].coef.iter_mut().enumerate() {
+                *c += mf.c[(j, i)] * w;
+            }
+        }
+    }
+    // conjugate partners: keep the upper track, twice
+    let mut keep = vec![true; out.len()];
+    for k in 0..out.len() {
+        if !keep[k] || out[k].lambda.im <= 0.0 {
+            continue;
+        }
+        let l = out[k].lambda.conj();
+        let key = (l.re.to_bits(), l.im.to_bits(), out[k].forced);
+        if let Some(&m) = index.get(&key)
+            && keep[m]
+            && out[m]
+                .coef
+                .iter()
+                .zip(&out[k].coef)
+                .all(|(a, b)| *a == b.conj())
+        {
+            keep[m] = false;
+            out[k].coef.iter_mut().for_each(|c| *c *= 2.0);
+        }
+    }
+    let tracks = out
+        .into_iter()
+        .zip(keep)
+        .filter_map(|(t, k)| (k && t.coef.iter().any(|c| *c != C::new(0.0, 0.0))).then_some(t))
+        .collect();
+    (tracks, general)
+}
+
 /// The outputs (p × t.len()) from modal state `z0` under a unit step on `input` (or no input),
 /// at the times `t` (finite, ≥ 0, any order).
 pub(super) fn march(
     mf: &ModalForm,
-    mut z: Vec<C>,
+    z0: Vec<C>,
     input: Option<usize>,
     t: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
@@ -100,6 +181,19 @@ pub(super) fn march(
     order.sort_by(|&i, &j| t[i].total_cmp(&t[j]));
     let mut y = vec![vec![0.0; t.len()]; p];
     let bcol = |i: usize| input.map_or(C::new(0.0, 0.0), |col| mf.b[(i, col)]);
+    let (tracks, general) = tracks(mf, &z0, input);
+    let mut z = z0;
+    // track states and their maps over the current step length
+    let mut w: Vec<C> = tracks
+        .iter()
+        .map(|tr| C::new(if tr.forced { 0.0 } else { 1.0 }, 0.0))
+        .collect();
+    let mut e = vec![C::new(0.0, 0.0); tracks.len()];
+    let mut f = vec![C::new(0.0, 0.0); tracks.len()];
+    // coefficients by output, track-major for the inner loop
+    let coef: Vec<Vec<C>> = (0..p)
+        .map(|j| tracks.iter().map(|tr| tr.coef[j]).collect())
+        .collect();
     let mut maps: Vec<BlockMap> = Vec::new();
     let mut map_h = f64::NAN;
     let mut now = 0.0;
@@ -111,10 +205,21 @@ pub(super) fn march(
             let tol = 8.0 * f64::EPSILON * ti.max(dt);
             // a new step length (NaN at the start compares false: no map yet)
             if map_h.is_nan() || (map_h - dt).abs() > tol {
-                maps = mf
-                    .blocks
+                for (k, tr) in tracks.iter().enumerate() {
+                    let zz = tr.lambda * dt;
+                    e[k] = zz.exp();
+                    f[k] = if !tr.forced {
+                        C::new(0.0, 0.0)
+                    } else if zz.norm() == 0.0 {
+                        C::new(dt, 0.0)
+                    } else {
+                        expm1(zz) / zz * dt
+                    };
+                }
+                maps = general
                     .iter()
-                    .map(|blk| {
+                    .map(|&bi| {
+                        let blk = &mf.blocks[bi];
                         let k = blk.lambda.nrows();
                         let b: Vec<C> = (0..k).map(|r| bcol(blk.start + r)).collect();
                         block_map(&blk.lambda, &b, dt)
@@ -122,7 +227,11 @@ pub(super) fn march(
                     .collect::<Result<_>>()?;
                 map_h = dt;
             }
-            for (blk, mp) in mf.blocks.iter().zip(&maps) {
+            for ((wk, ek), fk) in w.iter_mut().zip(&e).zip(&f) {
+                *wk = *ek * *wk + *fk;
+            }
+            for (&bi, mp) in general.iter().zip(&maps) {
+                let blk = &mf.blocks[bi];
                 let (i0, k) = (blk.start, blk.lambda.nrows());
                 for (r, slot) in tmp.iter_mut().enumerate().take(k) {
                     let mut acc = mp.f[r];
@@ -137,11 +246,23 @@ pub(super) fn march(
         }
         for (j, row) in y.iter_mut().enumerate() {
             let mut acc = input.map_or(0.0, |col| mf.d[(j, col)]);
-            for (cz, zz) in mf.c.row(j).iter().zip(&z) {
-                acc += (cz * zz).re;
+            for (c, wk) in coef[j].iter().zip(&w) {
+                acc += c.re * wk.re - c.im * wk.im;
+            }
+            for &bi in &general {
+                let blk = &mf.blocks[bi];
+                let rows = blk.start..blk.start + blk.lambda.nrows();
+                for (r, zr) in rows.clone().zip(&z[rows]) {
+                    acc += (mf.c[(j, r)] * zr).re;
+                }
             }
             if !acc.is_finite() {
-                let norm = z.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+                let norm = w
+                    .iter()
+                    .chain(z.iter())
+                    .map(|v| v.norm_sqr())
+                    .sum::<f64>()
+                    .sqrt();
                 return Err(LtiError::Diverged { t: ti, norm });
             }
             row[i] = acc;

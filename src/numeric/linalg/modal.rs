@@ -13,6 +13,10 @@
 //! 3. The off-diagonal blocks are removed by a unit upper-triangular Y from the Sylvester
 //!    equations Sᵢᵢ·Z − Z·Sⱼⱼ = −Sᵢⱼ (triangular, solved by substitution).
 //!
+//! A model with the mechanical structure of [`super::second_order`] gets its modal form from
+//! its modes instead ([`ModalForm::from_second_order`]: no Schur form, 1×1 blocks except for
+//! critical modes).
+//!
 //! The form is **used only when it is safe**: blocks of at most [`MAX_BLOCK`], a transformation
 //! whose condition estimate ‖Y‖_F·‖Y⁻¹‖_F is at most [`MAX_COND`], and agreement with the
 //! Hessenberg evaluation to [`CHECK_REL`] at probe points; otherwise [`ModalForm::new`] returns
@@ -23,6 +27,7 @@ use num_complex::Complex64;
 
 use super::freqresp::HessenbergResponse;
 use super::schur::{SchurOptions, real_schur};
+use super::second_order::SecondOrder;
 use crate::error::Result;
 
 /// Eigenvalues closer than this times ‖A‖_F share a block (a 2×2 Jordan block of A computed
@@ -55,16 +60,30 @@ pub struct ModalForm {
     pub b: DMatrix<C>,
     /// Ĉ = C·X (p × n).
     pub c: DMatrix<C>,
-    /// Y⁻¹ (the block diagonalisation), for initial states.
-    y_inv: DMatrix<C>,
-    /// W (the reordering rotations), for initial states.
-    w: DMatrix<C>,
-    /// X0⁻¹ = Zᴴ·Qᵀ·D⁻¹ (the Schur basis), for initial states.
-    x0_inv: DMatrix<C>,
+    /// X⁻¹, for initial states.
+    inverse: Inverse,
     /// D (p × m).
     pub d: DMatrix<f64>,
     /// The condition estimate of the block diagonalisation.
     pub cond: f64,
+}
+
+/// X⁻¹ in factored form (for the modal coordinates of an initial state).
+#[derive(Clone, Debug)]
+enum Inverse {
+    /// The Schur path: X⁻¹ = Y⁻¹·Wᴴ·X0⁻¹ with X0⁻¹ = Zᴴ·Qᵀ·D⁻¹ (the Schur basis), W the
+    /// reordering rotations, Y the block diagonalisation.
+    Schur {
+        y_inv: DMatrix<C>,
+        w: DMatrix<C>,
+        x0_inv: DMatrix<C>,
+    },
+    /// The second-order path: (η, η̇) = (X_q⁻¹·q, X_q⁻¹·q̇), then per mode k the 2×2 map
+    /// `modes[k]` onto the modal coordinates 2k, 2k + 1.
+    SecondOrder {
+        shapes_inv: DMatrix<f64>,
+        modes: Vec<[[C; 2]; 2]>,
+    },
 }
 
 /// Givens rotation (c real, s complex) with [c s; −s̄ c]·[f; g] = [r; 0] (LAPACK `zlartg`).
@@ -219,6 +238,11 @@ impl ModalForm {
         if n == 0 {
             return Ok(None);
         }
+        if a.iter().all(|x| x.is_finite())
+            && let Some(so) = SecondOrder::detect(a)
+        {
+            return Ok(Self::from_second_order(&so, b, c, d));
+        }
         let real = real_schur(a, SchurOptions::default())?;
         let Some(q) = &real.q else {
             return Ok(None);
@@ -339,9 +363,7 @@ impl ModalForm {
             blocks,
             b: b_hat,
             c: c_hat,
-            y_inv,
-            w,
-            x0_inv,
+            inverse: Inverse::Schur { y_inv, w, x0_inv },
             d: d.clone(),
             cond,
         };
@@ -351,11 +373,136 @@ impl ModalForm {
         Ok(Some(form))
     }
 
+    /// The modal form of a second-order model (see [`super::second_order`]), built from its
+    /// modes without a Schur form: X = diag(X_q, X_q)·P with, per mode, P = [[1, 1], [μ₁, μ₂]]
+    /// (two 1×1 blocks μ₁, μ₂; the lower one of a complex pair with exactly conjugate data) or,
+    /// for a critical mode or roots closer than [`CLUSTER_REL`]·ν, P = [[1, 0], [μ₁, 1]] and the
+    /// 2×2 block [[μ₁, 1], [0, μ₂]]. `None` when the condition estimate exceeds [`MAX_COND`].
+    /// No Hessenberg check: the modes were verified by their residuals when recognised.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::numeric::linalg::{modal::ModalForm, second_order::SecondOrder};
+    /// // q̈ = −4q − 0.8q̇ + u, y = q: G = 1/(s² + 0.8s + 4)
+    /// let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -0.8]);
+    /// let (b, c) = (DMatrix::from_row_slice(2, 1, &[0.0, 1.0]), DMatrix::from_row_slice(1, 2, &[1.0, 0.0]));
+    /// let so = SecondOrder::detect(&a).unwrap();
+    /// let m = ModalForm::from_second_order(&so, &b, &c, &DMatrix::zeros(1, 1)).unwrap();
+    /// let s = num_complex::Complex64::new(0.1, 1.5);
+    /// assert!((m.eval(s)[(0, 0)] - 1.0 / (s * s + 0.8 * s + 4.0)).norm() < 1e-15);
+    /// ```
+    pub fn from_second_order(
+        so: &SecondOrder,
+        b: &DMatrix<f64>,
+        c: &DMatrix<f64>,
+        d: &DMatrix<f64>,
+    ) -> Option<ModalForm> {
+        let dof = so.dof;
+        let n = 2 * dof;
+        let (m, p) = (b.ncols(), c.nrows());
+        let beta_q = &so.shapes_inv * b.rows(0, dof);
+        let beta_v = &so.shapes_inv * b.rows(dof, dof);
+        let gam_q = c.columns(0, dof) * &so.shapes;
+        let gam_v = c.columns(dof, dof) * &so.shapes;
+        let mut blocks = Vec::with_capacity(n);
+        let mut b_hat = DMatrix::<C>::zeros(n, m);
+        let mut c_hat = DMatrix::<C>::zeros(p, n);
+        let mut maps = Vec::with_capacity(dof);
+        let one = C::new(1.0, 0.0);
+        let zero = C::new(0.0, 0.0);
+        let mut cond_p = 1.0f64;
+        for (k, mode) in so.modes.iter().enumerate() {
+            let [m1, m2] = mode.roots;
+            let i0 = 2 * k;
+            let split = !mode.critical && (m1 - m2).norm() > CLUSTER_REL * so.scale;
+            let (pm, pinv) = if split {
+                let det = m2 - m1;
+                (
+                    [[one, one], [m1, m2]],
+                    [[m2 / det, -one / det], [-m1 / det, one / det]],
+                )
+            } else {
+                ([[one, zero], [m1, one]], [[one, zero], [-m1, one]])
+            };
+            let fro2 = |x: &[[C; 2]; 2]| x.iter().flatten().map(|z| z.norm_sqr()).sum::<f64>();
+            cond_p = cond_p.max((fro2(&pm) * fro2(&pinv)).sqrt() / 2.0);
+            for col in 0..m {
+                let (bq, bv) = (beta_q[(k, col)], beta_v[(k, col)]);
+                b_hat[(i0, col)] = pinv[0][0] * bq + pinv[0][1] * bv;
+                b_hat[(i0 + 1, col)] = pinv[1][0] * bq + pinv[1][1] * bv;
+            }
+            for row in 0..p {
+                let (cq, cv) = (gam_q[(row, k)], gam_v[(row, k)]);
+                c_hat[(row, i0)] = pm[0][0] * cq + pm[1][0] * cv;
+                c_hat[(row, i0 + 1)] = pm[0][1] * cq + pm[1][1] * cv;
+            }
+            let mut pinv = pinv;
+            if split && m1.im > 0.0 && m2 == m1.conj() {
+                // the lower member of a complex pair: exactly the conjugate of the upper one
+                for col in 0..m {
+                    b_hat[(i0 + 1, col)] = b_hat[(i0, col)].conj();
+                }
+                for row in 0..p {
+                    c_hat[(row, i0 + 1)] = c_hat[(row, i0)].conj();
+                }
+                pinv[1] = [pinv[0][0].conj(), pinv[0][1].conj()];
+            }
+            maps.push(pinv);
+            if split {
+                blocks.push(ModalBlock {
+                    start: i0,
+                    lambda: DMatrix::from_element(1, 1, m1),
+                });
+                blocks.push(ModalBlock {
+                    start: i0 + 1,
+                    lambda: DMatrix::from_element(1, 1, m2),
+                });
+            } else {
+                blocks.push(ModalBlock {
+                    start: i0,
+                    lambda: DMatrix::from_row_slice(2, 2, &[m1, one, zero, m2]),
+                });
+            }
+        }
+        let fro = |x: &DMatrix<f64>| x.norm();
+        let cond = cond_p * fro(&so.shapes) * fro(&so.shapes_inv) / dof as f64;
+        if !(cond.is_finite() && cond <= MAX_COND) {
+            return None;
+        }
+        Some(ModalForm {
+            blocks,
+            b: b_hat,
+            c: c_hat,
+            inverse: Inverse::SecondOrder {
+                shapes_inv: so.shapes_inv.clone(),
+                modes: maps,
+            },
+            d: d.clone(),
+            cond,
+        })
+    }
+
     /// Modal coordinates z = X⁻¹·x of a state x.
     pub fn modal_coordinates(&self, x: &[f64]) -> Vec<C> {
-        let v = nalgebra::DVector::from_iterator(x.len(), x.iter().map(|v| C::new(*v, 0.0)));
-        let z = &self.y_inv * &self.w.ad_mul(&(&self.x0_inv * &v));
-        z.iter().copied().collect()
+        match &self.inverse {
+            Inverse::Schur { y_inv, w, x0_inv } => {
+                let v =
+                    nalgebra::DVector::from_iterator(x.len(), x.iter().map(|v| C::new(*v, 0.0)));
+                let z = y_inv * &w.ad_mul(&(x0_inv * &v));
+                z.iter().copied().collect()
+            }
+            Inverse::SecondOrder { shapes_inv, modes } => {
+                let dof = shapes_inv.nrows();
+                let eta = shapes_inv * nalgebra::DVector::from_column_slice(&x[..dof]);
+                let xi = shapes_inv * nalgebra::DVector::from_column_slice(&x[dof..2 * dof]);
+                let mut z = Vec::with_capacity(2 * dof);
+                for (k, pinv) in modes.iter().enumerate() {
+                    z.push(pinv[0][0] * eta[k] + pinv[0][1] * xi[k]);
+                    z.push(pinv[1][0] * eta[k] + pinv[1][1] * xi[k]);
+                }
+                z
+            }
+        }
     }
 
     /// Order n.
