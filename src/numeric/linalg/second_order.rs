@@ -5,9 +5,9 @@
 //! η̈ₖ + γₖ·η̇ₖ + λₖ·ηₖ = …, found by a *symmetric* eigenproblem of half the order, whose
 //! eigenvalues and vectors are accurate to ε‖G‖ whatever their multiplicity.
 //!
-//! This is what MATLAB's `mechss` does for models given as M, C, K; here the structure is
-//! recognised in A itself, so a model built by hand, from a plant file or by
-//! [`crate::lti::lattice`] gets it without asking.
+//! MATLAB keeps such models apart as M, C, K (`mechss`); here the structure is recognised in
+//! A itself, so a model built by hand, from a plant file or by the seed's lattice model gets
+//! it without asking.
 //!
 //! # Recognition
 //! 1. A is 2d×2d, its upper-left d×d block is exactly zero and its upper-right block exactly
@@ -25,7 +25,7 @@
 //! Mode k has stiffness λₖ and damping γₖ; both are snapped within [`snap_tol`] — to 0, and
 //! the members of a group of equal values to their mean (a matrix within that distance of A
 //! has them exactly: a free translation, degenerate pairs). Its eigenvalues are the roots of
-//! μ² + γμ + λ = 0, formed without cancellation; when they are closer than the cluster
+//! μ² + γμ + λ = 0 from the discriminant rounded once (a fused multiply-add); when they are closer than the cluster
 //! diameter of [`super::structure`] (2·ν·(64nε)^(1/2)) the mode is *critical*: one double
 //! eigenvalue −γ/2 with a single eigenvector (the 2×2 block is a companion matrix, never
 //! diagonal): a Jordan block, like the rigid-body mode λ = γ = 0.
@@ -186,13 +186,8 @@ impl SecondOrderMode {
     fn new(stiffness: f64, damping: f64, critical_tol: f64) -> SecondOrderMode {
         let (l, g) = (stiffness, damping);
         let c = |re: f64, im: f64| Complex64::new(re, im);
-        // disc = γ² − 4λ without cancellation: (γ − 2√λ)(γ + 2√λ) for λ > 0
-        let disc = if l > 0.0 {
-            let r = 2.0 * l.sqrt();
-            (g.abs() - r) * (g.abs() + r)
-        } else {
-            g * g - 4.0 * l
-        };
+        // disc = γ² − 4λ rounded once (γ² exact in the fused multiply-add, 4λ exact)
+        let disc = g.mul_add(g, -4.0 * l);
         if disc.abs().sqrt() <= critical_tol {
             let mu = c(-0.5 * g, 0.0);
             return SecondOrderMode {
