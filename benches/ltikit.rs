@@ -218,4 +218,28 @@ mod ss {
         let t = lattice::time_grid(10_000);
         bencher.bench(|| ss.step_response_from(0, black_box(&t), false).unwrap());
     }
+
+    /// The general (Schur) path: the same model with interleaved states.
+    mod general {
+        use super::*;
+
+        #[divan::bench(sample_count = 10)]
+        fn eigenvalues(bencher: Bencher) {
+            let ss = lattice::lattice_interleaved();
+            bencher.bench(|| eigen_structure(black_box(&ss.a)).unwrap());
+        }
+
+        #[divan::bench(sample_count = 10)]
+        fn channel_factored(bencher: Bencher) {
+            let ss = lattice::lattice_interleaved();
+            bencher.bench(|| Factored::from_state_space(black_box(&ss)).unwrap());
+        }
+
+        #[divan::bench(sample_count = 10)]
+        fn step_state_space(bencher: Bencher) {
+            let ss = lattice::lattice_interleaved();
+            let t = lattice::time_grid(10_000);
+            bencher.bench(|| ss.step_response_from(0, black_box(&t), false).unwrap());
+        }
+    }
 }

@@ -1,6 +1,7 @@
 //! Timings of ltikit's state-space kernels on the seed's lattice (N = 128, 256 states), as
 //! JSON on stdout, for `benches/compare/compare_ss.py` (which times python-control on the same
-//! model in the same run). Medians of repeated runs, in seconds.
+//! model in the same run). Medians of repeated runs, in seconds. The `general_*` keys time the
+//! same model with interleaved states, which the second-order recognition does not take.
 
 #[path = "../benches/common/ss.rs"]
 mod lattice;
@@ -28,6 +29,7 @@ fn median<T>(reps: usize, mut f: impl FnMut() -> T) -> f64 {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ss = lattice::lattice();
+    let general = lattice::lattice_interleaved();
     let s: Vec<Complex64> = lattice::freq_grid(10_000)
         .iter()
         .map(|&w| Complex64::new(0.0, w))
@@ -57,6 +59,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "freq_response_mimo_10k": median(5, || ss.freq_response_mimo(&w)),
         "freq_modal_eval_10k": median(7, || s.iter().map(|&x| ch.eval(x)).collect::<Vec<_>>()),
         "step_10k": median(5, || ss.step_response_from(0, &t, false)),
+        // the same model with interleaved states: the general (Schur) path
+        "general_eigenvalues": median(7, || eigen_structure(&general.a)),
+        "general_channel_factored": median(7, || Factored::from_state_space(&general)),
+        "general_freq_response_mimo_10k": median(5, || general.freq_response_mimo(&w)),
+        "general_step_10k": median(5, || general.step_response_from(0, &t, false)),
         "freq_max_rel_diff_vs_modal": max_rel,
     });
     println!("{out}");
