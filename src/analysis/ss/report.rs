@@ -26,6 +26,14 @@ use crate::numeric::linalg::{
 };
 use crate::poly::{HalfPlane, fmt_root, half_plane};
 
+/// Largest order for which `ltikit analyze` adds the whole-model analysis to its report (the
+/// method itself takes any order). The analysis is O(n³) with large constants — eigenvectors,
+/// two staircases, the minimal realisation, the invariant zeros of a square system and a
+/// minimal realisation with its eigenvalues per channel: measured (release build) 0.17 s for
+/// the 256-state lattice, up to 2.3 s for random dense 256-state 2×2 plants (the invariant
+/// zeros dominate), 1.1 s for the 512-state lattice and 35 s for a random 512-state 2×2 plant.
+pub const MAX_ANALYSIS_STATES: usize = 256;
+
 /// One distinct eigenvalue of A.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SsEigenvalue {
@@ -180,7 +188,9 @@ impl StateSpace {
             (
                 None,
                 Some(format!(
-                    "not a square system ({m} inputs, {p} outputs): invariant zeros are defined for as many inputs as outputs"
+                    "not a square system ({m} input{}, {p} output{}): invariant zeros are defined for as many inputs as outputs",
+                    if m == 1 { "" } else { "s" },
+                    if p == 1 { "" } else { "s" }
                 )),
             )
         } else if n == 0 {
