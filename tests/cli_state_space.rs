@@ -1,4 +1,5 @@
 //! State-space plants on the command line: MIMO plants per channel (text and JSON contract),
+//! the whole-model section of `analyze` (text, JSON, --modes, --shapes, the size limit),
 //! the Bode grid, time responses (step per input, --x0, --states, lsim from CSV), the lattice
 //! as a model, the per-channel linearisation, and bad input. Runs the real binary.
 //!
@@ -75,9 +76,19 @@ fn analyze_mimo_per_channel_json_contract() {
     let p = mimo_file(&d);
     let v = json(&["analyze", "--plant", &p, "--json"]);
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+    // The whole-model keys of a state-space plant sit before the channels.
     assert_eq!(
         keys,
-        ["model", "name", "states", "inputs", "outputs", "channels"]
+        [
+            "model",
+            "name",
+            "states",
+            "inputs",
+            "outputs",
+            "state_space",
+            "state_space_note",
+            "channels"
+        ]
     );
     assert_eq!(v["model"], "state-space");
     assert_eq!(v["states"], 2);
@@ -122,6 +133,7 @@ fn analyze_mimo_text_names_every_channel() {
     // A chosen channel is the SISO report and document, as before.
     let one = json(&["analyze", "--plant", &p, "--channel", "2,2", "--json"]);
     assert!(one.get("channels").is_none());
+    assert!(one.get("state_space").is_none() && one.get("state_space_note").is_none());
     assert!((f(&one["dc_gain"]) + 0.5).abs() < 1e-12);
     // A SISO state-space plant keeps the SISO document.
     let siso = json(&[
@@ -429,4 +441,418 @@ fn each_channel_is_factored_once() {
     assert_eq!(count(&["bode", "--plant", &p, "-o", &png]), 4);
     assert_eq!(count(&["response", "--plant", &p, "--json"]), 0);
     assert_eq!(count(&["analyze", "--plant", &p, "--channel", "1,2"]), 1);
+}
+
+/// The README's two tanks (A = [[−1, 0.5], [0.5, −2]], B = C = I).
+fn tanks_file(d: &Path) -> String {
+    write(
+        &d.join("tanks.toml"),
+        "name = \"Two tanks\"\n\
+         a = \"-1 0.5; 0.5 -2\"\n\
+         b = [[1, 0], [0, 1]]\n\
+         c = \"1 0; 0 1\"\n\
+         inputs = [\"inflow 1 [m^3/s]\", \"inflow 2 [m^3/s]\"]\n\
+         outputs = [\"level 1 [m]\", \"level 2 [m]\"]\n",
+    )
+}
+
+/// The whole-model section of the two tanks, computed by hand: det A = 1.75, so
+/// G(0) = −C·A⁻¹·B = −A⁻¹ = [[2, 0.5], [0.5, 1]]/1.75 = [[8/7, 2/7], [2/7, 4/7]];
+/// eigenvalues (−3 ± √2)/2 (λ² + 3λ + 1.75 = 0); minimal; no invariant zeros
+/// (det G = 1/det(sI − A)).
+#[test]
+fn whole_model_of_the_two_tanks() {
+    let d = dir("tanks");
+    let p = tanks_file(&d);
+    let v = json(&["analyze", "--plant", &p, "--json"]);
+    let ss = &v["state_space"];
+    assert_eq!(v["state_space_note"], Value::Null);
+    let keys: Vec<&str> = ss.as_object().unwrap().keys().map(String::as_str).collect();
+    assert_eq!(
+        keys,
+        [
+            "states",
+            "inputs",
+            "outputs",
+            "eigenvalues",
+            "controllability",
+            "observability",
+            "minimal_order",
+            "uncontrollable_modes",
+            "unobservable_modes",
+            "invariant_zeros",
+            "invariant_zeros_note",
+            "dc_gain",
+            "bibo_stable",
+            "internally_stable",
+            "internal_reason",
+            "modes"
+        ]
+    );
+    assert_eq!(
+        (ss["states"].as_u64(), ss["inputs"].as_u64()),
+        (Some(2), Some(2))
+    );
+    let want = [[8.0 / 7.0, 2.0 / 7.0], [2.0 / 7.0, 4.0 / 7.0]];
+    for (j, row) in want.iter().enumerate() {
+        for (i, g) in row.iter().enumerate() {
+            let x = f(&ss["dc_gain"][j][i]);
+            assert!((x - g).abs() <= 4.0 * f64::EPSILON, "{j},{i}: {x} vs {g}");
+        }
+    }
+    let s2 = 2f64.sqrt();
+    let ev = ss["eigenvalues"].as_array().unwrap();
+    assert_eq!(ev.len(), 2);
+    assert!((f(&ev[0]["value"][0]) - (-3.0 + s2) / 2.0).abs() < 1e-15);
+    assert!((f(&ev[1]["value"][0]) - (-3.0 - s2) / 2.0).abs() < 1e-15);
+    assert_eq!(ev[0]["algebraic"], 1);
+    assert_eq!(ev[0]["semisimple"], true);
+    assert_eq!(ss["controllability"]["rank"], 2);
+    assert!(f(&ss["controllability"]["tol"]) > 0.0);
+    assert_eq!(ss["minimal_order"], 2);
+    assert_eq!(ss["invariant_zeros"], serde_json::json!([]));
+    assert_eq!(
+        ss["bibo_stable"],
+        serde_json::json!([[true, true], [true, true]])
+    );
+    assert_eq!(ss["internally_stable"], true);
+    let md = &ss["modes"][0];
+    assert_eq!(md["geometric"], 1);
+    assert!(f(&md["residual_max"]) < 1e-15);
+    // τ = −1/λ and ζ = 1 for a real stable mode; no shapes without --shapes.
+    assert!((f(&md["time_constant"]) * (3.0 - s2) / 2.0 - 1.0).abs() < 1e-14);
+    assert_eq!(md["zeta"], 1.0);
+    assert!(md.get("shapes").is_none());
+    // The text: after the plant header, before the first channel, with the signal names.
+    let s = stdout(&["analyze", "--plant", &p]);
+    let at = |needle: &str| {
+        s.find(needle)
+            .unwrap_or_else(|| panic!("{needle:?} not in\n{s}"))
+    };
+    assert!(at("states:  x1, x2") < at("State space (whole model)"));
+    assert!(at("State space (whole model)") < at("── input inflow 1 [m^3/s] → output level 1 [m]"));
+    assert!(
+        s.contains("  eigenvalues of A:   -0.792893, -2.20711\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains("  minimal order:      2 (minimal: nothing removed)\n"),
+        "{s}"
+    );
+    assert!(s.contains("  invariant zeros:    none\n"), "{s}");
+    assert!(s.contains(
+        "internal stability: stable — every eigenvalue of A in the open left half plane"
+    ));
+    // Rows = outputs, columns = inputs: 8/7, 2/7 / 2/7, 4/7 to six digits.
+    assert!(s.contains("inflow 1 [m^3/s]  inflow 2 [m^3/s]"), "{s}");
+    assert!(
+        s.contains("    level 1 [m]           1.14286          0.285714\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains("    level 2 [m]          0.285714          0.571429\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains("    level 1 [m]               yes               yes\n"),
+        "{s}"
+    );
+    // The modes table (two modes: always printed for a small model).
+    assert!(s.contains("eigenvalue") && s.contains("geometric") && s.contains("residual"));
+    assert!(
+        s.contains("    -0.792893                        0.792893          1"),
+        "{s}"
+    );
+}
+
+/// Two decoupled lags x1' = −x1 + 2u, x2' = −3x2, y = x: the input reaches only x1, so
+/// the mode −3 is uncontrollable and the minimal order is 1; G1 = 2/(s + 1) (dc gain 2),
+/// G2 = 0 (dc gain 0); one input, two outputs: no invariant zeros (not square).
+#[test]
+fn whole_model_of_decoupled_lags() {
+    let args = [
+        "analyze",
+        "--a",
+        "-1 0; 0 -3",
+        "--b",
+        "2; 0",
+        "--c",
+        "1 0; 0 1",
+        "--json",
+    ];
+    let v = json(&args);
+    let ss = &v["state_space"];
+    assert_eq!(ss["minimal_order"], 1);
+    assert_eq!(ss["controllability"]["rank"], 1);
+    assert_eq!(ss["observability"]["rank"], 2);
+    let unc = ss["uncontrollable_modes"].as_array().unwrap();
+    assert_eq!(unc.len(), 1);
+    assert!((f(&unc[0][0]) + 3.0).abs() <= 8.0 * f64::EPSILON && f(&unc[0][1]) == 0.0);
+    assert_eq!(ss["unobservable_modes"], serde_json::json!([]));
+    assert!((f(&ss["dc_gain"][0][0]) - 2.0).abs() <= 8.0 * f64::EPSILON);
+    assert!(f(&ss["dc_gain"][1][0]).abs() <= 8.0 * f64::EPSILON);
+    assert_eq!(ss["invariant_zeros"], Value::Null);
+    assert!(
+        ss["invariant_zeros_note"]
+            .as_str()
+            .unwrap()
+            .contains("not a square system (1 input, 2 outputs)")
+    );
+    let s = stdout(&args[..args.len() - 1]);
+    assert!(
+        s.contains("  minimal order:      1 (1 mode removed)\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains("    uncontrollable:   -3\n    unobservable:     none\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains("  invariant zeros:    none defined: not a square system"),
+        "{s}"
+    );
+    assert!(
+        s.contains("    y1           2\n") && s.contains("    y2           0\n"),
+        "{s}"
+    );
+}
+
+/// Resonance x'' + x = z, z'' + z = u (y = x): ±j is a 2×2 Jordan block each — defective on
+/// the axis, so A is unstable and G = 1/(s² + 1)² is not BIBO stable. Two identical
+/// undamped oscillators instead (A = diag(J, J)): ±j semisimple of multiplicity 2,
+/// marginally stable.
+#[test]
+fn defective_and_semisimple_eigenvalues_on_the_axis() {
+    let jordan = [
+        "analyze",
+        "--a",
+        "0 1 0 0; -1 0 1 0; 0 0 0 1; 0 0 -1 0",
+        "--b",
+        "0; 0; 0; 1",
+        "--c",
+        "1 0 0 0",
+    ];
+    let s = stdout(&jordan);
+    assert!(
+        s.contains("  eigenvalues of A:   ±1j (×2, defective: algebraic 2, geometric 1)\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains(
+            "internal stability: unstable — eigenvalue ±1j on the imaginary axis is defective"
+        ),
+        "{s}"
+    );
+    let mut with_json = jordan.to_vec();
+    with_json.push("--json");
+    let v = json(&with_json);
+    let ss = &v["state_space"];
+    assert_eq!(ss["internally_stable"], false);
+    assert_eq!(ss["bibo_stable"], serde_json::json!([[false]]));
+    for e in ss["eigenvalues"].as_array().unwrap() {
+        assert_eq!(f(&e["value"][0]), 0.0, "{e}");
+        assert_eq!(
+            (e["algebraic"].as_u64(), e["geometric"].as_u64()),
+            (Some(2), Some(1))
+        );
+        assert_eq!(e["semisimple"], false);
+    }
+    let twins = [
+        "analyze",
+        "--a",
+        "0 1 0 0; -1 0 0 0; 0 0 0 1; 0 0 -1 0",
+        "--b",
+        "0 0; 1 0; 0 0; 0 1",
+        "--c",
+        "1 0 0 0; 0 0 1 0",
+    ];
+    let s = stdout(&twins);
+    assert!(
+        s.contains("  eigenvalues of A:   ±1j (×2, semisimple)\n"),
+        "{s}"
+    );
+    assert!(
+        s.contains("internal stability: marginally stable — eigenvalue ±1j on the imaginary axis (semisimple, multiplicity 2)"),
+        "{s}"
+    );
+    // ζ = 0 and no time constant: "-" in the table.
+    assert!(
+        s.contains(
+            "    ±1j (×2)                                1          0              -          2"
+        ),
+        "{s}"
+    );
+}
+
+/// The periodic 16-ring (seed eq. 2.71, ωₚ = 2 sin(πp/16)): every eigenvalue but the
+/// Jordan block at 0 exactly on the axis (real part 0, not ±1e-16); the fixed 16-chain
+/// without damping: marginally stable.
+#[test]
+fn lattice_whole_model_on_the_axis() {
+    let v = json(&[
+        "analyze", "--model", "lattice", "--param", "N=16", "--param", "output=3", "--json",
+    ]);
+    let ss = &v["state_space"];
+    assert_eq!(ss["states"], 32);
+    let ev = ss["eigenvalues"].as_array().unwrap();
+    assert_eq!(ev.len(), 17); // 0, ±2j and the 7 degenerate pairs
+    for e in ev {
+        assert_eq!(f(&e["value"][0]), 0.0, "{e}");
+        let w = f(&e["value"][1]).abs();
+        let p = ((w / 2.0).asin() * 16.0 / std::f64::consts::PI).round();
+        assert!(
+            (w - 2.0 * (std::f64::consts::PI * p / 16.0).sin()).abs() < 1e-14,
+            "{e}"
+        );
+        let want = match p as u32 {
+            0 => (2, 1),
+            8 => (1, 1),
+            _ => (2, 2),
+        };
+        assert_eq!(
+            (e["algebraic"].as_u64(), e["geometric"].as_u64()),
+            (Some(want.0), Some(want.1)),
+            "{e}"
+        );
+    }
+    assert!(
+        ss["internal_reason"]
+            .as_str()
+            .unwrap()
+            .starts_with("unstable: eigenvalue 0 on the imaginary axis is defective")
+    );
+    let fixed = json(&[
+        "analyze",
+        "--model",
+        "lattice",
+        "--param",
+        "N=16",
+        "--param",
+        "periodic=0",
+        "--param",
+        "output=3",
+        "--json",
+    ]);
+    let reason = fixed["state_space"]["internal_reason"].as_str().unwrap();
+    assert!(reason.starts_with("marginally stable"), "{reason}");
+    assert!(
+        fixed["state_space"]["eigenvalues"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|e| f(&e["value"][0]) == 0.0)
+    );
+}
+
+/// The 128-ring (256 states, 65 distinct eigenvalues up to conjugation): a summary instead
+/// of the list, the modes table only with --modes; the 129-ring (258 states) is beyond
+/// MAX_ANALYSIS_STATES: one line, and "state_space": null with the reason.
+#[test]
+fn large_models_summary_modes_flag_and_limit() {
+    let args = [
+        "analyze", "--model", "lattice", "--param", "N=128", "--param", "output=6",
+    ];
+    let s = stdout(&args);
+    assert!(
+        s.contains("65 distinct up to conjugation: 1 simple, 63 multiple semisimple, 1 defective"),
+        "{s}"
+    );
+    assert!(s.contains("    defective:        0 (×2, defective: algebraic 2, geometric 1)\n"));
+    assert!(
+        s.contains("    on the axis:      ±2j, ±1.9994j (×2), "),
+        "{s}"
+    );
+    assert!(s.contains("… and 45 more"), "{s}");
+    assert!(s.contains("    right half plane: none\n"), "{s}");
+    assert!(s.contains("65 modes: the table with --modes"), "{s}");
+    assert!(!s.contains("  Modes:\n    eigenvalue"), "{s}");
+    let mut modes = args.to_vec();
+    modes.push("--modes");
+    let t = stdout(&modes);
+    let table = t.split("  Modes:\n").nth(1).expect("the modes table");
+    let rows = table
+        .lines()
+        .skip(1)
+        .take_while(|l| l.starts_with("    "))
+        .count();
+    assert_eq!(rows, 65, "{table}");
+    // Beyond the limit.
+    let big = [
+        "analyze", "--model", "lattice", "--param", "N=129", "--param", "output=6",
+    ];
+    let s = stdout(&big);
+    assert!(
+        s.contains(&format!(
+            "State space (whole model): not computed: 258 states exceed {}",
+            ltikit::analysis::ss::MAX_ANALYSIS_STATES
+        )),
+        "{s}"
+    );
+    let mut bj = big.to_vec();
+    bj.push("--json");
+    let v = json(&bj);
+    assert_eq!(v["state_space"], Value::Null);
+    assert!(
+        v["state_space_note"]
+            .as_str()
+            .unwrap()
+            .contains("258 states exceed")
+    );
+}
+
+/// --shapes with A = diag(−1, −2): the eigenvectors are e₁ and e₂, printed with the state
+/// names and in the JSON as unit vectors.
+#[test]
+fn mode_shapes_with_state_names() {
+    let d = dir("shapes");
+    let p = write(
+        &d.join("diag.toml"),
+        "a = \"-1 0; 0 -2\"\nb = \"1; 1\"\nc = \"1 1\"\nstates = [\"position [m]\", \"speed [m/s]\"]\n",
+    );
+    let s = stdout(&["analyze", "--plant", &p, "--shapes"]);
+    assert!(s.contains("  Mode shapes (unit eigenvectors;"), "{s}");
+    assert!(s.contains("    -1: position [m] 1\n"), "{s}");
+    assert!(s.contains("    -2: speed [m/s] 1\n"), "{s}");
+    let v = json(&["analyze", "--plant", &p, "--json", "--shapes"]);
+    let modes = v["state_space"]["modes"].as_array().unwrap();
+    for (k, m) in modes.iter().enumerate() {
+        let shape = m["shapes"][0].as_array().unwrap();
+        for (i, z) in shape.iter().enumerate() {
+            let want = if i == k { 1.0 } else { 0.0 };
+            assert!((f(&z[0]).abs() - want).abs() <= 4.0 * f64::EPSILON, "{m}");
+            assert_eq!(f(&z[1]), 0.0);
+        }
+    }
+}
+
+/// A transfer-function plant has no whole-model keys or section; --modes/--shapes with it
+/// (or with one --channel) are a usage error, one line, exit 2. A square system whose
+/// transfer matrix is singular for every s (B = [b b]) still gets its section.
+#[test]
+fn whole_model_only_for_state_space_plants() {
+    let v = json(&["analyze", "--num", "1", "--den", "1 3 2", "--json"]);
+    assert!(v.get("state_space").is_none() && v.get("state_space_note").is_none());
+    let s = stdout(&["analyze", "--num", "1", "--den", "1 3 2"]);
+    assert!(!s.contains("State space"), "{s}");
+    let (e, code) = error(&["analyze", "--num", "1", "--den", "1 3 2", "--modes"]);
+    assert!(code == 2 && e.contains("--modes and --shapes"), "{e}");
+    let d = dir("only");
+    let p = mimo_file(&d);
+    let (e, code) = error(&["analyze", "--plant", &p, "--channel", "1,1", "--shapes"]);
+    assert!(code == 2 && e.contains("one --channel"), "{e}");
+    let s = stdout(&[
+        "analyze",
+        "--a",
+        "-1 0; 0 -2",
+        "--b",
+        "1 1; 1 1",
+        "--c",
+        "1 0; 0 1",
+    ]);
+    assert!(
+        s.contains(
+            "  invariant zeros:    none defined: the transfer matrix is singular for every s"
+        ),
+        "{s}"
+    );
 }

@@ -41,6 +41,10 @@ fn the_documented_limits_are_the_code_s() {
         ),
         ("lti::MAX_STATES", ltikit::lti::MAX_STATES as u64),
         (
+            "analysis::ss::MAX_ANALYSIS_STATES",
+            ltikit::analysis::ss::MAX_ANALYSIS_STATES as u64,
+        ),
+        (
             "lti::lattice::MAX_PARTICLES",
             ltikit::lti::lattice::MAX_PARTICLES as u64,
         ),

@@ -153,3 +153,335 @@ fn mimo_frequency_response_and_continuous_phase() {
     assert!(ss.freq_response_mimo(&[-1.0]).is_err());
     assert!(ss.freq_response_mimo(&[f64::NAN]).is_err());
 }
+
+/// Two decoupled first-order lags x1' = −x1 + 2u, x2' = −3x2 (the input reaches only x1),
+/// both states measured (y = x). Closed forms: G1 = 2/(s + 1) (dc gain 2), G2 = 0 (dc gain 0);
+/// the mode −3 is uncontrollable, so the minimal order is 1; modes −1 and −3 with ζ = 1,
+/// τ = 1 and 1/3 s, shapes e₁ and e₂ (A is diagonal: every value below is exact; the
+/// kernels' balancing and Schur rotations leave at most a few ulps).
+#[test]
+fn decoupled_lags_one_input() {
+    let ss = StateSpace::new(
+        DMatrix::from_row_slice(2, 2, &[-1.0, 0.0, 0.0, -3.0]),
+        DMatrix::from_row_slice(2, 1, &[2.0, 0.0]),
+        DMatrix::identity(2, 2),
+        DMatrix::zeros(2, 1),
+    )
+    .unwrap();
+    let r = ss.analysis().unwrap();
+    assert_eq!((r.n, r.m, r.p), (2, 1, 2));
+    assert_eq!(r.controllability.rank, 1);
+    assert_eq!(r.observability.rank, 2);
+    assert_eq!(r.minimal_order, 1);
+    assert_eq!(r.uncontrollable_modes, vec![Complex64::new(-3.0, 0.0)]);
+    assert!(r.unobservable_modes.is_empty());
+    let ulps = 4.0 * f64::EPSILON;
+    let near = |g: DcGain, v: f64| matches!(g, DcGain::Finite(x) if (x - v).abs() <= ulps * 2.0);
+    assert!(
+        near(r.dc_gain[0][0], 2.0) && near(r.dc_gain[1][0], 0.0),
+        "{:?}",
+        r.dc_gain
+    );
+    assert_eq!(r.bibo_stable, vec![vec![true], vec![true]]);
+    assert!(r.internally_stable, "{}", r.internal_reason);
+    assert!(
+        r.internal_reason.starts_with("stable"),
+        "{}",
+        r.internal_reason
+    );
+    // One input, two outputs: no invariant zeros, and the reason.
+    assert!(r.invariant_zeros.is_none());
+    assert!(
+        r.invariant_zeros_note
+            .unwrap()
+            .contains("not a square system")
+    );
+    // Sorted by decreasing real part: −1, then −3.
+    let values: Vec<Complex64> = r.eigenvalues.iter().map(|e| e.value).collect();
+    assert_eq!(values.len(), 2);
+    assert!(values.iter().all(|v| v.im == 0.0));
+    assert!((values[0].re + 1.0).abs() <= ulps && (values[1].re + 3.0).abs() <= 3.0 * ulps);
+    let (m1, m3) = (&r.modes[0], &r.modes[1]);
+    let close = |x: f64, v: f64| (x - v).abs() <= ulps * v.abs();
+    assert!(close(m1.wn, 1.0) && m1.zeta == 1.0 && close(m1.tau.unwrap(), 1.0));
+    assert!(close(m3.wn, 3.0) && m3.zeta == 1.0 && close(m3.tau.unwrap(), 1.0 / 3.0));
+    for (md, k) in [(m1, 0), (m3, 1)] {
+        assert_eq!((md.algebraic, md.shapes.len()), (1, 1));
+        for (i, z) in md.shapes[0].iter().enumerate() {
+            let want = if i == k { 1.0 } else { 0.0 };
+            assert!(
+                (z.norm() - want).abs() <= ulps,
+                "shape of {}: {:?}",
+                md.value,
+                md.shapes[0]
+            );
+        }
+        assert!(md.residuals[0] <= ulps, "{:?}", md.residuals);
+    }
+}
+
+/// Resonance x'' + x = z, z'' + z = u: A has ±j as a 2×2 Jordan block each (the solution
+/// grows like t·sin t), so A is unstable although every eigenvalue is on the axis; the
+/// channel G = 1/(s² + 1)² is not BIBO stable.
+#[test]
+fn jordan_block_on_the_axis_is_unstable() {
+    let a = DMatrix::from_row_slice(
+        4,
+        4,
+        &[
+            0.0, 1.0, 0.0, 0.0, //
+            -1.0, 0.0, 1.0, 0.0, //
+            0.0, 0.0, 0.0, 1.0, //
+            0.0, 0.0, -1.0, 0.0,
+        ],
+    );
+    let b = DMatrix::from_row_slice(4, 1, &[0.0, 0.0, 0.0, 1.0]);
+    let c = DMatrix::from_row_slice(1, 4, &[1.0, 0.0, 0.0, 0.0]);
+    let ss = StateSpace::new(a, b, c, DMatrix::zeros(1, 1)).unwrap();
+    let r = ss.analysis().unwrap();
+    assert_eq!(r.eigenvalues.len(), 2);
+    for e in &r.eigenvalues {
+        // Exactly on the axis (the rule of the factored core), ±1 to rounding.
+        assert_eq!(e.value.re, 0.0, "{}", e.value);
+        assert!((e.value.im.abs() - 1.0).abs() < 1e-14, "{}", e.value);
+        assert_eq!((e.algebraic, e.geometric, e.semisimple), (2, 1, false));
+    }
+    assert!(!r.internally_stable);
+    assert!(
+        r.internal_reason
+            .starts_with("unstable: eigenvalue ±1j on the imaginary axis is defective"),
+        "{}",
+        r.internal_reason
+    );
+    assert_eq!(r.bibo_stable, vec![vec![false]]);
+    assert_eq!(r.minimal_order, 4);
+    // One mode (the upper member), one shape (geometric 1), ζ = 0, no time constant.
+    assert_eq!(r.modes.len(), 1);
+    let md = &r.modes[0];
+    assert_eq!(
+        (md.algebraic, md.shapes.len(), md.zeta, md.tau),
+        (2, 1, 0.0, None)
+    );
+    // G(0) = 1: the channel's poles are ±j, not 0, so the dc gain is finite.
+    assert!(matches!(r.dc_gain[0][0], DcGain::Finite(g) if (g - 1.0).abs() < 1e-14));
+}
+
+/// Two identical undamped oscillators x'' = −x: ±j with algebraic and geometric multiplicity
+/// 2 (A = diag(J, J), semisimple), so A is marginally stable: bounded, not asymptotically
+/// stable.
+#[test]
+fn semisimple_double_eigenvalue_on_the_axis_is_marginal() {
+    let a = DMatrix::from_row_slice(
+        4,
+        4,
+        &[
+            0.0, 1.0, 0.0, 0.0, //
+            -1.0, 0.0, 0.0, 0.0, //
+            0.0, 0.0, 0.0, 1.0, //
+            0.0, 0.0, -1.0, 0.0,
+        ],
+    );
+    let b = DMatrix::from_row_slice(4, 2, &[0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+    let c = DMatrix::from_row_slice(2, 4, &[1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+    let ss = StateSpace::new(a, b, c, DMatrix::zeros(2, 2)).unwrap();
+    let r = ss.analysis().unwrap();
+    assert_eq!(r.eigenvalues.len(), 2);
+    for e in &r.eigenvalues {
+        assert_eq!(e.value.re, 0.0, "{}", e.value);
+        assert!((e.value.im.abs() - 1.0).abs() < 1e-14, "{}", e.value);
+        assert_eq!((e.algebraic, e.geometric, e.semisimple), (2, 2, true));
+    }
+    assert!(!r.internally_stable);
+    assert!(
+        r.internal_reason.starts_with(
+            "marginally stable: eigenvalue ±1j on the imaginary axis (semisimple, multiplicity 2)"
+        ),
+        "{}",
+        r.internal_reason
+    );
+    // Two independent shapes, each an exact eigenvector.
+    let md = &r.modes[0];
+    assert_eq!(md.shapes.len(), 2);
+    assert!(
+        md.residuals.iter().all(|&x| x < 1e-15),
+        "{:?}",
+        md.residuals
+    );
+    // G = diag(1/(s² + 1), 1/(s² + 1)): dc gains 1 and 0, no channel BIBO stable or coupled.
+    assert_eq!(r.bibo_stable, vec![vec![false, true], vec![true, false]]);
+    let near = |g: DcGain, v: f64| matches!(g, DcGain::Finite(x) if (x - v).abs() < 1e-14);
+    assert!(near(r.dc_gain[0][0], 1.0) && near(r.dc_gain[1][1], 1.0));
+    assert!(near(r.dc_gain[0][1], 0.0) && near(r.dc_gain[1][0], 0.0));
+    // Square and invertible: det G = 1/(s² + 1)² has no finite zeros.
+    assert_eq!(r.invariant_zeros, Some(vec![]));
+}
+
+/// The README's two tanks: A = [[−1, 0.5], [0.5, −2]], B = C = I, D = 0. By hand:
+/// det A = 2 − 0.25 = 1.75, so G(0) = −C·A⁻¹·B = −A⁻¹ = [[2, 0.5], [0.5, 1]]/1.75
+/// = [[8/7, 2/7], [2/7, 4/7]]; eigenvalues (−3 ± √2)/2 from λ² + 3λ + 1.75 = 0; minimal,
+/// no invariant zeros (G = (sI − A)⁻¹, det G = 1/det(sI − A)).
+#[test]
+fn two_tanks_dc_gain_matrix_by_hand() {
+    let ss = StateSpace::new(
+        DMatrix::from_row_slice(2, 2, &[-1.0, 0.5, 0.5, -2.0]),
+        DMatrix::identity(2, 2),
+        DMatrix::identity(2, 2),
+        DMatrix::zeros(2, 2),
+    )
+    .unwrap();
+    let r = ss.analysis().unwrap();
+    let want = [[8.0 / 7.0, 2.0 / 7.0], [2.0 / 7.0, 4.0 / 7.0]];
+    for (j, row) in want.iter().enumerate() {
+        for (i, &g) in row.iter().enumerate() {
+            let DcGain::Finite(x) = r.dc_gain[j][i] else {
+                panic!("infinite dc gain {j},{i}");
+            };
+            assert!((x - g).abs() <= 4.0 * f64::EPSILON, "{j},{i}: {x} vs {g}");
+        }
+    }
+    let s2 = 2f64.sqrt();
+    let ev: Vec<f64> = r.eigenvalues.iter().map(|e| e.value.re).collect();
+    assert_eq!(
+        r.eigenvalues.iter().filter(|e| e.value.im == 0.0).count(),
+        2
+    );
+    assert!((ev[0] - (-3.0 + s2) / 2.0).abs() < 1e-15, "{ev:?}");
+    assert!((ev[1] - (-3.0 - s2) / 2.0).abs() < 1e-15, "{ev:?}");
+    assert_eq!(r.minimal_order, 2);
+    assert!(r.uncontrollable_modes.is_empty() && r.unobservable_modes.is_empty());
+    assert_eq!(r.invariant_zeros, Some(vec![]));
+    assert!(r.internally_stable);
+    assert_eq!(r.bibo_stable, vec![vec![true; 2]; 2]);
+    // A is symmetric: its eigenvectors are orthogonal, (1, s)/|·| with s = (λ + 1)/0.5.
+    for md in &r.modes {
+        let v = &md.shapes[0];
+        let ratio = v[1].re / v[0].re;
+        assert!((ratio - (md.value.re + 1.0) / 0.5).abs() < 1e-14, "{v:?}");
+    }
+}
+
+/// A square system whose transfer matrix is singular for every s (both inputs enter the same
+/// way, B = [b b]): the invariant zeros are not isolated. The rest of the analysis is still
+/// computed, and the reason is given.
+#[test]
+fn normal_rank_deficient_square_system_keeps_the_rest() {
+    let ss = StateSpace::new(
+        DMatrix::from_row_slice(2, 2, &[-1.0, 0.0, 0.0, -2.0]),
+        DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]),
+        DMatrix::identity(2, 2),
+        DMatrix::zeros(2, 2),
+    )
+    .unwrap();
+    let r = ss.analysis().unwrap();
+    assert!(r.invariant_zeros.is_none());
+    assert!(
+        r.invariant_zeros_note
+            .as_deref()
+            .unwrap()
+            .contains("singular for every s"),
+        "{:?}",
+        r.invariant_zeros_note
+    );
+    // G = [[1/(s+1), 1/(s+1)], [1/(s+2), 1/(s+2)]]: dc gains 1, 1, 1/2, 1/2.
+    let want = [[1.0, 1.0], [0.5, 0.5]];
+    for (j, row) in want.iter().enumerate() {
+        for (i, &g) in row.iter().enumerate() {
+            assert!(
+                matches!(r.dc_gain[j][i], DcGain::Finite(x) if (x - g).abs() <= 4.0 * f64::EPSILON),
+                "{:?}",
+                r.dc_gain
+            );
+        }
+    }
+}
+
+/// The periodic 16-ring (seed §2.4, eq. 2.71): ωₚ = 2 sin(πp/16); p = 0 is the free
+/// translation, a 2×2 Jordan block at 0; p and 16 − p are degenerate (semisimple doubles
+/// ±jωₚ, p = 1…7); p = 8 is the simple ±2j. Every eigenvalue but 0 lies exactly on the axis
+/// (real part 0, not ±1e-16), with ζ = 0 and no time constant.
+#[test]
+fn periodic_lattice_eigenvalues_on_the_axis() {
+    let n = 16;
+    let ss = Lattice::new(n, Boundary::Periodic, 1.0)
+        .unwrap()
+        .with_output(Output::Particle(3))
+        .unwrap()
+        .state_space()
+        .unwrap();
+    let r = ss.analysis().unwrap();
+    assert!(!r.internally_stable);
+    assert!(
+        r.internal_reason
+            .starts_with("unstable: eigenvalue 0 on the imaginary axis is defective (a Jordan block of algebraic multiplicity 2, geometric 1)"),
+        "{}",
+        r.internal_reason
+    );
+    let mut seen = [0usize; 9];
+    for e in &r.eigenvalues {
+        assert_eq!(e.value.re, 0.0, "{}", e.value);
+        let w = e.value.im.abs();
+        let p = ((w / 2.0).min(1.0).asin() * n as f64 / PI).round() as usize;
+        let exact = 2.0 * (PI * p as f64 / n as f64).sin();
+        assert!((w - exact).abs() < 1e-14, "{} vs {exact}", e.value);
+        let want = match p {
+            0 => (2, 1, false),
+            8 => (1, 1, true),
+            _ => (2, 2, true),
+        };
+        assert_eq!((e.algebraic, e.geometric, e.semisimple), want, "p = {p}");
+        seen[p] += 1;
+    }
+    // 0 once, ±jωₚ twice (both signs) for p = 1…8.
+    assert_eq!(seen, [1, 2, 2, 2, 2, 2, 2, 2, 2]);
+    for md in r.modes.iter().filter(|m| m.wn > 0.0) {
+        assert_eq!((md.zeta, md.tau), (0.0, None), "{}", md.value);
+    }
+    // The removed modes are given the eigenvalues' values: exactly on the axis.
+    assert!(
+        r.uncontrollable_modes
+            .iter()
+            .chain(&r.unobservable_modes)
+            .all(|z| z.re == 0.0)
+    );
+    // The channel force 1 → displacement 3 has the double pole at 0: not BIBO stable.
+    assert_eq!(r.bibo_stable, vec![vec![false]]);
+    assert_eq!(r.dc_gain, vec![vec![DcGain::Infinite]]);
+}
+
+/// The fixed 16-chain without damping: ωₖ = 2 sin(πk/34), k = 1…16, all simple and exactly on
+/// the axis: marginally stable.
+#[test]
+fn fixed_lattice_is_marginally_stable() {
+    let n = 16;
+    let ss = Lattice::new(n, Boundary::Fixed, 1.0)
+        .unwrap()
+        .with_output(Output::Particle(3))
+        .unwrap()
+        .state_space()
+        .unwrap();
+    let r = ss.analysis().unwrap();
+    assert_eq!(r.eigenvalues.len(), 2 * n);
+    let mut w: Vec<f64> = r
+        .eigenvalues
+        .iter()
+        .filter(|e| e.value.im > 0.0)
+        .map(|e| e.value.im)
+        .collect();
+    w.sort_by(f64::total_cmp);
+    for (k, w) in w.iter().enumerate() {
+        let exact = 2.0 * (PI * (k + 1) as f64 / (2.0 * (n + 1) as f64)).sin();
+        assert!((w - exact).abs() < 1e-14, "k = {}: {w} vs {exact}", k + 1);
+    }
+    assert!(
+        r.eigenvalues
+            .iter()
+            .all(|e| e.value.re == 0.0 && e.algebraic == 1 && e.semisimple)
+    );
+    assert!(!r.internally_stable);
+    assert!(
+        r.internal_reason.starts_with("marginally stable"),
+        "{}",
+        r.internal_reason
+    );
+    assert_eq!(r.bibo_stable, vec![vec![false]]);
+}

@@ -1,4 +1,7 @@
-//! `ltikit analyze`.
+//! `ltikit analyze`. On a state-space plant analysed as a whole (not one `--channel`, not a
+//! loop) the report adds the whole-model analysis ([`whole_model`]).
+
+mod whole_model;
 
 use anyhow::Result;
 use clap::Args;
@@ -6,7 +9,7 @@ use serde::Serialize;
 
 use super::output::{finite, pair, print, print_json};
 use super::text::roots_text;
-use super::{Plant, PlantArgs, channels};
+use super::{Plant, PlantArgs, UsageError, channels};
 use crate::analysis::{Analysis, Factored, StepInfo};
 use crate::poly::{fmt_num, fmt_root, fmt_sig, roots::flatten};
 
@@ -22,6 +25,15 @@ pub struct AnalyzeArgs {
     /// "margins"), in input order, using all cores.
     #[arg(long, value_name = "FILE.jsonl")]
     pub batch: Option<String>,
+    /// State-space plant: print the whole modes table of the whole-model section also for a
+    /// large model (more than 20 distinct eigenvalues up to conjugation, which get a summary).
+    #[arg(long, conflicts_with = "batch")]
+    pub modes: bool,
+    /// State-space plant: also print every mode's shapes (unit eigenvectors, each as its 4
+    /// largest components with the state names; implies --modes); with --json, "shapes" in
+    /// every mode of "state_space".
+    #[arg(long, conflicts_with = "batch")]
+    pub shapes: bool,
 }
 
 pub fn run(a: &AnalyzeArgs) -> Result<()> {
@@ -30,17 +42,44 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
     }
     let plant = a.plant.single()?;
     let chans = a.plant.channels(&plant)?;
+    let whole = whole_model::for_plant(&plant, a.plant.channel()?.is_some());
+    if whole.is_none() && (a.modes || a.shapes) {
+        return Err(UsageError(
+            "--modes and --shapes belong to the whole-model section of a state-space plant: \
+             not for a transfer function, a loop with a controller or one --channel"
+                .into(),
+        )
+        .into());
+    }
+    let detail = whole_model::Detail {
+        modes: a.modes,
+        shapes: a.shapes,
+    };
+    let whole_json = whole
+        .as_ref()
+        .map(|w| whole_model::WholeModelJson::new(w, a.shapes));
     if !chans.per_channel {
         let f = &chans.list[0].factored;
         let analysis = f.analyze()?;
         return if a.json {
-            print_json(&AnalyzeJson::from(&analysis))
+            let mut doc = AnalyzeJson::from(&analysis);
+            doc.whole_model = whole_json;
+            print_json(&doc)
         } else {
-            print(&report(&plant, f, &analysis))
+            let mut text = report(&plant, f, &analysis);
+            if let Some(w) = &whole {
+                text.push('\n');
+                text.push_str(&whole_model::text(&plant, w, detail));
+            }
+            print(&text)
         };
     }
     let mut docs = Vec::with_capacity(chans.list.len());
     let mut text = channels::plant_header(&plant);
+    if let Some(w) = &whole {
+        text.push('\n');
+        text.push_str(&whole_model::text(&plant, w, detail));
+    }
     for ch in &chans.list {
         let analysis = ch.factored.analyze()?;
         if a.json {
@@ -52,7 +91,7 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         }
     }
     if a.json {
-        print_json(&channels::mimo_json(&plant, &docs)?)
+        print_json(&channels::mimo_json(&plant, &docs)?.with_whole_model(whole_json)?)
     } else {
         print(&text)
     }
@@ -76,6 +115,10 @@ pub struct AnalyzeJson {
     modes: Vec<ModeJson>,
     second_order: Option<SecondOrderJson>,
     step_info: Option<StepInfoJson>,
+    /// `"state_space"` and `"state_space_note"`: only for a state-space plant analysed as a
+    /// whole (absent otherwise, and in batch lines and linearisations).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    whole_model: Option<whole_model::WholeModelJson>,
 }
 
 #[derive(Serialize)]
@@ -160,6 +203,7 @@ impl From<&Analysis> for AnalyzeJson {
                 settling_max: s.settling_max,
                 undershoot_percent: s.undershoot_percent,
             }),
+            whole_model: None,
         }
     }
 }

@@ -186,6 +186,7 @@ pub fn mimo_json<T: Serialize>(plant: &Plant, docs: &[(usize, usize, T)]) -> Res
         states: plant.model.order(),
         inputs: plant.signals.inputs.clone(),
         outputs: plant.signals.outputs.clone(),
+        whole_model: None,
         channels,
     })
 }
@@ -198,7 +199,20 @@ pub struct MimoJson {
     states: usize,
     inputs: Vec<String>,
     outputs: Vec<String>,
+    /// `analyze` on a state-space plant: `"state_space"` and `"state_space_note"` before the
+    /// channels (see `with_whole_model`); absent for the other commands.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    whole_model: Option<serde_json::Value>,
     channels: Vec<serde_json::Value>,
+}
+
+impl MimoJson {
+    /// The document with the whole-model keys of `analyze` (an object whose keys are put
+    /// before `"channels"`; `None` leaves the document as it was).
+    pub fn with_whole_model<T: Serialize>(mut self, w: Option<T>) -> Result<MimoJson> {
+        self.whole_model = w.map(serde_json::to_value).transpose()?;
+        Ok(self)
+    }
 }
 
 /// Runs a SISO analysis on every channel and prints it: `doc` computes a channel's result

@@ -1,28 +1,41 @@
 //! Text formatting shared by the reports (CLI text output and the demo's Markdown).
 
+use num_complex::Complex64;
+
 use crate::Root;
 use crate::poly::{fmt_root, fmt_sig};
 
 /// Roots with multiplicities, one entry per conjugate pair: "-1 (×2), -0.2 ± 1.98997j", or
 /// "none".
 pub fn roots_text(r: &[Root]) -> String {
-    let upper: Vec<&Root> = r.iter().filter(|r| r.value.im >= 0.0).collect();
-    if upper.is_empty() {
+    let upper: Vec<(Complex64, String)> = r
+        .iter()
+        .filter(|r| r.value.im >= 0.0)
+        .map(|r| {
+            let m = if r.multiplicity > 1 {
+                format!(" (×{})", r.multiplicity)
+            } else {
+                String::new()
+            };
+            (r.value, m)
+        })
+        .collect();
+    labelled_roots_text(&upper)
+}
+
+/// Values (upper members of conjugate pairs) each followed by its label, joined with ", ":
+/// "0 (×2, defective), ±1.41421j"; "none" when empty. Six significant digits, more when
+/// distinct values would print alike.
+pub fn labelled_roots_text(items: &[(Complex64, String)]) -> String {
+    if items.is_empty() {
         return "none".into();
     }
     // Six significant digits, more when distinct roots would print alike (the exact path keeps
     // ±j and ±j(1 + 1e-8) apart: they must not read as "±1j, ±1j").
     let text = |sig: usize| -> Vec<String> {
-        upper
+        items
             .iter()
-            .map(|r| {
-                let m = if r.multiplicity > 1 {
-                    format!(" (×{})", r.multiplicity)
-                } else {
-                    String::new()
-                };
-                format!("{}{m}", fmt_root(r.value, sig))
-            })
+            .map(|(v, label)| format!("{}{label}", fmt_root(*v, sig)))
             .collect()
     };
     let distinct = |v: &[String]| {
@@ -39,6 +52,21 @@ pub fn roots_text(r: &[Root]) -> String {
         v = text(sig);
     }
     v.join(", ")
+}
+
+/// One complex number (not a pair): "0.5", "-0.25j", "0.5 - 0.25j", six significant digits.
+pub fn complex_text(z: Complex64) -> String {
+    let im = |x: f64| format!("{}j", fmt_sig(x, 6));
+    match (z.re == 0.0, z.im == 0.0) {
+        (_, true) => fmt_sig(z.re, 6),
+        (true, false) => im(z.im),
+        (false, false) => format!(
+            "{} {} {}",
+            fmt_sig(z.re, 6),
+            if z.im < 0.0 { "-" } else { "+" },
+            im(z.im.abs())
+        ),
+    }
 }
 
 /// A polynomial in s from its coefficients as typed (descending powers), e.g.

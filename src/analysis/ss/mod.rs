@@ -10,5 +10,5 @@ pub mod report;
 pub mod time;
 
 pub use freq::MimoFreqResponse;
-pub use report::{DcGain, SsAnalysis, SsEigenvalue, SsMode, StaircaseRank};
+pub use report::{DcGain, MAX_ANALYSIS_STATES, SsAnalysis, SsEigenvalue, SsMode, StaircaseRank};
 pub use time::{Hold, InputSignal, SsTimeResponse};
