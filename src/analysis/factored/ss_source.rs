@@ -69,7 +69,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
     let mut known = None;
     let (structure, minimal, reduced_poles, removed) = match second {
         Some((so, red)) => {
-            known = rayleigh_zeros(ss, &so, &red);
+            known = rayleigh_zeros(ss, &so, &red).or_else(|| model_zeros(ss, &red));
             let st = so.eigen_structure();
             let by_position = values_by_position(&st, n);
             let kept: Vec<Complex64> = red.kept.iter().map(|&p| by_position[p]).collect();
@@ -381,14 +381,18 @@ fn rayleigh_zeros(ss: &StateSpace, so: &SecondOrder, red: &ModalReduction) -> Op
     }
     // γ = α + βλ over the modes (α, β from the extreme stiffnesses)
     let (lo, hi) = (so.modes.first()?, so.modes.last()?);
-    let (alpha, beta) = if hi.stiffness > lo.stiffness {
-        let beta = (hi.damping - lo.damping) / (hi.stiffness - lo.stiffness);
-        (lo.damping - beta * lo.stiffness, beta)
-    } else {
-        (lo.damping, 0.0)
-    };
     let norm_e = so.modes.iter().map(|m| m.damping.abs()).fold(0.0, f64::max);
     let tol = second_order::snap_tol(d, norm_e.max(f64::MIN_POSITIVE));
+    let span = hi.stiffness - lo.stiffness;
+    let (alpha, beta) = if span > 0.0 && (hi.damping - lo.damping).abs() > tol {
+        let beta = (hi.damping - lo.damping) / span;
+        (lo.damping - beta * lo.stiffness, beta)
+    } else {
+        // no stiffness dependence within the tolerance: β = 0 exactly (a β of 1e-17 would
+        // put a zero at −1e17)
+        let mean = so.modes.iter().map(|m| m.damping).sum::<f64>() / d as f64;
+        (mean, 0.0)
+    };
     if so
         .modes
         .iter()
@@ -431,6 +435,32 @@ fn rayleigh_zeros(ss: &StateSpace, so: &SecondOrder, red: &ModalReduction) -> Op
         zeros: merge(&zeros),
         r,
         gain,
+    })
+}
+
+/// Zeros, relative degree and gain of a second-order channel that is not of Rayleigh's kind,
+/// from the model in its own coordinates (sparse and exact where the modal form is dense and
+/// rounded: the pencil and the Markov parameters of a lattice see its couplings exactly);
+/// `None` when the counts do not match the modal reduction's minimal order.
+fn model_zeros(ss: &StateSpace, red: &ModalReduction) -> Option<KnownZeros> {
+    let rd = relative_degree(&ss.a, &ss.b, &ss.c, &ss.d, None).ok()?;
+    let r = rd.r?;
+    let tz = transmission_zeros(&ss.a, &ss.b, &ss.c, &ss.d, None).ok()?;
+    let p: usize = tz.distinct.iter().map(|z| z.1).sum();
+    if p + r != red.minimal.order() {
+        return None;
+    }
+    let scale = crate::numeric::linalg::norm_1_inf(&ss.a);
+    let n = ss.a.nrows();
+    let zeros = tz
+        .distinct
+        .iter()
+        .map(|&(z, m)| (snap(z, radius(m, n, scale)), m))
+        .collect();
+    Some(KnownZeros {
+        zeros,
+        r,
+        gain: rd.gain,
     })
 }
 

@@ -200,7 +200,18 @@ impl StateSpace {
             // property of the model, not a failure of the rest of the analysis: said, not
             // raised.
             match invariant_zeros(a, b, c, d, None) {
-                Ok(z) => (Some(z.distinct), None),
+                // the eigenvalue rule for the zeros too (a zero at the origin computed as
+                // 1e-31, the undamped lattice's zeros with real parts of 1e-16)
+                Ok(z) => {
+                    let mut zs: Vec<(Complex64, usize)> = z
+                        .distinct
+                        .into_iter()
+                        .map(|(v, k)| (snap(v, k, n, scale), k))
+                        .collect();
+                    // sorted as roots: decreasing real, then imaginary part
+                    zs.sort_by(|x, y| y.0.re.total_cmp(&x.0.re).then(y.0.im.total_cmp(&x.0.im)));
+                    (Some(zs), None)
+                }
                 Err(e) => (None, Some(e.to_string())),
             }
         };

@@ -307,7 +307,20 @@ impl SecondOrder {
             if off.is_nan() || off > tol_e {
                 return None;
             }
-            // equal damping within a stiffness group (sorted there for the runs)
+            // one damping for every mode when they all agree (E = γI rounds differently in
+            // each mode), else equal damping within a stiffness group (sorted for the runs)
+            let (lo, hi) = gam
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &g| {
+                    (a.min(g), b.max(g))
+                });
+            if hi - lo <= tol_e {
+                let mut m = gam.iter().sum::<f64>() / d as f64;
+                if m.abs() <= tol_e {
+                    m = 0.0;
+                }
+                gam.iter_mut().for_each(|g| *g = m);
+            }
             for &(i0, i1) in &groups {
                 let mut idx: Vec<usize> = (i0..i1).collect();
                 idx.sort_by(|&x, &y| gam[x].total_cmp(&gam[y]));
