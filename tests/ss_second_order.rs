@@ -408,3 +408,61 @@ fn rayleigh_damped_channel_zeros_in_closed_form() {
         }
     }
 }
+
+#[test]
+fn damping_to_the_ground_is_one_value_and_its_zeros_are_closed_form() {
+    // Fixed N = 128, γ = 0.02 (E = γI: every mode's damping rounds to 0.02 ± 1e-16 and must be
+    // one value — a Rayleigh β of 1e-17 would put a zero at −1e17), force on 10, position of
+    // 20: H(w) has the zeros −4 sin²(πj/20), j = 1…9, and −4 sin²(πj/218), j = 1…108 (no
+    // value shared), gain 1, relative degree 11; G(s) = H(s² + 0.02s): zeros of
+    // s² + 0.02s − w = 0, relative degree 22, gain 1.
+    let f = Factored::from_state_space(&lattice(128, Boundary::Fixed, 0.02, 0.0, 10, 20)).unwrap();
+    assert_eq!(f.relative_degree(), Some(22));
+    assert!((f.gain() - 1.0).abs() < 1e-13, "{}", f.gain());
+    let mut want = Vec::new();
+    for (m, count) in [(9usize, 20.0), (108, 218.0)] {
+        for j in 1..=m {
+            let w = -4.0 * (PI * j as f64 / count).sin().powi(2);
+            let im = (-w - 1e-4).sqrt();
+            want.push(C::new(-0.01, im));
+            want.push(C::new(-0.01, -im));
+        }
+    }
+    let e = match_err(&flat(&f.pole_zero().reduced_zeros), &want);
+    assert!(e < 1e-12, "{e:e}");
+}
+
+#[test]
+fn commuting_damping_not_of_rayleigh_form() {
+    // E = 0.01·I + 0.002·G² commutes with G (same modes) but is not affine in the stiffness:
+    // the zeros come from the model's own pencil, and everything agrees with the general path.
+    let d = 20;
+    let mut g = DMatrix::zeros(d, d);
+    for i in 0..d {
+        g[(i, i)] = 2.0;
+        if i + 1 < d {
+            g[(i, i + 1)] = -1.0;
+            g[(i + 1, i)] = -1.0;
+        }
+    }
+    let e = DMatrix::identity(d, d) * 0.01 + &g * &g * 0.002;
+    let mut a = DMatrix::zeros(2 * d, 2 * d);
+    for i in 0..d {
+        a[(i, d + i)] = 1.0;
+        for j in 0..d {
+            a[(d + i, j)] = -g[(i, j)];
+            a[(d + i, d + j)] = -e[(i, j)];
+        }
+    }
+    let mut b = DMatrix::zeros(2 * d, 1);
+    b[(d + 2, 0)] = 1.0;
+    let mut c = DMatrix::zeros(1, 2 * d);
+    c[(0, 7)] = 1.0;
+    let model = StateSpace::new(a, b, c, DMatrix::zeros(1, 1)).unwrap();
+    let so = SecondOrder::detect(&model.a).expect("commuting damping");
+    let (l0, l1) = (so.modes[0].stiffness, so.modes[d - 1].stiffness);
+    assert!((so.modes[0].damping - (0.01 + 0.002 * l0 * l0)).abs() < 1e-15);
+    assert!((so.modes[d - 1].damping - (0.01 + 0.002 * l1 * l1)).abs() < 1e-14);
+    // (zeros up to |s| = 125: both paths' pencils agree to 2e-9 relative)
+    compare_paths(&model, "E = 0.01 I + 0.002 G²", 1e-6);
+}
