@@ -856,3 +856,70 @@ fn whole_model_only_for_state_space_plants() {
         "{s}"
     );
 }
+
+#[test]
+fn a_zero_at_the_origin_settles_to_zero_and_counts_read_in_the_singular() {
+    // ẋ₁ = x₂, ẋ₂ = x₃ + u, ẋ₃ = −6x₁ − 11x₂ − 6x₃, y = x₂: G = s(s + 6)/((s + 1)(s + 2)(s + 3)).
+    // The transmission zero at 0 is exactly 0 (the pencil gave −1.97e-31), the dc gain 0, and
+    // the step response settles to 0 (no metrics relative to a zero final value; it used to
+    // print an undershoot of 2.8e17 %).
+    let s = stdout(&[
+        "analyze",
+        "--a",
+        "0 1 0; 0 0 1; -6 -11 -6",
+        "--b",
+        "0; 1; 0",
+        "--c",
+        "0 1 0",
+    ]);
+    assert!(s.contains("Zeros:     0, -6"), "{s}");
+    assert!(s.contains("dc gain:   0\n"), "{s}");
+    assert!(s.contains("Step response: settles to 0"), "{s}");
+    assert!(s.contains("(3 states, 1 input, 1 output)"), "{s}");
+    let j = json(&[
+        "analyze",
+        "--json",
+        "--a",
+        "0 1 0; 0 0 1; -6 -11 -6",
+        "--b",
+        "0; 1; 0",
+        "--c",
+        "0 1 0",
+    ]);
+    assert_eq!(j["zeros"][0], serde_json::json!([0.0, 0.0]), "{j}");
+    assert_eq!(j["dc_gain"], serde_json::json!(0.0));
+    assert!(j["step_info"].is_null());
+}
+
+#[test]
+fn a_large_mimo_channel_is_described_not_printed() {
+    // The lattice (N = 16, 32 states) with all displacements measured: every channel has 32
+    // poles, more than the 12 printed as a formula.
+    let s = stdout(&[
+        "analyze",
+        "--model",
+        "lattice",
+        "--param",
+        "N=16",
+        "--param",
+        "output=0",
+        "--channel",
+        "1,3",
+    ]);
+    assert!(s.contains("G(s): a channel of a 32-state model"), "{s}");
+    // every channel of the 16-output model: described in words, never a 32-factor formula
+    let s = stdout(&[
+        "analyze", "--model", "lattice", "--param", "N=16", "--param", "output=0",
+    ]);
+    assert_eq!(
+        s.matches("G(s): order 32, minimal order").count(),
+        16,
+        "{s}"
+    );
+    assert!(!s.contains("G(s) = "), "{s}");
+    let s = stdout(&[
+        "margins", "--model", "lattice", "--param", "N=4", "--param", "output=0",
+    ]);
+    // N = 4: 8 poles per channel, printed as a formula
+    assert!(s.contains("G(s) = "), "{s}");
+}

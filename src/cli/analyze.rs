@@ -86,7 +86,7 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
             docs.push((ch.input, ch.output, AnalyzeJson::from(&analysis)));
         } else {
             text.push_str(&channels::block_heading(&plant, ch));
-            text.push_str(&format!("G(s) = {}\n", ch.factored));
+            text.push_str(&format!("{}\n", super::text::channel_g_text(&ch.factored)));
             text.push_str(&body(&ch.factored, &analysis));
         }
     }
@@ -326,6 +326,10 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
     }
     match &a.step_info {
         Some(si) => s.push_str(&step_text(si)),
+        None if a.stability.bibo_stable && a.dc_gain == Some(0.0) => s.push_str(
+            "Step response: settles to 0 (no step metrics: rise time, overshoot and settling are \
+             relative to a non-zero final value)\n",
+        ),
         None => s.push_str("Step response: does not settle (no step metrics)\n"),
     }
     s

@@ -117,9 +117,12 @@ pub fn plant_header(plant: &Plant) -> String {
     if let Some(d) = &plant.description {
         s.push_str(&format!("  {d}\n"));
     }
+    let count = |k: usize, what: &str| format!("{k} {what}{}", if k == 1 { "" } else { "s" });
     s.push_str(&format!(
-        "  state space: {} states, {m} inputs, {p} outputs\n",
-        plant.model.order()
+        "  state space: {}, {}, {}\n",
+        count(plant.model.order(), "state"),
+        count(m, "input"),
+        count(p, "output")
     ));
     s.push_str(&format!("  inputs:  {}\n", plant.signals.inputs.join(", ")));
     s.push_str(&format!(
@@ -247,7 +250,11 @@ pub fn print_each<T: Serialize>(
         let d = doc(&ch.factored)?;
         if !json {
             out.push_str(&block_heading(plant, ch));
-            out.push_str(&format!("G(s) = {}\n\n{}", ch.factored, text(&d)));
+            out.push_str(&format!(
+                "{}\n\n{}",
+                super::text::channel_g_text(&ch.factored),
+                text(&d)
+            ));
         }
         docs.push((ch.input, ch.output, d));
     }

@@ -186,10 +186,10 @@ fn run_channels(a: &FreqArgs, plant: &Plant, chans: &Channels) -> Result<()> {
     s.push('\n');
     for (k, c) in chans.list.iter().enumerate() {
         s.push_str(&format!(
-            "  [{}] {}: G(s) = {}\n",
+            "  [{}] {}: {}\n",
             k + 1,
             channels::heading(plant, c.input, c.output),
-            c.factored
+            super::text::channel_g_text(&c.factored)
         ));
     }
     s.push_str(&format!("\n{:>14}", "w [rad/s]"));

@@ -125,8 +125,26 @@ pub fn vector_text(v: &[f64]) -> String {
 /// Orders above which a state-space channel is not printed as a formula.
 pub const MAX_PRINTED_ORDER: usize = 12;
 
-/// "G(s) = …" for a SISO plant: its coefficients, or for a state-space plant its factors and
-/// its size.
+/// "G(s) = …" of one channel of a state-space model, or — above [`MAX_PRINTED_ORDER`] poles —
+/// its size in words (the factors follow in the report).
+pub fn channel_g_text(f: &crate::analysis::Factored) -> String {
+    let order = f.poles().iter().map(|r| r.multiplicity).sum::<usize>();
+    if order > MAX_PRINTED_ORDER {
+        format!(
+            "G(s): order {order}, minimal order {}, gain {} (poles and zeros below)",
+            f.reduced_poles()
+                .iter()
+                .map(|r| r.multiplicity)
+                .sum::<usize>(),
+            crate::poly::fmt_num(f.gain())
+        )
+    } else {
+        format!("G(s) = {f}")
+    }
+}
+
+/// "G(s) = …" for a SISO plant: its coefficients as typed, or for a state-space plant its
+/// factors and its size (a large one in words).
 pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
     if let Some(which) = plant.selection {
         return format!("{}\n{} = {f}", plant.name, which.formula());

@@ -107,7 +107,14 @@ impl Plant {
         let model = Model::Ss(ss);
         Ok(Plant {
             name: name.unwrap_or_else(|| {
-                format!("state-space model ({n} states, {m} inputs, {p} outputs)")
+                let s =
+                    |k: usize, what: &str| format!("{k} {what}{}", if k == 1 { "" } else { "s" });
+                format!(
+                    "state-space model ({}, {}, {})",
+                    s(n, "state"),
+                    s(m, "input"),
+                    s(p, "output")
+                )
             }),
             description: None,
             signals: Signals::for_model(&model, vec![], vec![], vec![])?,
