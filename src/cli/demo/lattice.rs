@@ -771,7 +771,7 @@ fn damped_channel(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         g.relative_degree().unwrap_or(0),
         count(g.reduced_zeros()),
         fmt_sig(far, 3),
-        20 * (g.relative_degree().unwrap_or(0) as i64 - f.relative_degree().unwrap_or(0) as i64),
+        20 * (g.relative_degree().unwrap_or(0) - f.relative_degree().unwrap_or(0)),
     ));
     let name = "lattice-damped-channel-bode.png";
     let opts = crate::plot::PlotOptions {
