@@ -476,3 +476,34 @@ fn commuting_damping_not_of_rayleigh_form() {
     assert_eq!(f.relative_degree(), Some(5));
     assert!((f.gain() - 9.6e-8).abs() < 1e-9 * 9.6e-8, "{:e}", f.gain());
 }
+
+#[test]
+fn the_structure_note_says_how_and_how_well() {
+    // The second-order path on the damped channel, and the general path on the same model
+    // with interleaved states, whose pencil cannot resolve the zeros: the note measures the
+    // agreement of the factors with the realisation's G(s) and says so.
+    let model = lattice(64, Boundary::Fixed, 0.02, 0.01, 10, 20);
+    let note = Factored::from_state_space(&model).unwrap().structure_note();
+    assert!(
+        note.contains("second order") && note.contains("Rayleigh"),
+        "{note}"
+    );
+    assert!(note.contains("agree with G(s) to"), "{note}");
+    let note = Factored::from_state_space(&interleaved(&model))
+        .unwrap()
+        .structure_note();
+    assert!(note.contains("DISAGREE"), "{note}");
+    // a small model through the general path agrees to rounding
+    let note = Factored::from_state_space(&ss(
+        &[0.0, 1.0, 0.0, 0.0, 0.0, 1.0, -6.0, -11.0, -6.0],
+        &[0.0, 1.0, 0.0],
+        &[0.0, 1.0, 0.0],
+        3,
+    ))
+    .unwrap()
+    .structure_note();
+    assert!(
+        note.contains("Schur form") && note.contains("agree"),
+        "{note}"
+    );
+}

@@ -177,6 +177,9 @@ impl Factored {
     /// assert_eq!(line, "exact (certified by rational arithmetic on the coefficients as typed)");
     /// ```
     pub fn structure_note(&self) -> String {
+        if let super::Source::StateSpace(ss) = &self.source {
+            return ss.note.clone();
+        }
         match (self.structure_path(), &self.decision.fallback) {
             (StructurePath::Exact, _) => {
                 "exact (certified by rational arithmetic on the coefficients as typed)".into()

@@ -43,6 +43,42 @@ pub(crate) struct SsSource {
     pub minimal: MinimalRealization,
     /// G(s) evaluation: Hessenberg form of the minimal A.
     pub response: HessenbergResponse,
+    /// How the factors were found, and how well they agree with the realisation.
+    pub note: String,
+}
+
+/// Largest relative disagreement between the factored G and the realisation's G at the probe
+/// points that is still called agreement; beyond it the structure note warns.
+pub(crate) const FACTORS_AGREE_REL: f64 = 1e-6;
+
+/// The relative disagreement of the factors (gain, reduced zeros and poles) with the minimal
+/// realisation's G at five points off the axis, log-spaced over the poles' magnitudes (where a
+/// solve is accurate: no resonance, not beyond the spectrum where a sum of modes cancels).
+fn factors_agreement(pz: &PoleZero, gain: f64, response: &HessenbergResponse) -> Option<f64> {
+    let mags: Vec<f64> = pz
+        .reduced_poles
+        .iter()
+        .map(|p| p.value.norm())
+        .filter(|&m| m > 0.0 && m.is_finite())
+        .collect();
+    let lo = mags.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = mags.iter().copied().fold(0.0, f64::max);
+    if !(lo.is_finite() && hi > 0.0) {
+        return None;
+    }
+    let mut worst = 0.0f64;
+    for k in 0..5 {
+        let w = lo * (hi / lo).powf(k as f64 / 4.0);
+        let s = Complex64::new(0.5 * w, w);
+        let direct = response.eval_siso(s);
+        let factors = super::series::eval_factors(gain, &pz.reduced_zeros, &pz.reduced_poles, s);
+        let scale = direct.norm();
+        if !(scale.is_finite() && scale > 0.0) {
+            continue;
+        }
+        worst = worst.max((factors - direct).norm() / scale);
+    }
+    Some(worst)
 }
 
 /// Poles, zeros, cancellations and gain of a SISO state-space model, and its source.
@@ -67,9 +103,23 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         .flatten()
         .and_then(|so| second_order_minimal(ss, &so).map(|m| (so, m)));
     let mut known = None;
+    let mut method = String::from(
+        "eigenvalues of A by the Schur form, minimal realisation by staircases, transmission \
+         zeros by the system pencil",
+    );
     let (structure, minimal, reduced_poles, removed) = match second {
         Some((so, red)) => {
-            known = rayleigh_zeros(ss, &so, &red).or_else(|| model_zeros(ss, &red));
+            let rayleigh = rayleigh_zeros(ss, &so, &red);
+            method = format!(
+                "second order — modes by the symmetric eigenproblem of the stiffness, minimal \
+                 realisation in modal coordinates, zeros {}",
+                if rayleigh.is_some() {
+                    "through the modal variable w (Rayleigh damping)"
+                } else {
+                    "by the system pencil"
+                }
+            );
+            known = rayleigh.or_else(|| model_zeros(ss, &red));
             let st = so.eigen_structure();
             let by_position = values_by_position(&st, n);
             let kept: Vec<Complex64> = red.kept.iter().map(|&p| by_position[p]).collect();
@@ -91,7 +141,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                 .copied()
                 .collect();
             let Some(st) = st else {
-                return finish(Vec::new(), minimal, reduced, Vec::new(), None);
+                return finish(Vec::new(), minimal, reduced, Vec::new(), None, "no states");
             };
             // the reduced poles and the removed modes are eigenvalues of A: its values
             let reduced = reduced
@@ -103,7 +153,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         }
     };
     let poles = roots_of_structure(&structure, n);
-    finish(poles, minimal, reduced_poles, removed, known)
+    finish(poles, minimal, reduced_poles, removed, known, &method)
 }
 
 /// The pole–zero part from the poles, the minimal realisation, its poles and the removed
@@ -115,6 +165,7 @@ fn finish(
     mut reduced_poles: Vec<Root>,
     removed: Vec<Complex64>,
     known: Option<KnownZeros>,
+    method: &str,
 ) -> Result<(PoleZero, f64, SsSource)> {
     crate::poly::roots::sort_roots(&mut reduced_poles);
     let cancelled = conjugate_closed(&group(&removed));
@@ -156,7 +207,29 @@ fn finish(
         zeros_at_infinity,
     };
     let response = HessenbergResponse::new(&minimal.a, &minimal.b, &minimal.c, &minimal.d)?;
-    Ok((pz, rd.gain, SsSource { minimal, response }))
+    let agreement = match factors_agreement(&pz, rd.gain, &response) {
+        Some(e) if e.is_nan() || e > FACTORS_AGREE_REL => format!(
+            "; the factors DISAGREE with G(s) by {} (relative, off the axis within the poles' \
+             range): the zeros and the gain are not resolved (an ill-conditioned pencil), and \
+             what is built on them (Bode, margins, closed forms, step metrics) is not reliable",
+            crate::poly::fmt_sig(e, 2)
+        ),
+        Some(e) => format!(
+            "; the factors agree with G(s) to {}",
+            crate::poly::fmt_sig(e.max(f64::EPSILON), 2)
+        ),
+        None => String::new(),
+    };
+    let note = format!("numerical (state space: {method}{agreement})");
+    Ok((
+        pz,
+        rd.gain,
+        SsSource {
+            minimal,
+            response,
+            note,
+        },
+    ))
 }
 
 /// A value within `r` of 0 is 0; a real part within `r` is 0 (on the imaginary axis): the
