@@ -140,6 +140,7 @@ fn schur_1000_states() {
         ..SchurOptions::default()
     };
     let s = real_schur(&a, opts).unwrap();
+    eprintln!("backward error {:e}", s.backward_error(&a));
     assert!(s.backward_error(&a) < 1e-12, "{:e}", s.backward_error(&a));
     assert!(s.eigenvalues().iter().all(|z| z.re < 0.0));
 }
