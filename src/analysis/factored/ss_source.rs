@@ -457,7 +457,31 @@ fn rayleigh_zeros(ss: &StateSpace, so: &SecondOrder, red: &ModalReduction) -> Op
     let norm_e = so.modes.iter().map(|m| m.damping.abs()).fold(0.0, f64::max);
     let tol = second_order::snap_tol(d, norm_e.max(f64::MIN_POSITIVE));
     let span = hi.stiffness - lo.stiffness;
-    let (alpha, beta) = if span > 0.0 && (hi.damping - lo.damping).abs() > tol {
+    // From the matrices when G couples the states: E = αI + βG entry by entry (a model built
+    // as Rayleigh's has β exactly, e.g. 0.01·(−1)/(−1)); else from the extreme modes.
+    let (g, e) = (ss.a.view((d, 0), (d, d)), ss.a.view((d, d), (d, d)));
+    let mut ratios: Vec<f64> = Vec::new();
+    for j in 0..d {
+        for i in 0..d {
+            if i != j && g[(i, j)] != 0.0 {
+                ratios.push(e[(i, j)] / g[(i, j)]);
+            }
+        }
+    }
+    ratios.sort_by(f64::total_cmp);
+    // the median ratio (exact when the model was built with one β)
+    let from_entries = ratios.get(ratios.len() / 2).map(|&beta| {
+        let alpha = (0..d).map(|i| beta * g[(i, i)] - e[(i, i)]).sum::<f64>() / d as f64;
+        (alpha, beta)
+    });
+    let (alpha, beta) = if let Some(ab) = from_entries
+        && so
+            .modes
+            .iter()
+            .all(|m| (m.damping - (ab.0 + ab.1 * m.stiffness)).abs() <= tol)
+    {
+        ab
+    } else if span > 0.0 && (hi.damping - lo.damping).abs() > tol {
         let beta = (hi.damping - lo.damping) / span;
         (lo.damping - beta * lo.stiffness, beta)
     } else {
