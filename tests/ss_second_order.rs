@@ -507,3 +507,48 @@ fn the_structure_note_says_how_and_how_well() {
         "{note}"
     );
 }
+
+#[test]
+fn mode_shapes_from_the_modes() {
+    // The fixed lattice (N = 16): simple eigenvalues ±jω_k with shapes (x, ±jω_k·x),
+    // x_n ∝ sin(πkn/17); the periodic one: degenerate pairs with two shapes each and the
+    // Jordan block at 0 with one. Residuals measured against A itself.
+    use ltikit::numeric::linalg::eigenvectors;
+    let a = lattice(16, Boundary::Fixed, 0.0, 0.0, 1, 1).a;
+    let (sets, _) = eigenvectors(&a).unwrap();
+    assert_eq!(sets.len(), 32);
+    for s in &sets {
+        assert_eq!(s.vectors.ncols(), 1);
+        assert!(s.residuals[0] < 1e-15, "{}", s.residuals[0]);
+        let v = s.vectors.column(0);
+        // the velocity half is λ times the position half
+        for i in 0..16 {
+            assert!((v[16 + i] - s.value * v[i]).norm() < 1e-14);
+        }
+        // the position half is a sine mode: k from the frequency, shape ∝ sin(πkn/17)
+        let k = ((s.value.im.abs() / 2.0).asin() * 34.0 / PI).round();
+        let x: Vec<f64> = (1..=16).map(|n| (PI * k * n as f64 / 17.0).sin()).collect();
+        let nx = x.iter().map(|t| t * t).sum::<f64>().sqrt();
+        let dot: C = (0..16).map(|i| v[i].conj() * x[i] / nx).sum();
+        let nv: f64 = (0..16).map(|i| v[i].norm_sqr()).sum::<f64>().sqrt();
+        assert!(
+            (dot.norm() - nv).abs() < 1e-13,
+            "k = {k}: {} vs {nv}",
+            dot.norm()
+        );
+    }
+    let a = lattice(16, Boundary::Periodic, 0.0, 0.0, 1, 1).a;
+    let (sets, _) = eigenvectors(&a).unwrap();
+    for s in &sets {
+        let g = s.vectors.ncols();
+        match (s.value.norm() == 0.0, s.algebraic) {
+            (true, _) => assert_eq!((s.algebraic, g), (2, 1)),
+            (false, 2) => assert_eq!(g, 2),
+            (false, m) => assert_eq!((m, g), (1, 1)),
+        }
+        assert!(s.residuals.iter().all(|r| *r < 1e-15), "{:?}", s.residuals);
+        // orthonormal
+        let gram = s.vectors.adjoint() * &s.vectors;
+        assert!((gram - DMatrix::<C>::identity(g, g)).norm() < 1e-14);
+    }
+}

@@ -14,6 +14,9 @@
 //! conjugate pair the basis of λ̄ is the conjugate of that of λ.
 //!
 //! A defective eigenvalue gets its g < m true eigenvectors only (no generalised ones).
+//!
+//! A matrix with the mechanical structure of [`super::second_order`] takes its vectors from the
+//! modes instead: (x, μx) for mode shape x and root μ.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -56,6 +59,9 @@ pub struct EigenvectorSet {
 /// ```
 pub fn eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStructure)> {
     let n = super::check_square(a, "the matrix")?;
+    if let Some(so) = super::second_order::SecondOrder::detect(a) {
+        return Ok(second_order_vectors(a, &so));
+    }
     let real = real_schur(a, SchurOptions::default())?;
     let cs = complex_schur(&real);
     let (structure, bases) = structure_of(&real, &cs, true);
@@ -125,6 +131,45 @@ pub fn eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStruc
         }
     }
     Ok((sets.into_iter().flatten().collect(), structure))
+}
+
+/// The eigenvectors of a second-order model from its modes: mode k with shape x (position
+/// coordinates) and root μ has the eigenvector (x, μx); a multiple eigenvalue takes one vector
+/// per mode (a critical mode's double root has only one), orthonormalised.
+fn second_order_vectors(
+    a: &DMatrix<f64>,
+    so: &super::second_order::SecondOrder,
+) -> (Vec<EigenvectorSet>, EigenStructure) {
+    let structure = so.eigen_structure();
+    let (d, n) = (so.dof, so.order());
+    let norm_a = super::norm_1_inf(a);
+    let mut sets = Vec::with_capacity(structure.clusters.len());
+    for cluster in &structure.clusters {
+        // one vector per mode of the cluster (the first root of a critical mode stands for it)
+        let mut modes: Vec<usize> = cluster.positions.iter().map(|&p| p / 2).collect();
+        modes.dedup();
+        let mut v = DMatrix::<Complex64>::zeros(n, modes.len());
+        for (j, &k) in modes.iter().enumerate() {
+            for i in 0..d {
+                let x = Complex64::new(so.shapes[(i, k)], 0.0);
+                v[(i, j)] = x;
+                v[(d + i, j)] = x * cluster.value;
+            }
+        }
+        let mut v = orthonormal(&v);
+        if cluster.value.im == 0.0 {
+            v.iter_mut().for_each(|z| z.im = 0.0);
+        }
+        normalise_phase(&mut v);
+        let residuals = residuals(a, &v, cluster.value, norm_a);
+        sets.push(EigenvectorSet {
+            value: cluster.value,
+            algebraic: cluster.algebraic,
+            vectors: v,
+            residuals,
+        });
+    }
+    (sets, structure)
 }
 
 /// Orthonormal columns spanning the same space (thin QR).
