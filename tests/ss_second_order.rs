@@ -552,3 +552,56 @@ fn mode_shapes_from_the_modes() {
         assert!((gram - DMatrix::<C>::identity(g, g)).norm() < 1e-14);
     }
 }
+
+#[test]
+fn hostile_second_order_models_never_panic() {
+    // Stiffness and damping near the ends of f64, zero, negative, mixed: every entry point
+    // either answers or says why (the recognition declines what it cannot hold, and the
+    // general path scales by powers of two).
+    use ltikit::numeric::linalg::modal::ModalForm;
+    for (k, c) in [
+        (1e300, 0.0),
+        (1e-300, 1e-300),
+        (1e300, 1e300),
+        (-1e300, 1e-10),
+        (0.0, 0.0),
+        (1e154, 1e154),
+        (f64::MAX / 8.0, 0.0),
+        (5e-324, 0.0),
+    ] {
+        let g = DMatrix::from_row_slice(2, 2, &[2.0 * k, -k, -k, 2.0 * k]);
+        let mut a = DMatrix::zeros(4, 4);
+        a[(0, 2)] = 1.0;
+        a[(1, 3)] = 1.0;
+        for i in 0..2 {
+            for j in 0..2 {
+                a[(2 + i, j)] = -g[(i, j)];
+                a[(2 + i, 2 + j)] = -c * if i == j { 1.0 } else { 0.0 };
+            }
+        }
+        let model = StateSpace::new(
+            a.clone(),
+            DMatrix::from_row_slice(4, 1, &[0.0, 0.0, 1.0, 0.0]),
+            DMatrix::from_row_slice(1, 4, &[0.0, 1.0, 0.0, 0.0]),
+            DMatrix::zeros(1, 1),
+        )
+        .unwrap();
+        let _ = eigen_structure(&a);
+        let _ = ModalForm::new(&model.a, &model.b, &model.c, &model.d);
+        let _ = ltikit::numeric::linalg::eigenvectors(&a);
+        if let Ok(f) = Factored::from_state_space(&model) {
+            let _ = f.analyze();
+            let _ = f.freq_response(&[0.1, 1.0, 10.0]);
+        }
+        let _ = model.step_response_from(0, &[0.0, 1.0, 2.0], false);
+        if let Some(so) = SecondOrder::detect(&a) {
+            for m in &so.modes {
+                assert!(
+                    m.stiffness.is_finite() && m.damping.is_finite(),
+                    "k = {k:e}"
+                );
+                assert!(m.roots.iter().all(|z| z.re.is_finite() && z.im.is_finite()));
+            }
+        }
+    }
+}

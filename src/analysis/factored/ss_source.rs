@@ -296,6 +296,14 @@ fn second_order_minimal(ss: &StateSpace, so: &SecondOrder) -> Option<ModalReduct
     let beta = &so.shapes_inv * ss.b.rows(d, d);
     let cq = ss.c.columns(0, d) * &so.shapes;
     let cv = ss.c.columns(d, d) * &so.shapes;
+    if beta
+        .iter()
+        .chain(cq.iter())
+        .chain(cv.iter())
+        .any(|x| !x.is_finite())
+    {
+        return None;
+    }
     let eps_n2 = (n * n) as f64 * f64::EPSILON;
     let tol_b = eps_n2 * beta.norm();
     let tol_c = eps_n2 * (cq.norm_squared() + cv.norm_squared()).sqrt();

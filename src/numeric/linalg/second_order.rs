@@ -184,15 +184,20 @@ impl SecondOrderMode {
     /// The mode with stiffness λ and damping γ; `critical_tol` bounds |μ₁ − μ₂| for a double
     /// root.
     fn new(stiffness: f64, damping: f64, critical_tol: f64) -> SecondOrderMode {
-        let (l, g) = (stiffness, damping);
-        let c = |re: f64, im: f64| Complex64::new(re, im);
+        // μ = 2^e·ν with ν² + (γ/2^e)ν + λ/2^(2e) = 0, 2^e near max(|γ|, √|λ|): exact
+        // scaling, and no square overflows or underflows
+        use crate::numeric::balance::{exponent, ldexp};
+        let e = exponent(damping.abs().max(stiffness.abs().sqrt())).unwrap_or(0);
+        let (l, g) = (ldexp(stiffness, -2 * e), ldexp(damping, -e));
+        let c = |re: f64, im: f64| Complex64::new(ldexp(re, e), ldexp(im, e));
+        let unit = ldexp(1.0, e);
         // disc = γ² − 4λ rounded once (γ² exact in the fused multiply-add, 4λ exact)
         let disc = g.mul_add(g, -4.0 * l);
-        if disc.abs().sqrt() <= critical_tol {
+        if disc.abs().sqrt() * unit <= critical_tol {
             let mu = c(-0.5 * g, 0.0);
             return SecondOrderMode {
-                stiffness: l,
-                damping: g,
+                stiffness,
+                damping,
                 roots: [mu, mu],
                 critical: true,
             };
@@ -208,8 +213,8 @@ impl SecondOrderMode {
             [c(small, 0.0), c(q, 0.0)]
         };
         SecondOrderMode {
-            stiffness: l,
-            damping: g,
+            stiffness,
+            damping,
             roots,
             critical: false,
         }
@@ -266,8 +271,15 @@ impl SecondOrder {
         let sg = symmetrized(&g, &delta);
         let se = symmetrized(&e, &delta);
         let (norm_g, norm_e) = (norm_inf(&sg), norm_inf(&se));
+        // beyond f64 (entries near 1e308): the general path scales by powers of two first
+        if !(norm_g.is_finite() && norm_e.is_finite() && norm_g * 4.0 < f64::MAX) {
+            return None;
+        }
         let (tol_g, tol_e) = (snap_tol(d, norm_g), snap_tol(d, norm_e));
         let (mut lam, mut v) = sym_eig(sg.clone())?;
+        if lam.iter().chain(v.iter()).any(|x| !x.is_finite()) {
+            return None;
+        }
         // residual of the stiffness decomposition
         let resid =
             &sg * &v - &v * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&lam));
