@@ -923,3 +923,33 @@ fn a_large_mimo_channel_is_described_not_printed() {
     // N = 4: 8 poles per channel, printed as a formula
     assert!(s.contains("G(s) = "), "{s}");
 }
+
+#[test]
+fn warnings_come_after_success_and_never_beside_an_error() {
+    // C = s − 1 cancels the plant's unstable pole at 1: the loop analysis succeeds with a
+    // warning on stderr; the same loop with a bad time fails with its error line alone (the
+    // fuzzer found "warning: … / error: …" on two lines, seed 11).
+    let args = [
+        "response",
+        "--num",
+        "1",
+        "--den",
+        "1 0 -1",
+        "--controller",
+        "pd:kp=-1,kd=1,tf=0",
+        "--t",
+        "0 1",
+    ];
+    let ok = ltikit(&args);
+    assert!(ok.status.success());
+    let err = String::from_utf8_lossy(&ok.stderr);
+    assert!(
+        err.starts_with("warning: the loop is internally unstable"),
+        "{err}"
+    );
+    let mut bad = args.to_vec();
+    bad[8] = "0 -1";
+    let (line, code) = error(&bad);
+    assert_eq!(code, 1);
+    assert!(line.starts_with("error: time -1"), "{line}");
+}

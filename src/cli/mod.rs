@@ -110,9 +110,17 @@ pub fn main() -> i32 {
             return 0;
         }
     };
-    match run(cli) {
-        Ok(()) => 0,
+    let result = run(cli);
+    let warnings = take_warnings();
+    match result {
+        Ok(()) => {
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            0
+        }
         Err(e) => {
+            // a failing command says one line: the error (its warnings are dropped)
             eprintln!("error: {}", one_line(&e));
             if e.downcast_ref::<UsageError>().is_some() {
                 2
@@ -121,6 +129,25 @@ pub fn main() -> i32 {
             }
         }
     }
+}
+
+/// Warnings of the running command, printed to stderr after it succeeds (a failing command
+/// prints only its error line).
+static WARNINGS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+
+/// Records a warning for the end of the command.
+pub(crate) fn warn(message: String) {
+    if let Ok(mut w) = WARNINGS.lock() {
+        w.push(message);
+    }
+}
+
+/// The recorded warnings, emptied.
+fn take_warnings() -> Vec<String> {
+    WARNINGS
+        .lock()
+        .map(|mut w| std::mem::take(&mut *w))
+        .unwrap_or_default()
 }
 
 /// Runs a command line in this process — `args` as `main` would see them, the program name

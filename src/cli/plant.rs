@@ -194,7 +194,7 @@ impl PlantArgs {
         if let Some(cl) = &cl {
             let st = cl.internal_stability();
             if !st.unstable_hidden.is_empty() {
-                eprintln!("warning: {}", st.reason);
+                super::warn(st.reason.clone());
             }
         }
         Ok((f, cl))
