@@ -29,7 +29,7 @@ use super::source::LowFrequency;
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
 use crate::numeric::linalg::second_order::{self, SecondOrder};
-use crate::numeric::linalg::structure::radius;
+use crate::numeric::linalg::structure::{radius, snap};
 use crate::numeric::linalg::{
     EigenStructure, HessenbergResponse, MinimalRealization, eigen_structure, minimal_realization,
     relative_degree, transmission_zeros,
@@ -230,19 +230,6 @@ fn finish(
             note,
         },
     ))
-}
-
-/// A value within `r` of 0 is 0; a real part within `r` is 0 (on the imaginary axis): the
-/// value of a matrix within ε‖A‖ of the computed one (an integrator, an undamped mode, a zero
-/// at the origin computed as 1e-31).
-fn snap(v: Complex64, r: f64) -> Complex64 {
-    if v.norm() <= r {
-        Complex64::new(0.0, 0.0)
-    } else if v.re.abs() <= r {
-        Complex64::new(0.0, v.im)
-    } else {
-        v
-    }
 }
 
 /// The snapped value of each eigenvalue cluster of A.

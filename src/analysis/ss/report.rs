@@ -363,14 +363,7 @@ impl StateSpace {
 /// The eigenvalue rule of the module docs: exactly 0 within the cluster radius of 0, exactly
 /// on the imaginary axis when the real part is within it.
 fn snap(v: Complex64, algebraic: usize, n: usize, scale: f64) -> Complex64 {
-    let r = radius(algebraic, n, scale);
-    if v.norm() <= r {
-        Complex64::new(0.0, 0.0)
-    } else if v.re.abs() <= r {
-        Complex64::new(0.0, v.im)
-    } else {
-        v
-    }
+    crate::numeric::linalg::structure::snap(v, radius(algebraic, n, scale))
 }
 
 /// D − C·A⁻¹·B of a SISO minimal realisation, `Infinite` when A is singular to the solve.

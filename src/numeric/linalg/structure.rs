@@ -212,6 +212,19 @@ fn provisional(g: &[usize], ev: &[Complex64], value: Complex64) -> EigenCluster 
     }
 }
 
+/// The eigenvalue rule for a value with error radius `r` (a cluster radius): within `r` of 0
+/// it is 0, a real part within `r` is 0 (on the imaginary axis) — A is within ε‖A‖ of a
+/// matrix with the value there (an integrator, an undamped mode, a zero at the origin).
+pub(crate) fn snap(v: Complex64, r: f64) -> Complex64 {
+    if v.norm() <= r {
+        Complex64::new(0.0, 0.0)
+    } else if v.re.abs() <= r {
+        Complex64::new(0.0, v.im)
+    } else {
+        v
+    }
+}
+
 /// Cluster radius for a cluster of m members (see the module docs).
 pub(crate) fn radius(m: usize, n: usize, scale: f64) -> f64 {
     let m = m.clamp(1, MAX_DEFECTIVE_SIZE) as f64;
