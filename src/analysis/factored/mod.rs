@@ -40,6 +40,7 @@ mod plant;
 mod pole_zero;
 pub(crate) mod series;
 mod source;
+mod ss_modal;
 mod ss_source;
 
 use std::cell::Cell;
