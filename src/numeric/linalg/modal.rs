@@ -135,7 +135,14 @@ fn swap(s: &mut DMatrix<C>, w: &mut DMatrix<C>, k: usize) {
 /// Cluster labels of the diagonal of `s` (single linkage at distance `tol`), numbered in order
 /// of first appearance.
 fn clusters(s: &DMatrix<C>, tol: f64) -> Vec<usize> {
-    let n = s.nrows();
+    let values: Vec<C> = (0..s.nrows()).map(|i| s[(i, i)]).collect();
+    single_linkage(&values, tol)
+}
+
+/// Cluster labels of `values` (single linkage: values closer than `tol`, |Δ| ≤ tol, share a
+/// cluster, transitively), numbered in order of first appearance.
+pub(crate) fn single_linkage(values: &[C], tol: f64) -> Vec<usize> {
+    let n = values.len();
     let mut label: Vec<usize> = (0..n).collect();
     fn find(l: &mut [usize], i: usize) -> usize {
         let mut r = i;
@@ -152,13 +159,13 @@ fn clusters(s: &DMatrix<C>, tol: f64) -> Vec<usize> {
     }
     // sort by real part to link neighbours cheaply: pairs within tol have |Δre| ≤ tol
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| s[(a, a)].re.total_cmp(&s[(b, b)].re));
+    order.sort_by(|&a, &b| values[a].re.total_cmp(&values[b].re));
     for (x, &i) in order.iter().enumerate() {
         for &j in &order[x + 1..] {
-            if s[(j, j)].re - s[(i, i)].re > tol {
+            if values[j].re - values[i].re > tol {
                 break;
             }
-            if (s[(i, i)] - s[(j, j)]).norm() <= tol {
+            if (values[i] - values[j]).norm() <= tol {
                 let (ri, rj) = (find(&mut label, i), find(&mut label, j));
                 if ri != rj {
                     label[ri.max(rj)] = ri.min(rj);

@@ -385,51 +385,22 @@ impl SecondOrder {
             ev.push((m.roots[1], 2 * k + 1, m.critical));
         }
         let tol = super::structure::radius(1, n, scale);
-        // single linkage on the real part order, then by distance
-        let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by(|&a, &b| ev[a].0.re.total_cmp(&ev[b].0.re));
-        let mut label: Vec<usize> = (0..n).collect();
-        fn find(l: &mut [usize], i: usize) -> usize {
-            let mut r = i;
-            while l[r] != r {
-                r = l[r];
-            }
-            l[i] = r;
-            r
-        }
-        for (x, &i) in order.iter().enumerate() {
-            for &j in &order[x + 1..] {
-                if ev[j].0.re - ev[i].0.re > tol {
-                    break;
-                }
-                if (ev[i].0 - ev[j].0).norm() <= tol {
-                    let (ri, rj) = (find(&mut label, i), find(&mut label, j));
-                    if ri != rj {
-                        label[ri.max(rj)] = ri.min(rj);
-                    }
-                }
-            }
-        }
-        let mut clusters: Vec<EigenCluster> = Vec::new();
-        let mut index_of: Vec<Option<usize>> = vec![None; n];
-        for (i, &(value, pos, critical)) in ev.iter().enumerate() {
-            let r = find(&mut label, i);
-            let ci = match index_of[r] {
-                Some(ci) => ci,
-                None => {
-                    clusters.push(EigenCluster {
-                        value: Complex64::new(0.0, 0.0),
-                        algebraic: 0,
-                        geometric: 0,
-                        members: Vec::new(),
-                        positions: Vec::new(),
-                        sigma: Vec::new(),
-                    });
-                    index_of[r] = Some(clusters.len() - 1);
-                    clusters.len() - 1
-                }
-            };
-            let c = &mut clusters[ci];
+        let values: Vec<Complex64> = ev.iter().map(|e| e.0).collect();
+        let labels = super::modal::single_linkage(&values, tol);
+        // labels number the clusters in order of first appearance
+        let count = labels.iter().map(|&l| l + 1).max().unwrap_or(0);
+        let mut clusters: Vec<EigenCluster> = (0..count)
+            .map(|_| EigenCluster {
+                value: Complex64::new(0.0, 0.0),
+                algebraic: 0,
+                geometric: 0,
+                members: Vec::new(),
+                positions: Vec::new(),
+                sigma: Vec::new(),
+            })
+            .collect();
+        for (&(value, pos, critical), &label) in ev.iter().zip(&labels) {
+            let c = &mut clusters[label];
             c.members.push(value);
             c.positions.push(pos);
             c.algebraic += 1;
