@@ -2,6 +2,8 @@
 //! closed forms: the seed's lattice (fixed: simple eigenvalues; periodic: degenerate pairs and
 //! a Jordan block at 0), random stable systems, and defective matrices that must fall back.
 
+mod common;
+use common::interleaved;
 use ltikit::StateSpace;
 use ltikit::lti::lattice::{Boundary, Lattice, Output};
 use ltikit::numeric::linalg::HessenbergResponse;
@@ -40,19 +42,6 @@ fn axis_errors(b: Boundary, ss: &StateSpace, m: &ModalForm) -> (f64, f64) {
         worst.1 = worst.1.max((h.eval_siso(s) - e).norm() / e.norm());
     }
     worst
-}
-
-/// The same model with its states interleaved (q₁, q̇₁, q₂, q̇₂, …): no longer in the
-/// second-order block pattern, so the modal form comes from the Schur form.
-fn interleaved(ss: &StateSpace) -> StateSpace {
-    let n = ss.order();
-    let d = n / 2;
-    // new state 2i is q_i (old i), 2i + 1 is q̇_i (old d + i)
-    let old = |k: usize| if k % 2 == 0 { k / 2 } else { d + k / 2 };
-    let a = DMatrix::from_fn(n, n, |i, j| ss.a[(old(i), old(j))]);
-    let b = DMatrix::from_fn(n, ss.b.ncols(), |i, j| ss.b[(old(i), j)]);
-    let c = DMatrix::from_fn(ss.c.nrows(), n, |i, j| ss.c[(i, old(j))]);
-    StateSpace::new(a, b, c, ss.d.clone()).unwrap()
 }
 
 #[test]

@@ -4,6 +4,8 @@
 //! general path (the same model with its states interleaved q₁, q̇₁, q₂, q̇₂, …, which the
 //! recognition does not take).
 
+mod common;
+use common::interleaved;
 use std::f64::consts::PI;
 
 use ltikit::StateSpace;
@@ -23,20 +25,6 @@ fn lattice(n: usize, b: Boundary, gamma: f64, eta: f64, input: usize, output: us
         .and_then(|l| l.with_output(Output::Particle(output)))
         .and_then(|l| l.state_space())
         .unwrap()
-}
-
-/// The same model with its states interleaved (q₁, q̇₁, q₂, q̇₂, …).
-fn interleaved(ss: &StateSpace) -> StateSpace {
-    let n = ss.order();
-    let d = n / 2;
-    let old = |k: usize| if k % 2 == 0 { k / 2 } else { d + k / 2 };
-    StateSpace::new(
-        DMatrix::from_fn(n, n, |i, j| ss.a[(old(i), old(j))]),
-        DMatrix::from_fn(n, ss.b.ncols(), |i, j| ss.b[(old(i), j)]),
-        DMatrix::from_fn(ss.c.nrows(), n, |i, j| ss.c[(i, old(j))]),
-        ss.d.clone(),
-    )
-    .unwrap()
 }
 
 fn ss(a: &[f64], b: &[f64], c: &[f64], n: usize) -> StateSpace {

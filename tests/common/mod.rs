@@ -63,3 +63,21 @@ pub fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     }
     0.5 * (a + b)
 }
+
+/// A second-order model [[0, I], [−G, −E]] with its states interleaved (q₁, q̇₁, q₂, q̇₂, …):
+/// the same system, no longer in the block pattern, so every kernel takes the general (Schur)
+/// path — the reference the second-order path is compared with.
+pub fn interleaved(ss: &ltikit::StateSpace) -> ltikit::StateSpace {
+    use nalgebra::DMatrix;
+    let n = ss.order();
+    let d = n / 2;
+    // new state 2i is q_i (old i), 2i + 1 is q̇_i (old d + i)
+    let old = |k: usize| if k % 2 == 0 { k / 2 } else { d + k / 2 };
+    ltikit::StateSpace::new(
+        DMatrix::from_fn(n, n, |i, j| ss.a[(old(i), old(j))]),
+        DMatrix::from_fn(n, ss.b.ncols(), |i, j| ss.b[(old(i), j)]),
+        DMatrix::from_fn(ss.c.nrows(), n, |i, j| ss.c[(i, old(j))]),
+        ss.d.clone(),
+    )
+    .unwrap()
+}
