@@ -3,6 +3,7 @@
 
 mod closed_loop;
 mod lattice;
+mod lattice_channel;
 mod linear;
 mod md;
 mod mechanics;
