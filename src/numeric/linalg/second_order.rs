@@ -29,6 +29,10 @@
 //! diameter of [`super::structure`] (2·ν·(64nε)^(1/2)) the mode is *critical*: one double
 //! eigenvalue −γ/2 with a single eigenvector (the 2×2 block is a companion matrix, never
 //! diagonal): a Jordan block, like the rigid-body mode λ = γ = 0.
+//!
+//! (One concept in one file: the recognition and the modes it yields, ~450 lines; the rest
+//! are its unit tests, beside the code as everywhere in the crate. The modal form built from
+//! the modes lives with the modal form, `modal::from_modes`.)
 
 use nalgebra::{DMatrix, SymmetricEigen};
 use num_complex::Complex64;
