@@ -14,6 +14,7 @@ pub mod analysis;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod error;
+pub mod fmt;
 pub mod lti;
 pub mod nonlinear;
 pub mod numeric;

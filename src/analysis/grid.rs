@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use super::factored::Factored;
 use crate::error::{LtiError, Result};
-use crate::poly::fmt_root;
+use crate::fmt::fmt_root;
 use crate::poly::{HalfPlane, half_plane};
 
 /// How far the time axis of a response plot should reach, and why.
@@ -167,7 +167,7 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
             t,
             format!(
                 "unstable pole at s = {name}: the mode grows by ×1000 in {} s",
-                crate::poly::fmt_sig(t, 3)
+                crate::fmt::fmt_sig(t, 3)
             ),
         )
     } else {
@@ -176,7 +176,7 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
                 1.5 * t,
                 format!(
                     "2 % settling of the slowest mode s = {name} ({} s) × 1.5",
-                    crate::poly::fmt_sig(t, 3)
+                    crate::fmt::fmt_sig(t, 3)
                 ),
             )
         });
@@ -185,7 +185,7 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
                 t,
                 format!(
                     "five periods of the undamped mode s = {name} ({} s)",
-                    crate::poly::fmt_sig(t, 3)
+                    crate::fmt::fmt_sig(t, 3)
                 ),
             )
         });
@@ -211,7 +211,7 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
                         5.0 / z,
                         format!(
                             "no finite mode: five time constants of the slowest zero (|z| = {})",
-                            crate::poly::fmt_sig(z, 3)
+                            crate::fmt::fmt_sig(z, 3)
                         ),
                     ),
                     None => (

@@ -11,9 +11,10 @@ use serde::Serialize;
 
 use crate::analysis::factored::Factored;
 use crate::error::Result;
+use crate::fmt::fmt_root;
 use crate::lti::TransferFunction;
+use crate::poly::Root;
 pub use crate::poly::{HalfPlane, half_plane};
-use crate::poly::{Root, fmt_root};
 
 /// Stability class of a set of roots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -135,9 +135,9 @@ fn overflow_reason(e: LtiError, part: &Part, t: f64) -> LtiError {
             what: format!("the response at t = {t} s"),
             reason: format!(
                 ": the unstable mode at s = {} grows as e^({} t) and passes it after t ≈ {} s",
-                crate::poly::fmt_root(p, 6),
-                crate::poly::fmt_sig(p.re, 6),
-                crate::poly::fmt_sig(f64::MAX.ln() / p.re, 3)
+                crate::fmt::fmt_root(p, 6),
+                crate::fmt::fmt_sig(p.re, 6),
+                crate::fmt::fmt_sig(f64::MAX.ln() / p.re, 3)
             ),
         },
         _ => e,

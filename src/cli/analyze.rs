@@ -11,7 +11,8 @@ use super::output::{finite, pair, print, print_json};
 use super::text::roots_text;
 use super::{Plant, PlantArgs, UsageError, channels};
 use crate::analysis::{Analysis, Factored, StepInfo};
-use crate::poly::{fmt_num, fmt_root, fmt_sig, roots::flatten};
+use crate::fmt::{fmt_num, fmt_root, fmt_sig};
+use crate::poly::roots::flatten;
 
 #[derive(Args, Debug)]
 pub struct AnalyzeArgs {

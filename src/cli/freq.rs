@@ -8,7 +8,7 @@ use super::output::Stream;
 use super::{Plant, PlantArgs, parse};
 use crate::analysis::grid::{MAX_POINTS, check_points};
 use crate::analysis::{FrequencyResponse, auto_frequency_grid};
-use crate::poly::fmt_sig;
+use crate::fmt::fmt_sig;
 
 #[derive(Args, Debug)]
 pub struct FreqArgs {

@@ -9,12 +9,12 @@ use super::output::{pair, print, print_json};
 use super::parse;
 use super::text::{roots_text, vector_text};
 use crate::analysis::Analysis;
+use crate::fmt::{fmt_root, fmt_sig};
 use crate::lti::StateSpace;
 use crate::nonlinear::{
     ChannelTf, EnergyCasimir, EquilibriumSearch, Linearization, LocalStability, build_model,
     linearize, model_info,
 };
-use crate::poly::{fmt_root, fmt_sig};
 
 #[derive(Args, Debug)]
 pub struct LinearizeArgs {

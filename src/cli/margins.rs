@@ -9,8 +9,9 @@ use serde::Serialize;
 use super::PlantArgs;
 use super::output::{finite, json_value, pair, print, print_json};
 use crate::analysis::{ClosedLoop, Margins, Peak, Robustness};
+use crate::fmt::{fmt_root, fmt_sig};
 use crate::lti::controller::LoopSystem;
-use crate::poly::{fmt_root, fmt_sig, roots::flatten};
+use crate::poly::roots::flatten;
 
 #[derive(Args, Debug)]
 pub struct MarginsArgs {

@@ -6,11 +6,11 @@ use clap::Args;
 
 use super::output::print;
 use super::parse;
+use crate::fmt::fmt_sig;
 use crate::lti::params::with_overrides;
 use crate::nonlinear::mems_pullin;
 use crate::nonlinear::models::{MEMS_PARAMS, Mems};
 use crate::plot::{Curve, LineStyle, Marker, MarkerShape, PlotOptions, XyPlot, parse_size, xy_png};
-use crate::poly::fmt_sig;
 
 #[derive(Args, Debug)]
 pub struct PullinArgs {

@@ -6,7 +6,8 @@ use num_complex::Complex64;
 
 use super::PlantArgs;
 use crate::analysis::pfe::PartialFractions;
-use crate::poly::{Poly, fmt_sig};
+use crate::fmt::fmt_sig;
+use crate::poly::Poly;
 
 #[derive(Args, Debug)]
 pub struct ResidueArgs {

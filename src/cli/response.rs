@@ -8,7 +8,7 @@ use serde::Serialize;
 use super::output::{print, print_json};
 use super::{PlantArgs, parse};
 use crate::analysis::{Input, auto_time_span};
-use crate::poly::fmt_sig;
+use crate::fmt::fmt_sig;
 
 #[derive(Args, Debug)]
 pub struct ResponseArgs {

@@ -13,9 +13,10 @@ use super::output::{json_value, print, print_json};
 use super::text::{g_text, roots_text};
 use crate::analysis::rlocus::{BreakKind, RootLocus, RootLocusOptions};
 use crate::analysis::stable_gains;
+use crate::fmt::{fmt_root, fmt_sig};
 use crate::lti::controller::LoopSystem;
 use crate::plot::{PlotOptions, RootLocusPlot, parse_size, rlocus_png};
-use crate::poly::{HalfPlane, Poly, Root, fmt_root, fmt_sig};
+use crate::poly::{HalfPlane, Poly, Root};
 
 #[derive(Args, Debug)]
 pub struct RlocusArgs {

@@ -8,8 +8,9 @@ use serde::Serialize;
 use super::PlantArgs;
 use super::output::{print, print_json};
 use crate::analysis::{RouthEvent, RouthTable, routh};
+use crate::fmt::fmt_sig;
 use crate::lti::Model;
-use crate::poly::{Poly, fmt_sig, format_poly};
+use crate::poly::{Poly, format_poly};
 
 #[derive(Args, Debug)]
 pub struct RouthArgs {

@@ -476,7 +476,7 @@ fn csv_footer(
         out.push_str(&format!(
             "# conserved {}: {} at t = 0, drift {:.3e} (relative {:.3e})\n",
             c.name,
-            crate::poly::fmt_sig(c.initial, 12),
+            crate::fmt::fmt_sig(c.initial, 12),
             c.max_drift,
             c.relative_drift
         ));

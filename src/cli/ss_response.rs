@@ -13,9 +13,9 @@ use super::response::ResponseArgs;
 use super::{Plant, parse};
 use crate::analysis::Input;
 use crate::analysis::ss::{Hold, SsTimeResponse};
+use crate::fmt::fmt_sig;
 use crate::lti::StateSpace;
 use crate::numeric::tol::AXIS_REL_TOL;
-use crate::poly::fmt_sig;
 
 /// Most values (times × (outputs + states) × responses) of one state-space response.
 pub const MAX_RESPONSE_VALUES: usize = 10_000_000;

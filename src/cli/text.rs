@@ -3,7 +3,7 @@
 use num_complex::Complex64;
 
 use crate::Root;
-use crate::poly::{fmt_root, fmt_sig};
+use crate::fmt::{fmt_root, fmt_sig};
 
 /// Roots with multiplicities, one entry per conjugate pair: "-1 (×2), -0.2 ± 1.98997j", or
 /// "none".
@@ -136,7 +136,7 @@ pub fn channel_g_text(f: &crate::analysis::Factored) -> String {
                 .iter()
                 .map(|r| r.multiplicity)
                 .sum::<usize>(),
-            crate::poly::fmt_num(f.gain())
+            crate::fmt::fmt_num(f.gain())
         )
     } else {
         format!("G(s) = {f}")
@@ -165,7 +165,7 @@ pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> Strin
                     .iter()
                     .map(|r| r.multiplicity)
                     .sum::<usize>(),
-                crate::poly::fmt_num(f.gain())
+                crate::fmt::fmt_num(f.gain())
             )
         }
         crate::lti::Model::Ss(ss) => format!("G(s) = {f}  (state space: {} states)", ss.order()),

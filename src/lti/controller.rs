@@ -31,8 +31,9 @@ use serde::Serialize;
 use std::fmt;
 
 use crate::error::{LtiError, Result, abbreviate};
+use crate::fmt::fmt_num;
 use crate::lti::TransferFunction;
-use crate::poly::{Poly, fmt_num};
+use crate::poly::Poly;
 
 /// Which transfer function of the loop to analyse.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -240,7 +240,7 @@ pub fn local_stability(eigs: &[Complex64], scale: f64) -> (bool, LocalStability,
             half_plane(*l)
         }
     };
-    let fmt = |l: &Complex64| crate::poly::fmt_root(*l, 4);
+    let fmt = |l: &Complex64| crate::fmt::fmt_root(*l, 4);
     let rhp: Vec<&Complex64> = eigs
         .iter()
         .filter(|l| where_is(l) == HalfPlane::Right && l.im >= 0.0)

@@ -267,7 +267,7 @@ impl Axis {
                         if mults.contains(&f64::from(m)) {
                             ticks.push(Tick {
                                 v,
-                                label: typographic(crate::poly::fmt_sig(v, 3)),
+                                label: typographic(crate::fmt::fmt_sig(v, 3)),
                             });
                         } else {
                             minor.push(v);

@@ -8,8 +8,8 @@ use super::style::{LineStyle, MarkerShape, Theme};
 use super::text::{HAlign, VAlign};
 use crate::analysis::FrequencyResponse;
 use crate::error::Result;
+use crate::fmt::fmt_sig;
 use crate::plot::Color;
-use crate::poly::fmt_sig;
 
 /// Marks every series' margins in the panels and returns the rows listing them (GM, PM per
 /// series; a prefix names the series when there are several). The value labels are added to

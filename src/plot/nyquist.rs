@@ -12,7 +12,7 @@ use super::text::{HAlign, VAlign};
 use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::NyquistContour;
 use crate::error::{LtiError, Result};
-use crate::poly::fmt_sig;
+use crate::fmt::fmt_sig;
 
 /// One plant on a Nyquist diagram.
 ///

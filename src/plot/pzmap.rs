@@ -13,7 +13,8 @@ use super::text::{HAlign, VAlign};
 use super::{Color, PlotOptions, check_text, render};
 use crate::analysis::PoleZero;
 use crate::error::Result;
-use crate::poly::{Root, fmt_sig};
+use crate::fmt::fmt_sig;
+use crate::poly::Root;
 
 /// What to draw on a pole-zero map.
 ///

@@ -12,7 +12,8 @@ use super::xy::{Curve, Marker, XyPlot, xy_png_with};
 use super::{Color, PlotOptions};
 use crate::analysis::rlocus::RootLocus;
 use crate::error::Result;
-use crate::poly::{Root, fmt_sig};
+use crate::fmt::fmt_sig;
+use crate::poly::Root;
 
 /// What to draw: the locus, its label, and optionally the closed-loop poles at one gain.
 ///

@@ -12,7 +12,7 @@ use super::text::{HAlign, VAlign};
 use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::{Input, StepInfo, TimeResponse};
 use crate::error::{LtiError, Result};
-use crate::poly::fmt_sig;
+use crate::fmt::fmt_sig;
 
 /// One response on a step-response plot.
 ///

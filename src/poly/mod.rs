@@ -15,6 +15,7 @@ use num_complex::Complex64;
 use std::fmt;
 
 use crate::error::{LtiError, Result, check_finite};
+use crate::fmt::fmt_num;
 pub use root::{HalfPlane, Root, half_plane, same_root};
 
 /// Highest polynomial degree (system order) ltikit accepts.
@@ -381,81 +382,6 @@ impl fmt::Display for Poly {
     }
 }
 
-/// Formats a number compactly: integers without a decimal point, others with up to 6
-/// significant digits, no trailing zeros.
-pub fn fmt_num(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        return format!("{}", x as i64);
-    }
-    let ax = x.abs();
-    if !(1e-4..1e6).contains(&ax) {
-        let s = format!("{:.5e}", x);
-        // trim mantissa zeros: 1.50000e-5 -> 1.5e-5
-        if let Some((m, e)) = s.split_once('e') {
-            let m = if m.contains('.') {
-                m.trim_end_matches('0').trim_end_matches('.')
-            } else {
-                m
-            };
-            return format!("{m}e{e}");
-        }
-        return s;
-    }
-    let digits = 6i32 - 1 - ax.log10().floor() as i32;
-    let s = format!("{:.*}", digits.max(0) as usize, x);
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
-}
-
-/// Formats a number with at most `sig` significant digits (trailing zeros trimmed), for
-/// human-readable reasons and reports: `fmt_sig(1.3229, 3)` is "1.32".
-pub fn fmt_sig(x: f64, sig: usize) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return if x == 0.0 { "0".into() } else { format!("{x}") };
-    }
-    let ax = x.abs();
-    if !(1e-4..1e7).contains(&ax) {
-        let s = format!("{:.*e}", sig.saturating_sub(1), x);
-        if let Some((m, e)) = s.split_once('e') {
-            let m = if m.contains('.') {
-                m.trim_end_matches('0').trim_end_matches('.')
-            } else {
-                m
-            };
-            return format!("{m}e{e}");
-        }
-        return s;
-    }
-    let digits = sig as i32 - 1 - ax.log10().floor() as i32;
-    let s = format!("{:.*}", digits.max(0) as usize, x);
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
-}
-
-/// Formats a root for messages: `-2`, `0.25 ± 1.32j` (a conjugate pair), `±1j`, `0`, with
-/// `sig` significant digits. A root with positive or negative imaginary part is shown as its
-/// pair.
-pub fn fmt_root(z: Complex64, sig: usize) -> String {
-    if z.im == 0.0 {
-        return fmt_sig(z.re, sig);
-    }
-    let im = fmt_sig(z.im.abs(), sig);
-    if z.re == 0.0 {
-        format!("±{im}j")
-    } else {
-        format!("{} ± {im}j", fmt_sig(z.re, sig))
-    }
-}
-
 /// Formats a polynomial in descending powers of `var`.
 #[allow(clippy::float_cmp)] // a coefficient of exactly 1 is not printed
 pub fn format_poly(p: &Poly, var: &str) -> String {
@@ -550,11 +476,5 @@ mod tests {
         assert_eq!(p.to_string(), "s^2 - 0.8 s + 4");
         let p = Poly::from_descending(&[-3.0, -12.0]).unwrap();
         assert_eq!(p.to_string(), "-3 s - 12");
-        assert_eq!(fmt_num(1.0 / 3.0), "0.333333");
-        assert_eq!(fmt_num(2.5e-7), "2.5e-7");
-        assert_eq!(fmt_num(-12.0), "-12");
-        assert_eq!(fmt_sig(1.32287, 3), "1.32");
-        assert_eq!(fmt_root(Complex64::new(0.25, -1.3229), 3), "0.25 ± 1.32j");
-        assert_eq!(fmt_root(Complex64::new(0.0, 2.0), 3), "±2j");
     }
 }

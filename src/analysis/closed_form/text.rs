@@ -3,7 +3,7 @@
 use std::fmt;
 
 use super::{ClosedForm, ClosedFormTerm};
-use crate::poly::fmt_num;
+use crate::fmt::fmt_num;
 
 impl ClosedForm {
     /// The right-hand side as text, e.g. `1 - (1 + t) e^(-t)`; `0` when empty.

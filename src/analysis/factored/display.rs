@@ -4,7 +4,8 @@
 use std::fmt;
 
 use super::Factored;
-use crate::poly::{Poly, Root, fmt_num};
+use crate::fmt::fmt_num;
+use crate::poly::{Poly, Root};
 
 /// The real factor of a root as text: `s`, `(s + 2)`, `(s^2 + 2 s + 5)`, with `^m`.
 fn factor_text(r: &Root) -> String {

@@ -215,11 +215,11 @@ fn finish(
             "; the factors DISAGREE with G(s) by {} (relative, off the axis within the poles' \
              range): the zeros and the gain are not resolved (an ill-conditioned pencil), and \
              what is built on them (Bode, margins, closed forms, step metrics) is not reliable",
-            crate::poly::fmt_sig(e, 2)
+            crate::fmt::fmt_sig(e, 2)
         ),
         Some(e) => format!(
             "; the factors agree with G(s) to {}",
-            crate::poly::fmt_sig(e.max(f64::EPSILON), 2)
+            crate::fmt::fmt_sig(e.max(f64::EPSILON), 2)
         ),
         None => String::new(),
     };

@@ -17,6 +17,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::Result;
+use crate::fmt::fmt_root;
 use crate::lti::StateSpace;
 use crate::numeric::linalg::structure::radius;
 use crate::numeric::linalg::{EigenCluster, eigen_structure};
@@ -24,7 +25,7 @@ use crate::numeric::linalg::{
     controllability_staircase, eigenvectors, invariant_zeros, minimal_realization,
     observability_staircase, transmission_zeros,
 };
-use crate::poly::{HalfPlane, fmt_root, half_plane};
+use crate::poly::{HalfPlane, half_plane};
 
 /// Largest order for which `ltikit analyze` adds the whole-model analysis to its report (the
 /// method itself takes any order). The analysis is O(n³) with large constants — eigenvectors,

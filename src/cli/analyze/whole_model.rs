@@ -8,8 +8,8 @@ use serde::Serialize;
 use super::super::output::pair;
 use super::super::text::{complex_text, labelled_roots_text};
 use crate::analysis::ss::{DcGain, MAX_ANALYSIS_STATES, SsAnalysis, SsEigenvalue, SsMode};
+use crate::fmt::{fmt_num, fmt_root, fmt_sig};
 use crate::lti::{Model, Plant, StateSpace};
-use crate::poly::{fmt_num, fmt_root, fmt_sig};
 
 /// Distinct eigenvalues (one per conjugate pair) above which the text gives a summary and
 /// the modes table only with `--modes`.

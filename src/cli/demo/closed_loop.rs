@@ -9,8 +9,8 @@ use num_complex::Complex64;
 use super::Ctx;
 use super::md::Md;
 use crate::analysis::{ClosedLoop, LoopSystem};
+use crate::fmt::{fmt_root, fmt_sig};
 use crate::lti::{Controller, Plant};
-use crate::poly::{fmt_root, fmt_sig};
 
 const GROUP: &str = "closed loop vs closed forms";
 

@@ -9,12 +9,12 @@ use std::time::Instant;
 
 use super::md::Md;
 use super::{Ctx, fig};
+use crate::fmt::fmt_sig;
 use crate::lti::lattice::{Boundary, Envelope, Lattice, Modes, Output, Packet, Trajectory};
 use crate::plot::{
     ColorMap, Curve, HeatMap, LineStyle, Marker, MarkerShape, XyPlot, heatmap_png, series_color,
     xy_png,
 };
-use crate::poly::fmt_sig;
 
 /// Particles of the seed's simulation.
 const N: usize = 128;

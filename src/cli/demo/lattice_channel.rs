@@ -10,8 +10,8 @@ use super::Ctx;
 use super::lattice::describe;
 use super::md::Md;
 use crate::StateSpace;
+use crate::fmt::fmt_sig;
 use crate::lti::lattice::{Boundary, Lattice, Output};
-use crate::poly::fmt_sig;
 
 /// The force → displacement channel through the state-space layer: the factored form from
 /// the eigenvalues of A, the transmission zeros and the minimal realisation (no coefficients),
@@ -44,7 +44,7 @@ pub(super) fn channel_analysis(
         .map(|e| {
             format!(
                 "{} (algebraic {}, geometric {})",
-                crate::poly::fmt_root(e.value, 6),
+                crate::fmt::fmt_root(e.value, 6),
                 e.algebraic,
                 e.geometric
             )

@@ -9,8 +9,8 @@ use crate::TransferFunction;
 use crate::analysis::Factored;
 use crate::analysis::{Analysis, Input, auto_time_span};
 pub use crate::cli::text::roots_text;
+use crate::fmt::{fmt_num, fmt_root, fmt_sig};
 use crate::lti::{Plant, PlantFile};
-use crate::poly::{fmt_num, fmt_root, fmt_sig};
 
 /// A plant of the tour, factored once.
 pub struct DemoPlant {

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::analysis::{Factored, Margins, StepInfo};
-use crate::poly::fmt_sig;
+use crate::fmt::fmt_sig;
 use md::Md;
 use verify::Checks;
 

@@ -5,6 +5,7 @@ use anyhow::Result;
 use super::md::Md;
 use super::{Ctx, fig};
 use crate::cli::text::vector_text;
+use crate::fmt::{fmt_root, fmt_sig};
 use crate::nonlinear::models::{Lorenz, Mems, Pendulum, VanDerPol};
 use crate::nonlinear::{
     DynSystem, EquilibriumSearch, Linearization, LocalStability, PeriodPoint, linearize,
@@ -19,7 +20,6 @@ use crate::plot::{
     Curve, Equilibrium, LineStyle, Marker, MarkerShape, PhasePortrait, XyPlot, phase_portrait_png,
     series_color, time_plot_png, xy_png,
 };
-use crate::poly::{fmt_root, fmt_sig};
 
 fn stability_text(s: LocalStability) -> &'static str {
     match s {

@@ -10,8 +10,9 @@ use super::Ctx;
 use super::md::Md;
 use crate::analysis::rlocus::{RootLocus, RootLocusOptions};
 use crate::analysis::stable_gains;
+use crate::fmt::fmt_sig;
 use crate::plot::{RootLocusPlot, rlocus_png};
-use crate::poly::{Poly, fmt_sig};
+use crate::poly::Poly;
 
 const GROUP: &str = "root locus vs closed forms";
 

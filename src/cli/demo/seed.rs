@@ -9,8 +9,8 @@ use super::linear::roots_text;
 use super::md::Md;
 use crate::TransferFunction;
 use crate::analysis::{Factored, Input};
+use crate::fmt::fmt_sig;
 use crate::plot::{Curve, Equilibrium, PhasePortrait, phase_portrait_png, series_color};
-use crate::poly::fmt_sig;
 
 /// ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1, factored.
 pub fn second_order(zeta: f64) -> Result<Factored> {

@@ -1,7 +1,7 @@
 //! The report's evidence: every check computed at run time, with its worst error.
 
 use super::md::Md;
-use crate::poly::fmt_sig;
+use crate::fmt::fmt_sig;
 
 /// One verified quantity.
 pub struct Check {

@@ -29,10 +29,10 @@ pub use text::{
 use nalgebra::DMatrix;
 
 use crate::error::{LtiError, Result};
+use crate::fmt::fmt_num;
 use crate::lti::controller::LoopSystem;
 use crate::lti::lattice::{Lattice, Output};
 use crate::lti::{Controller, Model, Signals, StateSpace, TransferFunction, build_plant};
-use crate::poly::fmt_num;
 
 /// A plant as the user gave it: a name, a description, the model (transfer function or state
 /// space), the names of its signals, and the coefficients as typed when it was given by them.

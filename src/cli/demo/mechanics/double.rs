@@ -8,6 +8,7 @@ use super::super::md::Md;
 use super::super::nonlinear::check_jacobians;
 use super::super::{Ctx, fig};
 use super::{eig_error, tight, verdict_table};
+use crate::fmt::fmt_sig;
 use crate::nonlinear::models::{DoublePendulum, Lorenz};
 use crate::nonlinear::{
     Divergence, EquilibriumSearch, ExponentFit, InputSignal, SystemInfo, divergence,
@@ -15,7 +16,6 @@ use crate::nonlinear::{
 };
 use crate::numeric::rk45::Rk45Options;
 use crate::plot::{Curve, LineStyle, Marker, MarkerShape, XyPlot, series_color, xy_png};
-use crate::poly::fmt_sig;
 
 /// Lorenz (10, 28, 8/3): λ₁ = 0.9056 (J. C. Sprott, "Chaos and Time-Series Analysis", Oxford
 /// 2003, table of exponents), the reference that validates the estimator.

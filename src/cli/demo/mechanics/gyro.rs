@@ -9,10 +9,10 @@ use super::super::nonlinear::check_jacobians;
 use super::super::{Ctx, fig};
 use super::{eig_error, eigen_text, tight};
 use crate::cli::text::vector_text;
+use crate::fmt::fmt_sig;
 use crate::nonlinear::models::{Gyroscope, GyroscopeDiscFrame};
 use crate::nonlinear::{EquilibriumSearch, InputSignal, linearize, sample_times, simulate};
 use crate::plot::{Curve, LineStyle, XyPlot, series_color, xy_png};
-use crate::poly::fmt_sig;
 
 fn matrix_text(name: &str, m: &[Vec<f64>]) -> String {
     let rows: Vec<String> = m

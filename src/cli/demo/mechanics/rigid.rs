@@ -7,6 +7,7 @@ use super::super::md::Md;
 use super::super::nonlinear::check_jacobians;
 use super::super::{Ctx, fig};
 use super::{eig_error, tight, verdict_table};
+use crate::fmt::fmt_sig;
 use crate::nonlinear::models::{AxisKind, RigidBody};
 use crate::nonlinear::period::crossing_times;
 use crate::nonlinear::{
@@ -16,7 +17,6 @@ use crate::plot::{
     Curve, Curve3, Marker, MarkerShape, Point3, SpherePlot, View, XyPlot, series_color, sphere_png,
     xy_png,
 };
-use crate::poly::fmt_sig;
 
 /// One simulated case: the seed's figures.
 struct Case {

@@ -7,13 +7,13 @@ use super::super::md::Md;
 use super::super::nonlinear::check_jacobians;
 use super::super::{Ctx, fig};
 use super::{eig_error, eigen_text, linear_words, tight};
+use crate::fmt::fmt_sig;
 use crate::nonlinear::models::HeavyTop;
 use crate::nonlinear::models::heavy_top::{
     threshold_from_eigenvalues, threshold_from_energy_casimir,
 };
 use crate::nonlinear::{EquilibriumSearch, InputSignal, linearize, sample_times, simulate};
 use crate::plot::{Curve, series_color, time_plot_png};
-use crate::poly::fmt_sig;
 
 pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
     let base = HeavyTop::default();
