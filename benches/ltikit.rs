@@ -85,6 +85,19 @@ fn step_info(bencher: Bencher) {
     bencher.bench(|| black_box(&g).step_info().unwrap());
 }
 
+/// Step metrics of a lightly damped resonator 1/(s² + 2ζs + 1) typed as text (exact path: the
+/// pair is decided in the left half plane), ζ = 1e-3 … 1e-12: 10² … 10¹¹ periods before it
+/// settles; issue 25's target is ≤ 10 ms each. The factorisation is outside the timing.
+#[divan::bench(args = ["2e-3", "2e-6", "2e-9", "2e-12"])]
+fn step_info_resonator(bencher: Bencher, two_zeta: &str) {
+    use ltikit::analysis::Factored;
+    use ltikit::poly::exact::ExactPoly;
+    let n = ExactPoly::parse_descending(&["1"]).unwrap();
+    let d = ExactPoly::parse_descending(&["1", two_zeta, "1"]).unwrap();
+    let f = Factored::from_exact(&n, &d).unwrap();
+    bencher.bench(|| black_box(&f).step_info().unwrap());
+}
+
 /// `analyze()` plus `margins()` of the order-8 plant: one line of `ltikit analyze --batch`.
 #[divan::bench]
 fn analyze(bencher: Bencher) {

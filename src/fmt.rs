@@ -64,6 +64,18 @@ pub fn fmt_sig(x: f64, sig: usize) -> String {
     }
 }
 
+/// [`fmt_sig`] of a value that may be missing: "not computed" for `None` (a metric whose
+/// note says why).
+///
+/// ```
+/// use ltikit::fmt::fmt_opt;
+/// assert_eq!(fmt_opt(Some(1.23456), 3), "1.23");
+/// assert_eq!(fmt_opt(None, 3), "not computed");
+/// ```
+pub fn fmt_opt(x: Option<f64>, sig: usize) -> String {
+    x.map_or_else(|| "not computed".to_string(), |x| fmt_sig(x, sig))
+}
+
 /// Formats a root for messages: `-2`, `0.25 ± 1.32j` (a conjugate pair), `±1j`, `0`, with
 /// `sig` significant digits. A root with positive or negative imaginary part is shown as its
 /// pair.

@@ -83,8 +83,8 @@ fn errors(f: &Factored) -> Errors {
     Errors {
         poles: pole_err,
         dc: rel(f.dc_gain().unwrap(), Y_INF),
-        rise: rel(info.rise_time, T90 - T10),
-        settling: rel(info.settling_time, T98),
+        rise: rel(info.rise_time.unwrap(), T90 - T10),
+        settling: rel(info.settling_time.unwrap(), T98),
         pm: rel(m.phase_margin_deg.unwrap(), PM_DEG),
         wc: rel(m.gain_crossover.unwrap(), W_C),
         wb: rel(m.bandwidth.unwrap(), W_B),
@@ -149,8 +149,8 @@ fn wilkinson_through_coefficients_for_comparison() {
         eprintln!(
             "coefficients: dc {:e}, rise {:e}, settling {:e}, PM {:?}, ωc {:?}, ωb {:?}",
             rel(f.dc_gain().unwrap_or(f64::NAN), Y_INF),
-            rel(info.rise_time, T90 - T10),
-            rel(info.settling_time, T98),
+            rel(info.rise_time.unwrap(), T90 - T10),
+            rel(info.settling_time.unwrap(), T98),
             m.phase_margin_deg.map(|x| rel(x, PM_DEG)),
             m.gain_crossover.map(|x| rel(x, W_C)),
             m.bandwidth.map(|x| rel(x, W_B)),

@@ -33,12 +33,18 @@ pub struct Mode {
 /// assert!((m[0].time_constant.unwrap() - 2.5).abs() < 1e-14);
 /// ```
 pub fn modes(poles: &[Root]) -> Vec<Mode> {
+    modes_by_side(poles, half_plane)
+}
+
+/// [`modes`] with the half plane of each pole decided by `side` (the factored form's exact
+/// sides where it has them: −1e-12 ± j typed as text is in the left half plane, ζ = 1e-12).
+fn modes_by_side(poles: &[Root], side: impl Fn(Complex64) -> HalfPlane) -> Vec<Mode> {
     poles
         .iter()
         .map(|r| {
             let p = r.value;
             let wn = p.norm();
-            let on_axis = half_plane(p) == HalfPlane::Axis;
+            let on_axis = side(p) == HalfPlane::Axis;
             let zeta = if wn == 0.0 {
                 None
             } else if on_axis {
@@ -114,6 +120,15 @@ pub struct SecondOrder {
 /// assert_eq!(so.zeta, Some(1.0));
 /// ```
 pub fn second_order(den: &Poly, roots: &[Root]) -> Option<SecondOrder> {
+    second_order_by_side(den, roots, half_plane)
+}
+
+/// [`second_order`] with the half plane of each root decided by `side`.
+fn second_order_by_side(
+    den: &Poly,
+    roots: &[Root],
+    side: impl Fn(Complex64) -> HalfPlane,
+) -> Option<SecondOrder> {
     if den.degree() != 2 {
         return None;
     }
@@ -132,7 +147,7 @@ pub fn second_order(den: &Poly, roots: &[Root]) -> Option<SecondOrder> {
     let double = roots.len() == 1 && roots[0].multiplicity == 2;
     let on_axis = roots
         .iter()
-        .all(|r| r.value.im != 0.0 && half_plane(r.value) == HalfPlane::Axis);
+        .all(|r| r.value.im != 0.0 && side(r.value) == HalfPlane::Axis);
     let zeta = if double {
         if roots[0].value.re < 0.0 { 1.0 } else { -1.0 }
     } else if on_axis {
@@ -163,7 +178,7 @@ pub fn second_order(den: &Poly, roots: &[Root]) -> Option<SecondOrder> {
 impl Factored {
     /// One mode per distinct characteristic root ([`modes`]).
     pub fn modes(&self) -> Vec<Mode> {
-        modes(self.poles())
+        modes_by_side(self.poles(), |p| self.side_of(p))
     }
 
     /// ωₙ, ζ, ω_d and the damping class when the plant has order 2 ([`second_order`]).
@@ -172,7 +187,7 @@ impl Factored {
             return None;
         }
         let den = self.characteristic_poly().ok()?;
-        second_order(&den, self.poles())
+        second_order_by_side(&den, self.poles(), |p| self.side_of(p))
     }
 }
 

@@ -116,6 +116,9 @@ pub struct AnalyzeJson {
     modes: Vec<ModeJson>,
     second_order: Option<SecondOrderJson>,
     step_info: Option<StepInfoJson>,
+    /// Why `step_info` is `null` (absent when it is not).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    step_info_note: Option<String>,
     /// `"state_space"` and `"state_space_note"`: only for a state-space plant analysed as a
     /// whole (absent otherwise, and in batch lines and linearisations).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
@@ -139,18 +142,66 @@ struct SecondOrderJson {
     wd: Option<f64>,
 }
 
+/// The step metrics in JSON: a metric that could not be computed is `null` with a
+/// `…_note` beside it; a value obtained otherwise than by root-finding carries its note too.
 #[derive(Serialize)]
-struct StepInfoJson {
-    rise_time: f64,
-    settling_time: f64,
-    overshoot_percent: f64,
-    peak: f64,
-    peak_time: f64,
+pub(super) struct StepInfoJson {
+    rise_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rise_time_note: Option<String>,
+    settling_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    settling_time_note: Option<String>,
+    overshoot_percent: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    overshoot_percent_note: Option<String>,
+    peak: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    peak_note: Option<String>,
+    /// `null` also when the peak is only approached as t → ∞ (no note then).
+    peak_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    peak_time_note: Option<String>,
     steady_state: f64,
-    transient_time: f64,
-    settling_min: f64,
-    settling_max: f64,
-    undershoot_percent: f64,
+    transient_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    transient_time_note: Option<String>,
+    settling_min: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    settling_min_note: Option<String>,
+    settling_max: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    settling_max_note: Option<String>,
+    undershoot_percent: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    undershoot_percent_note: Option<String>,
+}
+
+impl From<&StepInfo> for StepInfoJson {
+    fn from(s: &StepInfo) -> Self {
+        let note = |q: &str| s.note(q).map(str::to_string);
+        StepInfoJson {
+            rise_time: s.rise_time,
+            rise_time_note: note("rise_time"),
+            settling_time: s.settling_time,
+            settling_time_note: note("settling_time"),
+            overshoot_percent: s.overshoot_percent,
+            overshoot_percent_note: note("overshoot_percent"),
+            peak: s.peak,
+            peak_note: note("peak"),
+            peak_time: s.peak_time.and_then(finite),
+            peak_time_note: note("peak_time"),
+            steady_state: s.steady_state,
+            transient_time: s.transient_time,
+            transient_time_note: note("transient_time"),
+            settling_min: s.settling_min,
+            settling_min_note: note("settling_min"),
+            settling_max: s.settling_max,
+            settling_max_note: note("settling_max"),
+            undershoot_percent: s.undershoot_percent,
+            undershoot_percent_note: note("undershoot_percent"),
+        }
+    }
 }
 
 impl From<&Analysis> for AnalyzeJson {
@@ -192,18 +243,8 @@ impl From<&Analysis> for AnalyzeJson {
                 zeta: s.zeta,
                 wd: s.wd,
             }),
-            step_info: a.step_info.map(|s| StepInfoJson {
-                rise_time: s.rise_time,
-                settling_time: s.settling_time,
-                overshoot_percent: s.overshoot_percent,
-                peak: s.peak,
-                peak_time: s.peak_time,
-                steady_state: s.steady_state,
-                transient_time: s.transient_time,
-                settling_min: s.settling_min,
-                settling_max: s.settling_max,
-                undershoot_percent: s.undershoot_percent,
-            }),
+            step_info: a.step_info.as_ref().map(StepInfoJson::from),
+            step_info_note: a.step_info_note.clone(),
             whole_model: None,
         }
     }
@@ -325,39 +366,45 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
         }
         s.push_str("\n\n");
     }
-    match &a.step_info {
-        Some(si) => s.push_str(&step_text(si)),
-        None if a.stability.bibo_stable && a.dc_gain == Some(0.0) => s.push_str(
-            "Step response: settles to 0 (no step metrics: rise time, overshoot and settling are \
-             relative to a non-zero final value)\n",
-        ),
-        None => s.push_str("Step response: does not settle (no step metrics)\n"),
+    match (&a.step_info, &a.step_info_note) {
+        (Some(si), _) => s.push_str(&step_text(si)),
+        (None, Some(note)) => s.push_str(&format!("Step response: {note}\n")),
+        (None, None) => s.push_str("Step response: no step metrics\n"),
     }
     s
 }
 
-/// The step metrics in words.
+/// The step metrics in words; a metric that could not be computed reads "not computed"
+/// and its note follows.
 fn step_text(si: &StepInfo) -> String {
-    let peak_at = if si.peak_time.is_finite() {
-        format!("at t = {} s", fmt_sig(si.peak_time, 7))
-    } else {
-        "approached as t → ∞".into()
+    let v = |x: Option<f64>| x.map_or_else(|| "not computed".to_string(), |x| fmt_sig(x, 7));
+    let peak_at = match si.peak_time {
+        Some(t) if t.is_finite() => format!("at t = {} s", fmt_sig(t, 7)),
+        Some(_) => "approached as t → ∞".into(),
+        None => String::new(),
     };
     let mut s = format!(
         "Step response (exact):\n  rise time {} s (10–90 %), settling time {} s (2 %)\n  \
          overshoot {} %, peak {} {peak_at}, final value {}\n",
-        fmt_sig(si.rise_time, 7),
-        fmt_sig(si.settling_time, 7),
-        fmt_sig(si.overshoot_percent, 7),
-        fmt_sig(si.peak, 7),
+        v(si.rise_time),
+        v(si.settling_time),
+        v(si.overshoot_percent),
+        v(si.peak),
         fmt_sig(si.steady_state, 7)
     );
     s.push_str(&format!(
         "  settling min {}, max {}; undershoot {} %; transient time {} s\n",
-        fmt_sig(si.settling_min, 7),
-        fmt_sig(si.settling_max, 7),
-        fmt_sig(si.undershoot_percent, 7),
-        fmt_sig(si.transient_time, 7)
+        v(si.settling_min),
+        v(si.settling_max),
+        v(si.undershoot_percent),
+        v(si.transient_time)
     ));
+    for n in &si.notes {
+        s.push_str(&format!(
+            "  {}: {}\n",
+            n.quantities.join(", ").replace('_', " "),
+            n.reason
+        ));
+    }
     s
 }

@@ -275,7 +275,10 @@ impl Marks<'_> {
     fn rise(&self, c: &mut Canvas, i: &StepInfo, avoid: &mut Avoid) -> Result<()> {
         let (frame, th, col) = (self.frame, self.th, self.col);
         let yss = i.steady_state;
-        for (t, y) in [(i.rise_start, 0.1 * yss), (i.rise_end, 0.9 * yss)] {
+        let (Some(rise_start), Some(rise_end)) = (i.rise_start, i.rise_end) else {
+            return Ok(());
+        };
+        for (t, y) in [(rise_start, 0.1 * yss), (rise_end, 0.9 * yss)] {
             frame.plot_line(
                 c,
                 [(t, frame.y.lo.max(0.0f64.min(frame.y.hi))), (t, y)],
@@ -286,8 +289,8 @@ impl Marks<'_> {
             frame.plot_marker(c, (t, y), MarkerShape::Disc, self.ms, col, th.line);
         }
         let yr = 0.5 * yss;
-        if self.inline && frame.contains((i.rise_start, yr)) && frame.contains((i.rise_end, yr)) {
-            let (p, q) = (frame.px((i.rise_start, yr)), frame.px((i.rise_end, yr)));
+        if self.inline && frame.contains((rise_start, yr)) && frame.contains((rise_end, yr)) {
+            let (p, q) = (frame.px((rise_start, yr)), frame.px((rise_end, yr)));
             c.stroke(&[p, q], self.thin, col, &[]);
             if q.0 - p.0 > 14.0 * th.s {
                 let len = 6.0 * th.s;
@@ -308,30 +311,26 @@ impl Marks<'_> {
         avoid: &mut Avoid,
     ) -> Result<()> {
         let (frame, th, col) = (self.frame, self.th, self.col);
-        if i.overshoot_percent <= 0.0 || i.overshoot_percent.is_nan() {
+        let (Some(overshoot), Some(peak_time)) = (i.overshoot_percent, i.peak_time) else {
+            return Ok(());
+        };
+        if overshoot <= 0.0 || overshoot.is_nan() {
             return Ok(());
         }
-        let Some(yp) = y_at(r, i.peak_time) else {
+        let Some(yp) = y_at(r, peak_time) else {
             return Ok(());
         };
         frame.plot_line(
             c,
-            [(frame.x.lo, yp), (i.peak_time, yp)],
+            [(frame.x.lo, yp), (peak_time, yp)],
             self.thin,
             col,
             LineStyle::Dotted,
         );
-        frame.plot_marker(
-            c,
-            (i.peak_time, yp),
-            MarkerShape::Disc,
-            self.ms,
-            col,
-            th.line,
-        );
-        if self.inline && frame.contains((i.peak_time, yp)) {
-            let p = frame.px((i.peak_time, yp));
-            let text = format!("overshoot {} %", fmt_sig(i.overshoot_percent, 3));
+        frame.plot_marker(c, (peak_time, yp), MarkerShape::Disc, self.ms, col, th.line);
+        if self.inline && frame.contains((peak_time, yp)) {
+            let p = frame.px((peak_time, yp));
+            let text = format!("overshoot {} %", fmt_sig(overshoot, 3));
             let bx = label(c, frame, th, &text, (p.0, p.1 - 12.0 * th.s), col)?;
             avoid.extend(box_points(bx));
         }
@@ -348,10 +347,12 @@ impl Marks<'_> {
     ) -> Result<()> {
         let (frame, th, col) = (self.frame, self.th, self.col);
         let base_y = frame.y.lo.max(0.0f64.min(frame.y.hi));
-        let Some(ys) = y_at(r, i.settling_time) else {
+        let Some(ts) = i.settling_time else {
             return Ok(());
         };
-        let ts = i.settling_time;
+        let Some(ys) = y_at(r, ts) else {
+            return Ok(());
+        };
         frame.plot_line(
             c,
             [(ts, base_y), (ts, ys)],
@@ -416,24 +417,27 @@ fn info_rows(series: &[StepSeries]) -> Vec<LegendEntry> {
             ));
         }
         if let Some(i) = step_info(s) {
+            let v = |x: Option<f64>, sig: usize| {
+                x.map_or_else(|| "not computed".to_string(), |x| fmt_sig(x, sig))
+            };
             rows.push(LegendEntry::text(
                 format!(
                     "{prefix}rise time {} s, settling time {} s (2 %)",
-                    fmt_sig(i.rise_time, 3),
-                    fmt_sig(i.settling_time, 3)
+                    v(i.rise_time, 3),
+                    v(i.settling_time, 3)
                 ),
                 col,
             ));
             // A monotone response approaches its peak |y∞| only as t → ∞ (peak_time = ∞).
-            let peak = if i.peak_time.is_finite() {
-                format!(
+            let peak = match i.peak_time {
+                Some(t) if t.is_finite() => format!(
                     "overshoot {} %, peak {} at {} s",
-                    fmt_sig(i.overshoot_percent, 3),
-                    fmt_sig(i.peak, 4),
-                    fmt_sig(i.peak_time, 3)
-                )
-            } else {
-                "no overshoot (monotone)".to_string()
+                    v(i.overshoot_percent, 3),
+                    v(i.peak, 4),
+                    fmt_sig(t, 3)
+                ),
+                Some(_) => "no overshoot (monotone)".to_string(),
+                None => "peak and overshoot not computed".to_string(),
             };
             rows.push(LegendEntry::text(
                 format!("{prefix}{peak}, final value {}", fmt_sig(i.steady_state, 4)),

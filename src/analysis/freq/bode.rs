@@ -41,8 +41,8 @@ impl BodeForm {
             return Self::zero_form();
         }
         let lf = f.low_frequency();
-        let num = FactorSet::from_roots(f.reduced_zeros());
-        let den = FactorSet::from_roots(f.reduced_poles());
+        let num = FactorSet::from_roots(f.reduced_zeros(), |p| f.side_of(p));
+        let den = FactorSet::from_roots(f.reduced_poles(), |p| f.side_of(p));
         let rate = num.max_rate().max(den.max_rate());
         let fast_limit = if rate > 0.0 {
             FAST_FACTOR_LIMIT / rate

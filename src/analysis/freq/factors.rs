@@ -4,7 +4,9 @@
 
 use std::f64::consts::{FRAC_PI_2, LN_2, PI};
 
-use crate::analysis::stability::{HalfPlane, half_plane};
+use num_complex::Complex64;
+
+use crate::analysis::stability::HalfPlane;
 use crate::poly::Root;
 
 /// A real quadratic factor (1 − aω²) + jbω of a conjugate pair p, p̄ (p = σ + jβ):
@@ -35,7 +37,10 @@ pub(super) struct FactorSet {
 }
 
 impl FactorSet {
-    pub(super) fn from_roots(roots: &[Root]) -> FactorSet {
+    /// The factors of `roots`, with the half plane of each pair decided by `side` (the
+    /// factored form's decision: exact for coefficients typed as text, so a pair 1e-20 left of
+    /// the axis is a lightly damped quadratic with a finite peak, not an axis pole).
+    pub(super) fn from_roots(roots: &[Root], side: impl Fn(Complex64) -> HalfPlane) -> FactorSet {
         let mut s = FactorSet::default();
         for r in roots {
             let p = r.value;
@@ -52,7 +57,7 @@ impl FactorSet {
             if p.im < 0.0 {
                 continue; // the upper member stands for the pair
             }
-            if half_plane(p) == HalfPlane::Axis {
+            if side(p) == HalfPlane::Axis {
                 for _ in 0..r.multiplicity {
                     s.axis.push(p.im);
                     s.axis_inv.push(1.0 / p.im);

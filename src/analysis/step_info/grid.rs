@@ -46,6 +46,14 @@ pub(super) struct GridDerivative {
     since_sync: usize,
 }
 
+/// The rate |p| of a term and the time after which its envelope decreases (k/|σ| for the
+/// highest power k of t; 0 for a term that does not decay).
+pub(super) fn mode_scales(t: &ClosedFormTerm) -> (f64, f64) {
+    let p = t.pole().unwrap_or_default();
+    let k = t.max_power() as f64;
+    (p.norm(), if p.re < 0.0 { k / -p.re } else { 0.0 })
+}
+
 fn exact_z(sigma: f64, omega: f64, t: f64) -> Complex64 {
     let m = (sigma * t).exp();
     if omega == 0.0 {
@@ -77,7 +85,7 @@ impl GridDerivative {
                         phases,
                     } => (*sigma, *omega, amplitudes.clone(), phases.clone()),
                 };
-                let (rate, t_max) = super::search::mode_scales(t);
+                let (rate, t_max) = mode_scales(t);
                 Some(Mode {
                     sigma,
                     omega,

@@ -1,34 +1,42 @@
-//! The searches behind the step metrics: the settling horizon of the transient's envelope,
-//! the critical points of y on an adaptive grid, and level crossings on monotone pieces.
+//! The searches behind the step metrics: the horizon of the transient's envelope, a lazy scan
+//! of y's monotone pieces from any time on, and level crossings on monotone pieces.
+//!
+//! Nothing here marches over the whole response: every scan starts where its quantity can be
+//! (t = 0 for first reaches and extremes, just before an envelope horizon for last exits)
+//! and stops as soon as the envelope proves that nothing later matters. A lightly damped
+//! response (ζ = 1e-12: 10¹¹ periods before it settles) costs a few periods of grid per
+//! quantity, not all of them.
 
-use super::grid;
+use super::grid::{GridDerivative, mode_scales};
 use crate::analysis::closed_form::ClosedFormTerm;
 use crate::error::{LtiError, Result};
 use crate::numeric::scalar::{Bracket, brent};
 
-/// Grid points allowed for bracketing (a guard against absurd mode spreads).
-const MAX_GRID: usize = 4_000_000;
+/// Grid steps allowed for all the scans of one step-metric computation (a guard against
+/// responses whose envelope bound is loose over very many periods).
+pub(super) const MAX_GRID: usize = 4_000_000;
 /// Points per 1/|p| of the fastest live mode: spacing 0.2/|p| (≈ 31 points per period).
 const GRID_FACTOR: f64 = 0.2;
+/// Brent's absolute tolerance: negligible, so every root comes to ~4 ulps of itself
+/// however wide its bracket (a 10 % reach at 2e-10 s inside a piece of 1e8 s).
+const XTOL: f64 = 1e-300;
 /// A mode is dead once its envelope is below this fraction of |y∞| (and decreasing).
 const DEAD_REL: f64 = 1e-15;
 
-/// The rate |p| and the time after which the envelope of a term decreases.
-pub(super) fn mode_scales(t: &ClosedFormTerm) -> (f64, f64) {
-    let p = t.pole().unwrap_or_default();
-    let k = t.max_power() as f64;
-    (p.norm(), if p.re < 0.0 { k / -p.re } else { 0.0 })
-}
-
-/// A time T after which env(t) < eps for all t ≥ T (env is a sum of decaying envelopes).
+/// A time T after which env(t) < eps for all t ≥ T (env is a sum of decaying envelopes),
+/// found to a few ulps of T; `None` when no finite time has env < eps (eps ≤ 0, or
+/// a horizon beyond the largest double).
 pub(super) fn horizon(
     terms: &[ClosedFormTerm],
     env: &impl Fn(f64) -> f64,
     eps: f64,
-) -> Result<f64> {
-    let t0 = terms.iter().map(|t| mode_scales(t).1).fold(0.0, f64::max);
+) -> Option<f64> {
+    let t0 = envelope_peak(terms);
     if env(t0) < eps {
-        return Ok(t0);
+        return Some(t0);
+    }
+    if eps.is_nan() || eps <= 0.0 {
+        return None;
     }
     let slowest = terms
         .iter()
@@ -44,88 +52,150 @@ pub(super) fn horizon(
         step *= 2.0;
         hi += step;
         iterations += 1;
-        if iterations > 2000 || !hi.is_finite() {
-            return Err(LtiError::NoConvergence {
-                what: "step-response settling horizon".into(),
-                iterations,
-            });
+        if iterations > 2100 || !hi.is_finite() {
+            return None;
         }
     }
-    // env is decreasing on [t0, ∞): bisect to 1e-6 relative (keeping env(hi) < eps).
-    while hi - lo > 1e-6 * hi {
+    // env is decreasing on [t0, ∞): bisect until lo and hi are adjacent doubles (keeping
+    // env(hi) < eps); at most ~64 halvings of a finite interval.
+    for _ in 0..2200 {
         let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
         if env(mid) < eps {
             hi = mid;
         } else {
             lo = mid;
         }
     }
-    Ok(hi)
+    Some(hi)
 }
 
-/// Zeros of y′ on (a, b]: sign changes on an adaptive grid, refined by Brent.
-///
-/// The spacing at t is [`GRID_FACTOR`]/|p| for the fastest mode still alive at t (before its
-/// envelope peaks, or with the envelope above [`DEAD_REL`]·`scale`); a dead mode stays dead
-/// (its envelope decreases), so the fastest alive mode is tracked with one pointer. Grid values
-/// of y′ come from [`grid::GridDerivative`] (exact in sign); Brent refines on the exact `df`.
-pub(super) fn critical_points(
-    terms: &[ClosedFormTerm],
-    df: &impl Fn(f64) -> f64,
-    a: f64,
-    b: f64,
-    scale: f64,
-) -> Result<Vec<f64>> {
-    let dead = DEAD_REL * scale;
-    let mut grid = grid::GridDerivative::new(terms, a);
-    let by_rate = grid.by_rate();
-    let mut fastest = 0; // index into by_rate of the fastest mode that may be alive
-    let mut out = Vec::new();
-    let mut t = a;
-    let mut ft = df(t);
-    let mut count = 0usize;
-    let xtol = 1e-15 * b.max(1e-300);
-    let min_step = 4.0 * f64::EPSILON * b;
-    while t < b {
-        while fastest < by_rate.len() && !grid.alive(by_rate[fastest], dead) {
-            fastest += 1;
-        }
-        let rate = by_rate.get(fastest).map_or(0.0, |&k| grid.rate(k));
-        let h = if rate > 0.0 {
-            (GRID_FACTOR / rate).min(b - a)
-        } else {
-            b - a
-        }
-        .max(min_step);
-        let clipped = t + h > b;
-        let u = if clipped { b } else { t + h };
-        let fu = grid.advance(u, h, clipped, df);
-        if ft != 0.0 && fu != 0.0 && ft.signum() != fu.signum() {
-            let br = Bracket {
-                a: t,
-                b: u,
-                fa: ft,
-                fb: fu,
-            };
-            out.push(brent(df, br, xtol)?);
-        } else if fu == 0.0 && u < b {
-            out.push(u);
-        }
-        t = u;
-        ft = fu;
-        count += 1;
-        if count > MAX_GRID {
+/// The time after which every term's envelope Σ|cₖ|tᵏe^(σt) decreases: max k/|σ|.
+pub(super) fn envelope_peak(terms: &[ClosedFormTerm]) -> f64 {
+    terms.iter().map(|t| mode_scales(t).1).fold(0.0, f64::max)
+}
+
+/// Grid steps left for the scans of one computation.
+pub(super) struct Budget {
+    left: usize,
+}
+
+impl Budget {
+    pub(super) fn new() -> Budget {
+        Budget { left: MAX_GRID }
+    }
+
+    fn take(&mut self, at: f64, rate: f64) -> Result<()> {
+        if self.left == 0 {
             return Err(LtiError::NoConvergence {
-                what: "step-metric bracketing grid (modes too far apart)".into(),
-                iterations: count,
+                what: format!(
+                    "the scan of the step response (a mode of rate {} rad/s still alive at \
+                     t = {} s after {MAX_GRID} grid steps)",
+                    crate::fmt::fmt_sig(rate, 3),
+                    crate::fmt::fmt_sig(at, 4)
+                ),
+                iterations: MAX_GRID,
             });
         }
+        self.left -= 1;
+        Ok(())
     }
-    Ok(out)
+}
+
+/// A forward scan of y′ from a start time: each [`Scanner::next_bound`] returns the next
+/// critical point of y (a zero of y′, refined by Brent) or the given limit, so y is
+/// monotone between consecutive bounds.
+///
+/// The grid spacing at t is [`GRID_FACTOR`]/|p| for the fastest mode still alive at t
+/// (before its envelope peaks, or with the envelope above [`DEAD_REL`]·`scale`); a dead
+/// mode stays dead (its envelope decreases), so the fastest alive mode is tracked with one
+/// pointer. Grid values of y′ come from [`GridDerivative`] (exact in sign); Brent refines on
+/// the exact `df`.
+pub(super) struct Scanner<'a, F: Fn(f64) -> f64> {
+    df: &'a F,
+    grid: GridDerivative,
+    by_rate: Vec<usize>,
+    fastest: usize,
+    dead: f64,
+    t: f64,
+    ft: f64,
+}
+
+impl<'a, F: Fn(f64) -> f64> Scanner<'a, F> {
+    /// A scan from `a` of the derivative `df` of a response with transient `terms` and
+    /// final value of size `scale`.
+    pub(super) fn new(terms: &[ClosedFormTerm], df: &'a F, a: f64, scale: f64) -> Self {
+        let grid = GridDerivative::new(terms, a);
+        let by_rate = grid.by_rate();
+        Scanner {
+            df,
+            grid,
+            by_rate,
+            fastest: 0,
+            dead: DEAD_REL * scale,
+            t: a,
+            ft: df(a),
+        }
+    }
+
+    /// The current time of the scan.
+    pub(super) fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// The grid spacing the scan would use now (`None` when no mode is alive: y is constant
+    /// to within [`DEAD_REL`] of the final value from here on).
+    pub(super) fn spacing(&mut self) -> Option<f64> {
+        while self.fastest < self.by_rate.len()
+            && !self.grid.alive(self.by_rate[self.fastest], self.dead)
+        {
+            self.fastest += 1;
+        }
+        let rate = self
+            .by_rate
+            .get(self.fastest)
+            .map_or(0.0, |&k| self.grid.rate(k));
+        (rate > 0.0).then(|| GRID_FACTOR / rate)
+    }
+
+    /// The next bound after the current time: the first critical point in (t, `limit`), or
+    /// `limit` itself. Requires `limit` > the current time.
+    pub(super) fn next_bound(&mut self, limit: f64, budget: &mut Budget) -> Result<f64> {
+        let df = self.df;
+        while self.t < limit {
+            let spacing = self.spacing();
+            budget.take(self.t, spacing.map_or(0.0, |h| GRID_FACTOR / h))?;
+            // at least a few ulps of t, so the scan advances where the spacing is below
+            // the resolution of t
+            let min_step = 4.0 * f64::EPSILON * self.t.abs();
+            let h = spacing.unwrap_or(limit - self.t).max(min_step);
+            let clipped = self.t + h >= limit;
+            let u = if clipped { limit } else { self.t + h };
+            let fu = self.grid.advance(u, h, clipped, df);
+            let (t, ft) = (self.t, self.ft);
+            self.t = u;
+            self.ft = fu;
+            if ft != 0.0 && fu != 0.0 && ft.signum() != fu.signum() {
+                let br = Bracket {
+                    a: t,
+                    b: u,
+                    fa: ft,
+                    fb: fu,
+                };
+                // c lies in [t, u]: a zero-length piece at an end is harmless
+                return brent(df, br, XTOL);
+            } else if fu == 0.0 && u < limit {
+                return Ok(u);
+            }
+        }
+        Ok(limit)
+    }
 }
 
 /// The crossing of g = 0 in [a, b] when g changes sign there (g monotone on [a, b]).
-pub(super) fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64, xtol: f64) -> Result<Option<f64>> {
+pub(super) fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option<f64>> {
     let (fa, fb) = (g(a), g(b));
     if fa == 0.0 {
         return Ok(Some(a));
@@ -136,36 +206,20 @@ pub(super) fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64, xtol: f64) -> Re
     if fa.signum() == fb.signum() {
         return Ok(None);
     }
-    brent(g, Bracket { a, b, fa, fb }, xtol).map(Some)
+    brent(g, Bracket { a, b, fa, fb }, XTOL).map(Some)
 }
 
-/// The first t with g(t) ≥ 0, g monotone between consecutive bounds.
-pub(super) fn first_reach(
-    g: &impl Fn(f64) -> f64,
-    bounds: &[f64],
-    xtol: f64,
-) -> Result<Option<f64>> {
-    if g(bounds[0]) >= 0.0 {
-        return Ok(Some(bounds[0]));
+/// The first t with g(t) ≥ 0 on the monotone piece [a, b] (g(a) < 0 assumed), if any.
+pub(super) fn reach_in(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option<f64>> {
+    let (fa, fb) = (g(a), g(b));
+    if fa >= 0.0 {
+        return Ok(Some(a));
     }
-    for w in bounds.windows(2) {
-        let (fa, fb) = (g(w[0]), g(w[1]));
-        if fa < 0.0 && fb >= 0.0 {
-            if fb == 0.0 {
-                return Ok(Some(w[1]));
-            }
-            return brent(
-                g,
-                Bracket {
-                    a: w[0],
-                    b: w[1],
-                    fa,
-                    fb,
-                },
-                xtol,
-            )
-            .map(Some);
-        }
+    if fb < 0.0 {
+        return Ok(None);
     }
-    Ok(None)
+    if fb == 0.0 {
+        return Ok(Some(b));
+    }
+    brent(g, Bracket { a, b, fa, fb }, XTOL).map(Some)
 }

@@ -9,7 +9,7 @@ use num_complex::Complex64;
 use super::Ctx;
 use super::md::Md;
 use crate::analysis::{ClosedLoop, LoopSystem};
-use crate::fmt::{fmt_root, fmt_sig};
+use crate::fmt::{fmt_opt, fmt_root, fmt_sig};
 use crate::lti::{Controller, Plant};
 
 const GROUP: &str = "closed loop vs closed forms";
@@ -79,9 +79,9 @@ fn pid(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
             "step of T".into(),
             format!(
                 "rise {} s, settling {} s (2 %), overshoot {} %",
-                fmt_sig(si.rise_time, 4),
-                fmt_sig(si.settling_time, 4),
-                fmt_sig(si.overshoot_percent, 3)
+                fmt_opt(si.rise_time, 4),
+                fmt_opt(si.settling_time, 4),
+                fmt_opt(si.overshoot_percent, 3)
             ),
         ]);
     }

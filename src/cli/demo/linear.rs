@@ -9,7 +9,7 @@ use crate::TransferFunction;
 use crate::analysis::Factored;
 use crate::analysis::{Analysis, Input, auto_time_span};
 pub use crate::cli::text::roots_text;
-use crate::fmt::{fmt_num, fmt_root, fmt_sig};
+use crate::fmt::{fmt_num, fmt_opt, fmt_root, fmt_sig};
 use crate::lti::{Plant, PlantFile};
 
 /// A plant of the tour, factored once.
@@ -307,14 +307,14 @@ fn step_block(ctx: &mut Ctx, md: &mut Md, name: &str, g: &Factored, a: &Analysis
                     "final value",
                 ],
                 &[vec![
-                    format!("{} s", fmt_sig(si.rise_time, 6)),
-                    format!("{} s", fmt_sig(si.settling_time, 6)),
-                    format!("{} %", fmt_sig(si.overshoot_percent, 6)),
-                    fmt_sig(si.peak, 6),
-                    if si.peak_time.is_finite() {
-                        format!("{} s", fmt_sig(si.peak_time, 6))
-                    } else {
-                        "approached as t → ∞ (monotone)".into()
+                    format!("{} s", fmt_opt(si.rise_time, 6)),
+                    format!("{} s", fmt_opt(si.settling_time, 6)),
+                    format!("{} %", fmt_opt(si.overshoot_percent, 6)),
+                    fmt_opt(si.peak, 6),
+                    match si.peak_time {
+                        Some(t) if t.is_finite() => format!("{} s", fmt_sig(t, 6)),
+                        Some(_) => "approached as t → ∞".into(),
+                        None => "not computed".into(),
                     },
                     fmt_sig(si.steady_state, 6),
                 ]],

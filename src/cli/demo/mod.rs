@@ -257,15 +257,22 @@ fn write_atomic(path: &Path, text: String) -> Result<()> {
 /// y(t₉₀) = 0.9 y∞, |y(t_s) − y∞| = 0.02|y∞|, y(t_peak) = peak.
 pub fn verify_step_info(ctx: &mut Ctx, name: &str, g: &Factored, si: &StepInfo) -> Result<()> {
     let yinf = si.steady_state;
-    let mut t = vec![si.rise_start, si.rise_end, si.settling_time];
-    if si.peak_time.is_finite() {
-        t.push(si.peak_time);
+    let (Some(t10), Some(t90), Some(ts)) = (si.rise_start, si.rise_end, si.settling_time) else {
+        anyhow::bail!("{name}: step metrics not computed ({:?})", si.notes);
+    };
+    let mut t = vec![t10, t90, ts];
+    let peak = match (si.peak_time, si.peak) {
+        (Some(tp), Some(p)) if tp.is_finite() => Some((tp, p)),
+        _ => None,
+    };
+    if let Some((tp, _)) = peak {
+        t.push(tp);
     }
     let y = g.step_response(&t)?.y;
     let mut err = (y[0] - 0.1 * yinf).abs().max((y[1] - 0.9 * yinf).abs());
     err = err.max(((y[2] - yinf).abs() - 0.02 * yinf.abs()).abs());
-    if si.peak_time.is_finite() {
-        err = err.max((y[3].abs() - si.peak).abs());
+    if let Some((_, p)) = peak {
+        err = err.max((y[3].abs() - p).abs());
     }
     ctx.checks.add(
         "step metrics on the exact response (relative to |y∞|)",

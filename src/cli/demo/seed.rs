@@ -9,7 +9,7 @@ use super::linear::roots_text;
 use super::md::Md;
 use crate::TransferFunction;
 use crate::analysis::{Factored, Input};
-use crate::fmt::fmt_sig;
+use crate::fmt::{fmt_opt, fmt_sig};
 use crate::plot::{Curve, Equilibrium, PhasePortrait, phase_portrait_png, series_color};
 
 /// ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1, factored.
@@ -42,12 +42,12 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         let a = g.analyze()?;
         let t: Vec<f64> = (0..=400).map(|i| 0.1 * i as f64).collect();
         let free = g.response(&Input::None, &[X0, 0.0], &t)?;
-        let step = a.step_info.map(|s| {
+        let step = a.step_info.as_ref().map(|s| {
             format!(
                 "rise {} s, settling {} s, overshoot {} %",
-                fmt_sig(s.rise_time, 4),
-                fmt_sig(s.settling_time, 4),
-                fmt_sig(s.overshoot_percent, 4)
+                fmt_opt(s.rise_time, 4),
+                fmt_opt(s.settling_time, 4),
+                fmt_opt(s.overshoot_percent, 4)
             )
         });
         rows.push(vec![
