@@ -46,6 +46,7 @@ fn analyze_contract() {
             "zeros",
             "zeros_at_infinity",
             "cancelled",
+            "near_cancellations",
             "dc_gain",
             "bibo_stable",
             "internally_stable",

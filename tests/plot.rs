@@ -154,6 +154,9 @@ fn type1_third_order() -> (FrequencyResponse, Margins) {
         bandwidth: None,
         resonant_peak: None,
         resonant_frequency: None,
+        // PM/ω_c = 0.569198 rad / 0.749368 rad/s
+        delay_margin: Some(32.6131f64.to_radians() / 0.749368),
+        delay_margin_w: Some(0.749368),
     };
     (fr, m)
 }

@@ -29,7 +29,6 @@
 //! ```
 
 use serde::Serialize;
-use std::f64::consts::PI;
 
 use super::factored::{Factored, close, series_parts};
 use super::margins::local_maxima;
@@ -191,18 +190,13 @@ impl ClosedLoop {
     /// margin is undefined), those of the margins.
     pub fn robustness(&self) -> Result<Robustness> {
         let m = self.l.margins()?;
-        let (delay_margin, delay_margin_w) = m
-            .gain_crossings
-            .iter()
-            .map(|c| {
-                let pm = c.phase_margin_deg.rem_euclid(360.0);
-                (pm * PI / 180.0 / c.w, c.w)
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .ok_or_else(|| LtiError::Undefined {
-                what: "the delay margin".into(),
-                reason: "the loop has no finite gain crossing (|L(jω)| never equals 1)".into(),
-            })?;
+        let (delay_margin, delay_margin_w) =
+            m.delay_margin
+                .zip(m.delay_margin_w)
+                .ok_or_else(|| LtiError::Undefined {
+                    what: "the delay margin".into(),
+                    reason: "the loop has no finite gain crossing (|L(jω)| never equals 1)".into(),
+                })?;
         Ok(Robustness {
             ms: peak(&self.system(LoopSystem::Sensitivity)?)?,
             mt: peak(&self.system(LoopSystem::ClosedLoop)?)?,

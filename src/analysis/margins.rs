@@ -91,6 +91,12 @@ pub struct Margins {
     pub resonant_peak: Option<f64>,
     /// Resonant frequency ω_r (rad/s).
     pub resonant_frequency: Option<f64>,
+    /// Delay margin (s): the smallest extra loop delay that destabilises the loop, min over
+    /// the gain crossings ω_c > 0 of PM/ω_c with the phase margin taken in [0°, 360°)
+    /// (MATLAB `allmargin`'s `DelayMargin`); `None` without a gain crossing at ω > 0.
+    pub delay_margin: Option<f64>,
+    /// The gain crossing of that delay margin (rad/s).
+    pub delay_margin_w: Option<f64>,
 }
 
 impl TransferFunction {
@@ -240,6 +246,16 @@ impl Margins {
     /// The headline values (MATLAB `margin`): the gain margin closest to 0 dB and the phase
     /// margin closest to 0° among the crossings.
     fn headline(&mut self) {
+        if let Some((d, w)) = self
+            .gain_crossings
+            .iter()
+            .filter(|c| c.w > 0.0)
+            .map(|c| (c.phase_margin_deg.rem_euclid(360.0).to_radians() / c.w, c.w))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+        {
+            self.delay_margin = Some(d);
+            self.delay_margin_w = Some(w);
+        }
         if let Some(c) = self.gain_crossings.iter().min_by(|a, b| {
             a.phase_margin_deg
                 .abs()

@@ -31,7 +31,8 @@ pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm};
 pub use closed_loop::{ClosedLoop, InternalStability, LoopSystem, Peak, Robustness};
 pub use factored::{
-    Factored, Feedback, MAX_FACTORED_ORDER, PoleZero, StructurePath, factorizations_on_this_thread,
+    Factored, Feedback, MAX_FACTORED_ORDER, NEAR_PAIR_REL, NearPair, PoleZero, StructurePath,
+    factorizations_on_this_thread,
 };
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
@@ -43,6 +44,6 @@ pub use pfe::{PartialFractions, PfTerm, partial_fractions};
 pub use response::{Response, ResponseSamples};
 pub use routh::{RouthEvent, RouthTable, axis_crossings, routh, stable_gains};
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
-pub use step_info::{StepInfo, StepInfoOptions};
+pub use step_info::{MetricNote, StepInfo, StepInfoOptions};
 pub use summary::Analysis;
 pub use time::TimeResponse;

@@ -2,7 +2,10 @@
 
 use serde::Serialize;
 
-use crate::analysis::{Factored, Mode, PoleZero, SecondOrder, Stability, StepInfo, StructurePath};
+use crate::analysis::{
+    Factored, Mode, NEAR_PAIR_REL, NearPair, PoleZero, SecondOrder, Stability, StepInfo,
+    StructurePath,
+};
 use crate::error::Result;
 use crate::lti::TransferFunction;
 
@@ -15,6 +18,9 @@ pub struct Analysis {
     pub relative_degree: Option<i64>,
     /// Poles, zeros, cancellations and the reduced G.
     pub pole_zero: PoleZero,
+    /// Zeros within a relative [`NEAR_PAIR_REL`] of a pole that do not cancel it (closest
+    /// first); `minreal` cancels them on request.
+    pub near_cancellations: Vec<NearPair>,
     /// dc gain of the reduced G; `None` when infinite.
     pub dc_gain: Option<f64>,
     /// BIBO and internal stability with reasons.
@@ -60,6 +66,7 @@ impl Factored {
             order: self.order(),
             relative_degree: self.relative_degree(),
             pole_zero: self.pole_zero().clone(),
+            near_cancellations: self.near_cancellations(NEAR_PAIR_REL),
             dc_gain: self.dc_gain(),
             stability: self.stability(),
             modes: self.modes(),

@@ -8,7 +8,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::output::{finite, pair, print, print_json};
-use super::text::roots_text;
+use super::text::roots_texts;
 use super::{Plant, PlantArgs, UsageError, channels};
 use crate::analysis::{Analysis, Factored, StepInfo};
 use crate::fmt::{fmt_num, fmt_root, fmt_sig};
@@ -107,6 +107,8 @@ pub struct AnalyzeJson {
     zeros: Vec<[f64; 2]>,
     zeros_at_infinity: Option<usize>,
     cancelled: Vec<[f64; 2]>,
+    /// Zeros within a relative 1e-6 of a pole that do not cancel it.
+    near_cancellations: Vec<NearPairJson>,
     dc_gain: Option<f64>,
     bibo_stable: bool,
     internally_stable: bool,
@@ -123,6 +125,15 @@ pub struct AnalyzeJson {
     /// whole (absent otherwise, and in batch lines and linearisations).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     whole_model: Option<whole_model::WholeModelJson>,
+}
+
+#[derive(Serialize)]
+struct NearPairJson {
+    zero: [f64; 2],
+    pole: [f64; 2],
+    multiplicity: usize,
+    distance: f64,
+    relative_distance: f64,
 }
 
 #[derive(Serialize)]
@@ -214,6 +225,17 @@ impl From<&Analysis> for AnalyzeJson {
             zeros: flatten(&pz.zeros).into_iter().map(pair).collect(),
             zeros_at_infinity: pz.zeros_at_infinity,
             cancelled: flatten(&pz.cancelled).into_iter().map(pair).collect(),
+            near_cancellations: a
+                .near_cancellations
+                .iter()
+                .map(|n| NearPairJson {
+                    zero: pair(n.zero),
+                    pole: pair(n.pole),
+                    multiplicity: n.multiplicity,
+                    distance: n.distance,
+                    relative_distance: n.relative,
+                })
+                .collect(),
             dc_gain: a.dc_gain.and_then(finite),
             bibo_stable: a.stability.bibo_stable,
             internally_stable: a.stability.internally_stable,
@@ -275,8 +297,15 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
             a.order
         )),
     }
-    s.push_str(&format!("Poles:     {}\n", roots_text(&pz.poles)));
-    s.push_str(&format!("Zeros:     {}", roots_text(&pz.zeros)));
+    // one precision for every list: distinct values across them never print alike
+    let near_values: Vec<crate::Root> = a
+        .near_cancellations
+        .iter()
+        .flat_map(|n| [crate::Root::new(n.zero, 1), crate::Root::new(n.pole, 1)])
+        .collect();
+    let texts = roots_texts(&[&pz.poles, &pz.zeros, &pz.cancelled, &near_values]);
+    s.push_str(&format!("Poles:     {}\n", texts[0]));
+    s.push_str(&format!("Zeros:     {}", texts[1]));
     if let Some(k) = pz.zeros_at_infinity.filter(|&k| k > 0) {
         s.push_str(&format!("; {k} at infinity"));
     }
@@ -291,7 +320,7 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
         {
             s.push_str(&format!(
                 "Cancelled: {} (modes removed by the minimal realisation: uncontrollable or unobservable; minimal order {})\n",
-                roots_text(&pz.cancelled),
+                texts[2],
                 f.reduced_poles().iter().map(|r| r.multiplicity).sum::<usize>()
             ));
         } else {
@@ -300,11 +329,23 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
                 .map(|g| g.to_string())
                 .unwrap_or_else(|_| "(too large to print)".into());
             s.push_str(&format!(
-                "Cancelled: {} (common to numerator and denominator; reduced G = {reduced})\n",
-                roots_text(&pz.cancelled),
+                "Cancelled: {} ({}; reduced G = {reduced})\n",
+                texts[2],
+                if pz.cancelled.iter().all(|c| pz.zeros.iter().any(|z| {
+                    if a.structure == crate::analysis::StructurePath::Exact {
+                        z.value == c.value
+                    } else {
+                        z.same_as(c.value)
+                    }
+                })) {
+                    "common to numerator and denominator"
+                } else {
+                    "against zeros within the --minreal tolerance"
+                },
             ));
         }
     }
+    s.push_str(&near_text(&a.near_cancellations));
     s.push_str(&format!(
         "dc gain:   {}\n\n",
         match a.dc_gain {
@@ -370,6 +411,31 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
         (Some(si), _) => s.push_str(&step_text(si)),
         (None, Some(note)) => s.push_str(&format!("Step response: {note}\n")),
         (None, None) => s.push_str("Step response: no step metrics\n"),
+    }
+    s
+}
+
+/// The near pole-zero pairs, one line each: "Near:      zero -2.00000000001 and pole -2
+/// (distance 1e-11, relative 5e-12; not cancelled — --minreal 1e-11 cancels pairs this close)".
+fn near_text(near: &[crate::analysis::NearPair]) -> String {
+    let mut s = String::new();
+    for (k, n) in near.iter().enumerate() {
+        let sig = super::text::distinguishing_digits(&[n.zero, n.pole], 6);
+        let mult = if n.multiplicity > 1 {
+            format!(" (×{})", n.multiplicity)
+        } else {
+            String::new()
+        };
+        s.push_str(&format!(
+            "{}zero {} and pole {}{mult} (distance {}, relative {}; not cancelled: --minreal {} \
+             cancels pairs this close)\n",
+            if k == 0 { "Near:      " } else { "           " },
+            fmt_root(n.zero, sig),
+            fmt_root(n.pole, sig),
+            fmt_sig(n.distance, 3),
+            fmt_sig(n.relative, 3),
+            fmt_sig(10f64.powf((n.relative * (1.0 + 1e-9)).log10().ceil()), 1),
+        ));
     }
     s
 }

@@ -55,7 +55,7 @@ impl PlantArgs {
                 list: vec![Channel {
                     input: i,
                     output: o,
-                    factored: plant.factored_channel(i, o)?,
+                    factored: self.minreal(plant.factored_channel(i, o)?)?,
                 }],
             });
         }
@@ -66,7 +66,7 @@ impl PlantArgs {
                 list: vec![Channel {
                     input: 0,
                     output: 0,
-                    factored: plant.factored()?,
+                    factored: self.minreal(plant.factored()?)?,
                 }],
             });
         }
@@ -83,7 +83,7 @@ impl PlantArgs {
                 list.push(Channel {
                     input: i,
                     output: o,
-                    factored: plant.factored_channel(i, o)?,
+                    factored: self.minreal(plant.factored_channel(i, o)?)?,
                 });
             }
         }

@@ -133,11 +133,6 @@ pub fn loop_report(cl: &ClosedLoop, r: &Robustness) -> String {
         "Peak complementary sensitivity Mt: {}\n",
         peak_text(&r.mt)
     ));
-    s.push_str(&format!(
-        "Delay margin:  {} s (PM/wc at the gain crossover w = {} rad/s)\n",
-        fmt_sig(r.delay_margin, 7),
-        fmt_sig(r.delay_margin_w, 7)
-    ));
     if !r.closed_loop_stable {
         s.push_str(
             "Note: the closed loop is not stable; these margins do not measure robustness.\n",
@@ -171,6 +166,14 @@ pub fn report(m: &Margins) -> String {
             .map(|w| format!(" at the gain crossover w = {} rad/s", fmt_sig(w, 7)))
             .unwrap_or_else(|| " (|G| never crosses 1)".into())
     ));
+    match (m.delay_margin, m.delay_margin_w) {
+        (Some(d), Some(w)) => s.push_str(&format!(
+            "Delay margin:  {} s (PM/wc at the gain crossover w = {} rad/s)\n",
+            fmt_sig(d, 7),
+            fmt_sig(w, 7)
+        )),
+        _ => s.push_str("Delay margin:  ∞ (no gain crossover: |G| never crosses 1)\n"),
+    }
     if m.phase_crossings.len() > 1 || m.gain_crossings.len() > 1 {
         s.push_str("All crossings:\n");
         for c in &m.phase_crossings {

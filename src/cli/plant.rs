@@ -66,6 +66,11 @@ pub struct PlantArgs {
     /// Analyse the control sensitivity C·S = C/(1 + L).
     #[arg(long)]
     pub control_sensitivity: bool,
+    /// Cancel pole-zero pairs closer than this relative distance, |z − p| ≤ TOL·max(|z|, |p|)
+    /// (MATLAB's and python-control's minreal(sys, tol); they use √eps ≈ 1.5e-8). Without it
+    /// only exact common roots cancel, and near pairs are listed by `analyze`.
+    #[arg(long, value_name = "TOL")]
+    pub minreal: Option<f64>,
 }
 
 impl PlantArgs {
@@ -190,6 +195,7 @@ impl PlantArgs {
             Some((i, o)) => plant.factored_channel(i, o)?,
             None => plant.factored()?,
         };
+        let g = self.minreal(g)?;
         let (f, cl) = crate::analysis::closed_loop::select(plant, g)?;
         if let Some(cl) = &cl {
             let st = cl.internal_stability();
@@ -198,6 +204,31 @@ impl PlantArgs {
             }
         }
         Ok((f, cl))
+    }
+
+    /// `f` with the pole-zero pairs within `--minreal TOL` cancelled (a warning names each
+    /// pair); `f` itself without the option.
+    pub fn minreal(&self, f: crate::analysis::Factored) -> Result<crate::analysis::Factored> {
+        let Some(tol) = self.minreal else {
+            return Ok(f);
+        };
+        let (g, removed) = f.minreal(tol)?;
+        for n in &removed {
+            let sig = super::text::distinguishing_digits(&[n.zero, n.pole], 6);
+            super::warn(format!(
+                "--minreal {}: cancelled zero {} against pole {}{} (distance {})",
+                crate::fmt::fmt_sig(tol, 6),
+                crate::fmt::fmt_root(n.zero, sig),
+                crate::fmt::fmt_root(n.pole, sig),
+                if n.multiplicity > 1 {
+                    format!(" (×{})", n.multiplicity)
+                } else {
+                    String::new()
+                },
+                crate::fmt::fmt_sig(n.distance, 3)
+            ));
+        }
+        Ok(g)
     }
 
     /// Exactly one plant.

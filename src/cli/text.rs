@@ -8,19 +8,63 @@ use crate::fmt::{fmt_root, fmt_sig};
 /// Roots with multiplicities, one entry per conjugate pair: "-1 (×2), -0.2 ± 1.98997j", or
 /// "none".
 pub fn roots_text(r: &[Root]) -> String {
-    let upper: Vec<(Complex64, String)> = r
+    roots_texts(&[r]).remove(0)
+}
+
+/// Several root lists printed together (poles, zeros, cancelled roots): six significant
+/// digits, more when distinct values — within a list or across the lists — would print
+/// alike (a zero at −2.00000000001 beside a pole at −2 must not read as "−2" twice).
+pub fn roots_texts(lists: &[&[Root]]) -> Vec<String> {
+    let items: Vec<Vec<(Complex64, String)>> = lists
         .iter()
-        .filter(|r| r.value.im >= 0.0)
         .map(|r| {
-            let m = if r.multiplicity > 1 {
-                format!(" (×{})", r.multiplicity)
-            } else {
-                String::new()
-            };
-            (r.value, m)
+            r.iter()
+                .filter(|r| r.value.im >= 0.0)
+                .map(|r| {
+                    let m = if r.multiplicity > 1 {
+                        format!(" (×{})", r.multiplicity)
+                    } else {
+                        String::new()
+                    };
+                    (r.value, m)
+                })
+                .collect()
         })
         .collect();
-    labelled_roots_text(&upper)
+    let all: Vec<Complex64> = items.iter().flatten().map(|(v, _)| *v).collect();
+    let sig = distinguishing_digits(&all, 6);
+    items
+        .iter()
+        .map(|list| {
+            if list.is_empty() {
+                "none".into()
+            } else {
+                list.iter()
+                    .map(|(v, label)| format!("{}{label}", fmt_root(*v, sig)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        })
+        .collect()
+}
+
+/// The fewest significant digits, from `min` up to 17, with which the distinct values of
+/// `values` all print differently.
+pub fn distinguishing_digits(values: &[Complex64], min: usize) -> usize {
+    let mut distinct: Vec<Complex64> = Vec::new();
+    for v in values {
+        if !distinct.contains(v) {
+            distinct.push(*v);
+        }
+    }
+    (min..=17)
+        .find(|&sig| {
+            let mut t: Vec<String> = distinct.iter().map(|v| fmt_root(*v, sig)).collect();
+            t.sort();
+            t.dedup();
+            t.len() == distinct.len()
+        })
+        .unwrap_or(17)
 }
 
 /// Values (upper members of conjugate pairs) each followed by its label, joined with ", ":
@@ -30,28 +74,14 @@ pub fn labelled_roots_text(items: &[(Complex64, String)]) -> String {
     if items.is_empty() {
         return "none".into();
     }
-    // Six significant digits, more when distinct roots would print alike (the exact path keeps
-    // ±j and ±j(1 + 1e-8) apart: they must not read as "±1j, ±1j").
-    let text = |sig: usize| -> Vec<String> {
-        items
-            .iter()
-            .map(|(v, label)| format!("{}{label}", fmt_root(*v, sig)))
-            .collect()
-    };
-    let distinct = |v: &[String]| {
-        let mut w = v.to_vec();
-        w.sort();
-        w.dedup();
-        w.len() == v.len()
-    };
-    let mut v = text(6);
-    for sig in 7..=17 {
-        if distinct(&v) {
-            break;
-        }
-        v = text(sig);
-    }
-    v.join(", ")
+    // (the exact path keeps ±j and ±j(1 + 1e-8) apart: they must not read as "±1j, ±1j")
+    let values: Vec<Complex64> = items.iter().map(|(v, _)| *v).collect();
+    let sig = distinguishing_digits(&values, 6);
+    items
+        .iter()
+        .map(|(v, label)| format!("{}{label}", fmt_root(*v, sig)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// One complex number (not a pair): "0.5", "-0.25j", "0.5 - 0.25j", six significant digits.

@@ -207,7 +207,9 @@ pub(crate) fn close(
     let mut roots = if rest.degree() == 0 {
         Vec::new()
     } else {
-        rest.roots()?
+        // the closed loop's poles within their error bound of the axis are on it (a loop
+        // closed at its crossing gain has ±jω, not 7.9e-17 ± jω)
+        crate::poly::roots::snap_to_axis(&rest, rest.roots()?)
     };
     roots.extend_from_slice(&hidden);
     Ok((characteristic, canonical_roots(&roots, "pole")?, hidden))

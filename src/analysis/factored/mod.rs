@@ -36,6 +36,7 @@
 mod display;
 mod exact;
 mod interconnect;
+mod minreal;
 mod plant;
 mod pole_zero;
 pub(crate) mod series;
@@ -51,6 +52,7 @@ use num_complex::Complex64;
 pub use exact::StructurePath;
 pub use interconnect::Feedback;
 pub(crate) use interconnect::{close, series_parts};
+pub use minreal::{NEAR_PAIR_REL, NearPair};
 pub use pole_zero::PoleZero;
 pub(crate) use pole_zero::count;
 pub(crate) use series::ScaledProduct;
@@ -165,8 +167,14 @@ impl Factored {
     /// Factors a transfer function given by its coefficients.
     pub fn from_tf(tf: &TransferFunction) -> Result<Factored> {
         let zero = tf.num().is_zero();
-        let poles = tf.den().roots()?;
-        let zeros = if zero { Vec::new() } else { tf.num().roots()? };
+        // a root within its error bound of the imaginary axis is put on it (printed and used
+        // as ±jβ: nothing more is known of it)
+        let poles = crate::poly::roots::snap_to_axis(tf.den(), tf.den().roots()?);
+        let zeros = if zero {
+            Vec::new()
+        } else {
+            crate::poly::roots::snap_to_axis(tf.num(), tf.num().roots()?)
+        };
         let pz = PoleZero::new(poles, zeros, zero);
         let reduced = if pz.cancelled.is_empty() {
             tf.clone()

@@ -35,6 +35,8 @@
 
 use num_complex::Complex64;
 
+mod bound;
+pub(crate) use bound::snap_to_axis;
 mod candidates;
 pub(crate) use candidates::candidates;
 mod checks;
