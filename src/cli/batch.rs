@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use serde_json::{Value, json};
 use std::io::{BufRead, IsTerminal, Read, Write};
 
-use super::analyze::AnalyzeJson;
+use super::analyze::json::AnalyzeJson;
 use super::output::json_value;
 use crate::lti::Plant;
 use crate::lti::plant::MAX_RECORD_BYTES;
@@ -23,10 +23,18 @@ fn record(line: usize, text: &str) -> Value {
     let result = (|| -> Result<Value> {
         let f = plant.factored()?;
         let a = f.analyze()?;
-        let m = f.margins()?;
         let mut v = json_value(&AnalyzeJson::from(&a))?;
         if let Value::Object(map) = &mut v {
-            map.insert("margins".into(), json_value(&m)?);
+            // margins that cannot be computed do not take the analysis down
+            match f.margins() {
+                Ok(m) => {
+                    map.insert("margins".into(), json_value(&m)?);
+                }
+                Err(e) => {
+                    map.insert("margins".into(), Value::Null);
+                    map.insert("margins_note".into(), json!(format!("not computed: {e}")));
+                }
+            }
         }
         Ok(v)
     })();

@@ -88,7 +88,7 @@ struct ChannelJson {
     den: Vec<f64>,
     /// The channel's analysis (the `analyze` document), when it can be computed.
     #[serde(skip_serializing_if = "Option::is_none")]
-    analysis: Option<super::analyze::AnalyzeJson>,
+    analysis: Option<super::analyze::json::AnalyzeJson>,
 }
 
 #[derive(Serialize)]
@@ -142,7 +142,7 @@ impl From<&Linearization> for LinearizeJson {
                             den: c.den.clone(),
                             analysis: channel_analysis(&e.ss, c)
                                 .ok()
-                                .map(|a| super::analyze::AnalyzeJson::from(&a)),
+                                .map(|a| super::analyze::json::AnalyzeJson::from(&a)),
                         })
                         .collect(),
                     energy_casimir: e.energy_casimir.clone(),

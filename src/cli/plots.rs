@@ -86,8 +86,14 @@ pub fn bode_figure(
     for (label, g) in plants {
         let w = merged_grid(g, lo, hi)?;
         let fr = g.freq_response(&w)?;
-        // A plant whose margins cannot be computed is still drawn.
-        let m = if margins { g.margins().ok() } else { None };
+        // A plant whose margins cannot be computed is still drawn (and a warning says why).
+        let m = if margins {
+            g.margins()
+                .map_err(|e| super::warn(format!("{label}: margins not marked: {e}")))
+                .ok()
+        } else {
+            None
+        };
         let asym = if asymptotes {
             Some(g.bode_asymptotes(lo, hi)?)
         } else {
@@ -145,8 +151,12 @@ pub fn step_figure(
             Input::Impulse => g.impulse_response(&t)?,
             other => g.time_response(other, &[], &t)?,
         };
+        // A plant whose step metrics cannot be computed is still drawn (a warning says why).
         let info = if matches!(input, Input::Step) {
-            g.step_info()?
+            g.step_info()
+                .map_err(|e| super::warn(format!("{label}: step metrics not marked: {e}")))
+                .ok()
+                .flatten()
         } else {
             None
         };
