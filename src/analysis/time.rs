@@ -204,6 +204,130 @@ impl Factored {
     }
 }
 
+impl Factored {
+    /// The response to `input` (zero initial conditions) at `points` times over [0, `t_end`]
+    /// for drawing it: equally spaced, except where an oscillation of the response is faster
+    /// than the spacing can follow (fewer than 3 samples per period), where the times move to
+    /// that oscillation's alternate crests and troughs ([`lock_to_oscillation`]). Sampled
+    /// uniformly there, a resonator (Q = 5·10⁵: 6·10⁵ periods before it settles) shows a
+    /// false slow wave — aliasing; sampled at its extremes it fills its envelope, as a fine
+    /// sampling would, and every value drawn is still the exact y at its own time.
+    ///
+    /// Errors: those of [`Factored::time_response`], `points` < 2, `t_end` not > 0.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// use ltikit::analysis::Input;
+    /// // ζ = 1e-6: over 4e6 s, 1001 samples 4000 s apart, 640 periods each
+    /// let f = TransferFunction::from_descending(&[1.0], &[1.0, 2e-6, 1.0]).unwrap().factored().unwrap();
+    /// let r = f.response_for_drawing(&Input::Step, 4e6, 1001).unwrap();
+    /// // the samples reach the envelope 1 ± e^(−ζt) (to within the damping's shift)
+    /// let (lo, hi) = r.y.iter().fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+    /// assert!(hi > 1.99 && lo < 0.01);
+    /// assert!(r.t.windows(2).all(|w| w[0] < w[1]));
+    /// ```
+    pub fn response_for_drawing(
+        &self,
+        input: &Input,
+        t_end: f64,
+        points: usize,
+    ) -> Result<TimeResponse> {
+        if points < 2 || !(t_end.is_finite() && t_end > 0.0) {
+            return Err(LtiError::invalid(format!(
+                "a drawing needs at least 2 points over a positive time span (got {points} \
+                 points over {t_end} s)"
+            )));
+        }
+        let n = (points - 1) as f64;
+        let uniform: Vec<f64> = (0..points).map(|i| t_end * (i as f64 / n)).collect();
+        check_times(&uniform)?;
+        let dec = Decomposition::new(self, input, &[])?;
+        let t = match dec.closed_form() {
+            Ok(parts) => lock_to_oscillation(&uniform, &parts.closed_form),
+            Err(_) => uniform,
+        };
+        let y = simulate(&dec, &t)?;
+        Ok(TimeResponse {
+            t,
+            y,
+            final_value: dec.final_value(),
+        })
+    }
+}
+
+/// Samples per period below which an oscillation is locked onto (fewer than 3 cannot show
+/// it; at 2 or fewer a uniform sampling aliases it into a false slow wave).
+const LOCK_SAMPLES_PER_PERIOD: f64 = 3.0;
+
+/// Equally spaced increasing times `t` moved onto the alternate crests and troughs of the
+/// fastest-dominant oscillation of `y` wherever the spacing h is more than a third of its
+/// period: at each time, among the oscillatory terms A e^(σt)·cos(ωt + φ) + … with
+/// 2π/ω < 3h, the one with the largest envelope there sets the extremes (ωt + φ = mπ); the
+/// time moves to the nearest such instant of the parity opposite to the previous locked one,
+/// by at most one period, and only if the order of the times is kept. Other times (and the
+/// first and last) are left as they are.
+pub fn lock_to_oscillation(t: &[f64], y: &crate::analysis::ClosedForm) -> Vec<f64> {
+    use crate::analysis::ClosedFormTerm;
+    use std::f64::consts::PI;
+    let mut out = t.to_vec();
+    if t.len() < 3 {
+        return out;
+    }
+    let h = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    // the oscillatory terms too fast for the spacing, and their (σ, ω, φ of the leading power)
+    let terms: Vec<&ClosedFormTerm> = y
+        .terms()
+        .iter()
+        .filter(|term| match term {
+            ClosedFormTerm::Oscillatory {
+                omega, amplitudes, ..
+            } => 2.0 * PI / omega < LOCK_SAMPLES_PER_PERIOD * h && !amplitudes.is_empty(),
+            _ => false,
+        })
+        .collect();
+    let fast: Vec<(f64, f64, f64)> = terms
+        .iter()
+        .filter_map(|term| match term {
+            ClosedFormTerm::Oscillatory {
+                sigma,
+                omega,
+                phases,
+                ..
+            } => Some((*sigma, *omega, phases.first().copied().unwrap_or(0.0))),
+            _ => None,
+        })
+        .collect();
+    if fast.is_empty() {
+        return out;
+    }
+    let envelope = |k: usize, at: f64| terms.get(k).map_or(0.0, |term| term.envelope(at));
+    let mut parity: Option<i64> = None;
+    for i in 1..t.len() - 1 {
+        let ti = t[i];
+        let Some(k) = (0..fast.len()).max_by(|&a, &b| envelope(a, ti).total_cmp(&envelope(b, ti)))
+        else {
+            continue;
+        };
+        let (_, w, phi) = fast[k];
+        let x = (w * ti + phi) / PI;
+        if !x.is_finite() || x.abs() > 2f64.powi(52) {
+            continue; // the phase is beyond the resolution of a double
+        }
+        let mut m = x.round() as i64;
+        if let Some(p) = parity {
+            if m.rem_euclid(2) == p {
+                m += if x > m as f64 { 1 } else { -1 };
+            }
+        }
+        let u = (m as f64 * PI - phi) / w;
+        if u > out[i - 1] && u < t[i + 1] && (u - ti).abs() <= 2.0 * PI / w {
+            out[i] = u;
+            parity = Some(m.rem_euclid(2));
+        }
+    }
+    out
+}
+
 impl TransferFunction {
     /// The exact response at the times `t` ([`Factored::time_response`] of the factored G).
     pub fn time_response(&self, input: &Input, ics: &[f64], t: &[f64]) -> Result<TimeResponse> {
