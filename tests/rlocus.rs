@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{poly, rel};
+use common::{ltikit, poly, rel};
 use ltikit::Poly;
 use ltikit::analysis::rlocus::{BreakKind, RootLocusOptions, root_locus, trace_at_gains};
 use ltikit::analysis::{axis_crossings, stable_gains};
@@ -253,13 +253,6 @@ fn bad_loops_are_refused() {
     assert!(root_locus(&Poly::zero(), &poly(&[1.0, 1.0]), &opts).is_err());
     assert!(root_locus(&poly(&[1.0, 0.0, 0.0]), &poly(&[1.0, 1.0]), &opts).is_err());
     assert!(root_locus(&poly(&[2.0]), &poly(&[3.0]), &opts).is_err());
-}
-
-fn ltikit(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(args)
-        .output()
-        .expect("the ltikit binary runs")
 }
 
 #[test]
