@@ -497,7 +497,7 @@ fn simulation_limits_are_clean_errors() {
 #[test]
 fn batch_keeps_order_and_reports_bad_lines() {
     let out = ltikit_with_stdin(
-        ["analyze", "--batch", "-"],
+        &["analyze", "--batch", "-"],
         b"{\"name\":\"a\",\"num\":[1],\"den\":[1,2,1]}\n{\"den\":[0]}\nnot json\n{\"name\":\"d\",\"den\":\"1 0.8 4\"}\n",
     );
     assert!(out.status.success());

@@ -87,11 +87,7 @@ pub fn interleaved(ss: &ltikit::StateSpace) -> ltikit::StateSpace {
 /// stdout and stderr (nothing on stdin). The integration tests' one way to run the binary;
 /// `tests/fuzz_cli.rs` keeps its own runner, which adds a time budget.
 #[cfg(feature = "cli")]
-pub fn ltikit<I, S>(args: I) -> std::process::Output
-where
-    I: IntoIterator<Item = S>,
-    S: AsRef<std::ffi::OsStr>,
-{
+pub fn ltikit(args: &[&str]) -> std::process::Output {
     std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
         .args(args)
         .stdin(std::process::Stdio::null())
@@ -101,11 +97,7 @@ where
 
 /// [`ltikit`] with `stdin` written to the binary's standard input, which is then closed.
 #[cfg(feature = "cli")]
-pub fn ltikit_with_stdin<I, S>(args: I, stdin: &[u8]) -> std::process::Output
-where
-    I: IntoIterator<Item = S>,
-    S: AsRef<std::ffi::OsStr>,
-{
+pub fn ltikit_with_stdin(args: &[&str], stdin: &[u8]) -> std::process::Output {
     use std::io::Write;
     use std::process::Stdio;
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
