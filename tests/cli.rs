@@ -1,15 +1,10 @@
 //! The command line: JSON contracts (DESIGN §1.2), exit codes, error messages. Runs the real
 //! binary.
 
-use serde_json::Value;
-use std::process::{Command, Output};
+mod common;
 
-fn ltikit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(args)
-        .output()
-        .expect("the ltikit binary runs")
-}
+use common::{ltikit, ltikit_with_stdin};
+use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
     let out = ltikit(args);
@@ -502,20 +497,10 @@ fn simulation_limits_are_clean_errors() {
 
 #[test]
 fn batch_keeps_order_and_reports_bad_lines() {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(["analyze", "--batch", "-"])
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"{\"name\":\"a\",\"num\":[1],\"den\":[1,2,1]}\n{\"den\":[0]}\nnot json\n{\"name\":\"d\",\"den\":\"1 0.8 4\"}\n")
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
+    let out = ltikit_with_stdin(
+        &["analyze", "--batch", "-"],
+        b"{\"name\":\"a\",\"num\":[1],\"den\":[1,2,1]}\n{\"den\":[0]}\nnot json\n{\"name\":\"d\",\"den\":\"1 0.8 4\"}\n",
+    );
     assert!(out.status.success());
     let lines: Vec<Value> = String::from_utf8(out.stdout)
         .unwrap()

@@ -8,16 +8,11 @@
 //! form, G11 = G12 = 1/(s + 1) and G21 = 1/(s + 2), G22 = −1/(s + 2) (Gij: input i → output
 //! j); the mode s = −2 is uncontrollable from input 1, s = −1 from input 2.
 
+mod common;
+
+use common::ltikit;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn ltikit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(args)
-        .output()
-        .expect("the ltikit binary runs")
-}
 
 fn stdout(args: &[&str]) -> String {
     let out = ltikit(args);

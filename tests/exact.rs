@@ -5,6 +5,8 @@
 //! decimal text a user would type; the expected roots, multiplicities, cancellations and
 //! half-plane counts are read off the factor list.
 
+mod common;
+
 use dashu_int::IBig;
 use ltikit::LtiError;
 use ltikit::poly::Root;
@@ -513,6 +515,7 @@ proptest! {
 // `Factored::from_exact` and the command line.
 
 mod through_the_plant {
+    use super::common::{ltikit, ltikit_with_stdin};
     use super::{c, expand, text};
     use dashu_int::IBig;
     use ltikit::analysis::{Factored, StabilityClass, StructurePath};
@@ -521,7 +524,6 @@ mod through_the_plant {
     use ltikit::poly::exact::ExactPoly;
     use num_complex::Complex64;
     use proptest::prelude::*;
-    use std::process::Command;
 
     fn plant(num: &str, den: &str) -> Factored {
         let f = Plant::from_text(Some(num), den)
@@ -703,18 +705,10 @@ mod through_the_plant {
     }
 
     fn cli(args: &[&str], stdin: Option<&str>) -> (i32, String, String) {
-        use std::io::Write;
-        let mut cmd = Command::new(env!("CARGO_BIN_EXE_ltikit"));
-        cmd.args(args)
-            .stdin(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped());
-        let mut child = cmd.spawn().unwrap();
-        if let Some(s) = stdin {
-            child.stdin.take().unwrap().write_all(s.as_bytes()).unwrap();
-        }
-        drop(child.stdin.take());
-        let out = child.wait_with_output().unwrap();
+        let out = match stdin {
+            Some(s) => ltikit_with_stdin(args, s.as_bytes()),
+            None => ltikit(args),
+        };
         (
             out.status.code().unwrap_or(-1),
             String::from_utf8_lossy(&out.stdout).into_owned(),

@@ -102,7 +102,7 @@ fn phase_portrait_of_a_damped_pendulum() {
 // Bode: responses built from closed forms.
 
 use ltikit::TransferFunction;
-use ltikit::analysis::{FrequencyResponse, GainCrossing, Margins, PhaseCrossing};
+use ltikit::analysis::{ContourPart, FrequencyResponse, GainCrossing, Margins, PhaseCrossing};
 
 /// Log-spaced grid of n points over [a, b].
 fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
@@ -183,7 +183,16 @@ fn bode_first_order_lag() {
 fn bode_with_margins_and_asymptotes() {
     let (fr, m) = type1_third_order();
     let g = TransferFunction::from_descending(&[2.0], &[1.0, 3.0, 2.0, 0.0]).unwrap();
+    // The margins marked are the plant's: the library's agree with the closed forms above.
+    let computed = g.margins().unwrap();
+    assert!((computed.gain_margin.unwrap() - 3.0).abs() < 1e-12);
+    assert!((computed.phase_crossover.unwrap() - 2f64.sqrt()).abs() < 1e-12);
+    assert!((computed.phase_margin_deg.unwrap() - 32.6131).abs() < 1e-4);
+    assert!((computed.gain_crossover.unwrap() - 0.749368).abs() < 1e-6);
     let a = g.bode_asymptotes(0.01, 100.0).unwrap();
+    // Asymptotes: −20 dB/decade from the integrator, corners at ω = 1 and 2 (one pole each).
+    let corners: Vec<(f64, i32)> = a.corners.iter().map(|c| (c.w, c.slope_change)).collect();
+    assert_eq!(corners, [(1.0, -1), (2.0, -1)]);
     let path = out("bode_margins.png");
     let s = BodeSeries::new(&fr)
         .label("2 / (s^3 + 3 s^2 + 2 s)")
@@ -195,7 +204,18 @@ fn bode_with_margins_and_asymptotes() {
 
 #[test]
 fn bode_triple_integrator_sits_at_minus_270() {
-    let fr = response(logspace(0.1, 10.0, 100), |w| 1.0 / (w * w * w), |_| -270.0);
+    // The drawn data is the library's: 1/(jω)³ = j/ω³, |G| = ω⁻³ and the phase on the
+    // continuous branch of the low-frequency asymptote, −270° (python-control gives +90°).
+    let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.0, 0.0, 0.0]).unwrap();
+    let fr = g.freq_response(&logspace(0.1, 10.0, 100)).unwrap();
+    for (k, w) in fr.w.iter().enumerate() {
+        assert!(
+            (fr.phase_deg[k] + 270.0).abs() < 1e-12,
+            "{}",
+            fr.phase_deg[k]
+        );
+        assert!((fr.magnitude[k] * w.powi(3) - 1.0).abs() < 1e-12);
+    }
     let path = out("bode_triple_integrator.png");
     bode_png(
         &path,
@@ -404,6 +424,10 @@ fn pzmap_with_multiplicity_cancellation_and_guides() {
     let g = TransferFunction::new(num, den).unwrap();
     let pz = g.pole_zero().unwrap();
     assert_eq!(pz.cancelled.len(), 1);
+    // the double pole is one marker with its multiplicity
+    let double: Vec<_> = pz.poles.iter().filter(|p| p.multiplicity == 2).collect();
+    assert_eq!(double.len(), 1);
+    assert!((double[0].value - num_complex::Complex64::new(-2.0, 0.0)).norm() < 1e-12);
     let label = g.to_string();
     let path = out("pzmap.png");
     pzmap_png(
@@ -503,7 +527,13 @@ fn nyquist_stable_and_unstable_loops() {
 fn nyquist_with_integrator_is_indented_and_bounded() {
     let g = TransferFunction::from_descending(&[2.0], &[1.0, 3.0, 2.0, 0.0]).unwrap();
     let n = g.nyquist().unwrap();
-    assert!(n.display_radius.is_some());
+    // indented: one small semicircle round the pole at the origin, sampled
+    assert_eq!(n.axis_poles, [0.0]);
+    assert!(n.indent_radius[0] > 0.0 && n.indent_radius[0] < 1e-2);
+    assert!(n.points.iter().any(|p| p.part == ContourPart::Indentation));
+    // bounded: a finite drawing radius holds the finite part of the curve
+    let r = n.display_radius.unwrap();
+    assert!(r.is_finite() && r >= 1.0);
     let path = out("nyquist_type1.png");
     let label = g.to_string();
     nyquist_png(
@@ -521,6 +551,9 @@ fn nyquist_with_imaginary_axis_poles() {
     // (s + 0.5)/(s(s² + 4)): poles at 0 and ±2j, both indented.
     let g = TransferFunction::from_descending(&[1.0, 0.5], &[1.0, 0.0, 4.0, 0.0]).unwrap();
     let n = g.nyquist().unwrap();
+    assert_eq!(n.axis_poles.len(), 2);
+    assert!(n.axis_poles[0].abs() < 1e-12 && (n.axis_poles[1] - 2.0).abs() < 1e-12);
+    assert!(n.indent_radius.iter().all(|r| *r > 0.0));
     let path = out("nyquist_axis_poles.png");
     let label = g.to_string();
     nyquist_png(
@@ -1024,6 +1057,15 @@ fn bode_notch_wide_range_and_undamped_asymptote() {
     assert!(fr.magnitude_db.iter().any(|m| m.is_infinite()));
     let g = TransferFunction::from_descending(&[1.0, 0.0, 1.0], &[1.0, 2.0, 1.0]).unwrap();
     let a = g.bode_asymptotes(1e-5, 1e5).unwrap();
+    // The undamped zero pair is a corner at ω = 1 with ζ = 0 (once per root, +20 dB/decade
+    // each), the double pole one with −40 dB/decade: the magnitude asymptote is 0 dB flat.
+    let corners: Vec<(f64, i32, f64)> = a
+        .corners
+        .iter()
+        .map(|c| (c.w, c.slope_change, c.zeta))
+        .collect();
+    assert_eq!(corners, [(1.0, 1, 0.0), (1.0, 1, 0.0), (1.0, -2, 1.0)]);
+    assert!(a.magnitude_db.iter().all(|&(_, db)| db == 0.0), "{a:?}");
     let path = out("bode_notch_wide.png");
     let label = g.to_string();
     bode_png(

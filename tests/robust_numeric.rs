@@ -8,7 +8,7 @@
 //! `LTIKIT_FUZZ_CASES=20000 LTIKIT_FUZZ_SEED=7 cargo test --release --test robust_numeric`.
 
 use ltikit::numeric::{eigenvalues, expm};
-use ltikit::{MAX_ORDER, Poly, StateSpace};
+use ltikit::{LtiError, MAX_ORDER, Poly, StateSpace};
 use nalgebra::DMatrix;
 
 /// xorshift64*: small, deterministic, good enough to spread cases.
@@ -142,17 +142,29 @@ fn random_matrix(r: &mut Rng, n: usize) -> DMatrix<f64> {
 #[test]
 fn eigenvalues_of_extreme_matrices_are_finite_or_an_error() {
     let mut r = rng();
-    for case in 0..cases(60) {
+    let total = cases(60);
+    let (mut ok, mut beyond) = (0, 0);
+    for case in 0..total {
         let n = if r.below(8) == 0 { 40 } else { 1 + r.below(8) };
         let m = random_matrix(&mut r, n);
-        if let Ok(ev) = eigenvalues(&m) {
-            assert_eq!(ev.len(), n, "case {case}");
-            assert!(
-                ev.iter().all(|z| z.re.is_finite() && z.im.is_finite()),
-                "case {case}: {ev:?}"
-            );
+        match eigenvalues(&m) {
+            Ok(ev) => {
+                ok += 1;
+                assert_eq!(ev.len(), n, "case {case}");
+                assert!(
+                    ev.iter().all(|z| z.re.is_finite() && z.im.is_finite()),
+                    "case {case}: {ev:?}"
+                );
+            }
+            // the one refusal allowed: an eigenvalue whose magnitude f64 cannot hold
+            Err(LtiError::NonFinite { .. }) => beyond += 1,
+            Err(e) => panic!("case {case}: {e}"),
         }
     }
+    eprintln!("eigenvalues: {ok} finite, {beyond} beyond f64");
+    // The default seed gives 57 of 60: most extreme matrices have representable eigenvalues,
+    // so an eigenvalue routine that refused everything fails here.
+    assert!(2 * ok >= total, "only {ok} of {total} answered");
 }
 
 #[test]
@@ -268,9 +280,10 @@ fn nyquist_with_a_subnormal_pole_is_bounded() {
         &[3.006310, 1.18e-321],
     )
     .unwrap();
-    if let Ok(n) = g.nyquist() {
-        assert!(n.points.len() <= 200_000, "{}", n.points.len());
-    }
+    let n = g
+        .nyquist()
+        .unwrap_or_else(|e| panic!("a subnormal pole is still a pole: {e}"));
+    assert!(n.points.len() <= 200_000, "{}", n.points.len());
 }
 
 #[test]

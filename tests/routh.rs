@@ -1,6 +1,9 @@
 //! Routh–Hurwitz tables against textbook cases (root counts by numpy.roots, quoted) and
 //! against the root finder on random polynomials.
 
+mod common;
+
+use common::ltikit;
 use ltikit::Poly;
 use ltikit::analysis::{RouthEvent, routh};
 
@@ -207,20 +210,14 @@ fn the_float_table_agrees_with_exact_counts() {
 
 #[test]
 fn the_command_line_confirms_in_exact_arithmetic() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(["routh", "--den", "1 0 2.00000002 0 1.00000002", "--json"])
-        .output()
-        .unwrap();
+    let out = ltikit(&["routh", "--den", "1 0 2.00000002 0 1.00000002", "--json"]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     // s⁴ + 2.00000002 s² + 1.00000002 = (s² + 1)(s² + 1.00000002): four distinct roots on the
     // axis, decided on the typed decimals
     assert_eq!(v["exact"]["axis"], 4);
     assert_eq!(v["exact"]["rhp"], 0);
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(["routh", "--den", "1 1 2 8"])
-        .output()
-        .unwrap();
+    let out = ltikit(&["routh", "--den", "1 1 2 8"]);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(
         text.contains("Confirmed in exact rational arithmetic"),

@@ -81,8 +81,8 @@ enum Command {
     Pzmap(plots::PzmapArgs),
     /// Nyquist diagram PNG (−∞ < ω < ∞, indentations around imaginary-axis poles).
     Nyquist(plots::NyquistArgs),
-    /// The main job: the textbook tour — analyses every textbook plant and the seed's
-    /// nonlinear models, checks the results, writes out/report.md with its PNGs.
+    /// The main job: the textbook tour — analyses every plant and nonlinear model of the
+    /// lecture notes, checks the results, writes out/report.md with its PNGs.
     Demo(demo::DemoArgs),
     /// Equilibria of a nonlinear model, A, B, C, D at each (exact Jacobians), eigenvalues,
     /// local stability and the linearised input→output transfer function.

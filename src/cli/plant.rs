@@ -25,8 +25,9 @@ pub struct PlantArgs {
     /// A plant file (TOML with num/den or model/params; see data/plants/). Repeatable.
     #[arg(long, value_name = "FILE.toml")]
     pub plant: Vec<PathBuf>,
-    /// A textbook model: spring-mass-damper, second-order, tank, rc, rlc, two-dof, or the
-    /// seed's linear lattice (state space; --param N=16 --param output=5 …).
+    /// A textbook model of the lecture notes: spring-mass-damper, second-order, tank, rc, rlc,
+    /// two-dof, or lattice, the linear particle lattice (state space; --param N=16 --param
+    /// output=5 …).
     #[arg(long, value_name = "NAME")]
     pub model: Option<String>,
     /// A model parameter, NAME=VALUE (repeatable), e.g. --param M=1 --param C=0.4.

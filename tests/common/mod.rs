@@ -1,5 +1,6 @@
 //! Helpers shared by the integration tests: plants from coefficients, grids, reference
-//! arithmetic that does not use the library (bisection), and error measures.
+//! arithmetic that does not use the library (bisection), error measures, and the runner of
+//! the `ltikit` binary ([`ltikit`], [`ltikit_with_stdin`]).
 #![allow(dead_code)] // each test file uses its own subset
 
 use ltikit::{Poly, Root, TransferFunction};
@@ -80,4 +81,39 @@ pub fn interleaved(ss: &ltikit::StateSpace) -> ltikit::StateSpace {
         ss.d.clone(),
     )
     .unwrap()
+}
+
+/// Runs the `ltikit` binary built for these tests with `args` and returns its exit status,
+/// stdout and stderr (nothing on stdin). The integration tests' one way to run the binary;
+/// `tests/fuzz_cli.rs` keeps its own runner, which adds a time budget.
+#[cfg(feature = "cli")]
+pub fn ltikit(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("the ltikit binary runs")
+}
+
+/// [`ltikit`] with `stdin` written to the binary's standard input, which is then closed.
+#[cfg(feature = "cli")]
+pub fn ltikit_with_stdin(args: &[&str], stdin: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ltikit"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the ltikit binary starts");
+    let mut pipe = child.stdin.take().expect("stdin is piped");
+    // written from a thread: a large input must not block on a child that is busy filling
+    // its stdout pipe
+    let data = stdin.to_vec();
+    let writer = std::thread::spawn(move || pipe.write_all(&data));
+    let out = child.wait_with_output().expect("the ltikit binary runs");
+    // the child may exit before reading everything (a usage error): a broken pipe is fine
+    let _ = writer.join().expect("the stdin writer does not panic");
+    out
 }
