@@ -4,14 +4,9 @@
 //! Runs the real binary.
 
 use serde_json::Value;
-use std::process::{Command, Output};
 
-fn ltikit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(args)
-        .output()
-        .expect("the ltikit binary runs")
-}
+mod common;
+use common::ltikit;
 
 fn stdout(args: &[&str]) -> String {
     let out = ltikit(args);
