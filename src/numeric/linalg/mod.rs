@@ -10,8 +10,10 @@
 //! | [`schur`] | A = D·Q·T·Qᵀ·D⁻¹ with eigenvalues | balancing + power-of-two scaling + the two above, capped, one retry after a Householder similarity |
 //! | [`complex_schur`] | complex triangular Schur form | one unitary rotation per 2×2 block |
 //! | [`structure`] | multiplicities of eigenvalues | size-dependent clustering, dim null(A − λI) from a reduced m×m problem |
-//! | [`second_order`] | mechanical structure [[0, I], [−G, −E]] | symmetric eigenproblem of half the order (diagonal symmetrisation, classical damping) |
 //! | [`eigvec`] | eigenvectors (mode shapes) with residuals | back-substitution on the Schur form |
+//! | [`modal`] | block-diagonal (modal) form | clusters, reordering and Sylvester solves on the complex Schur form |
+//! | [`second_order`] | mechanical structure [[0, I], [−G, −E]], and the eigenvalues, eigenvectors and modal form of its modes | symmetric eigenproblem of half the order (diagonal symmetrisation, classical damping) |
+//! | [`state_matrix`] | a model's A with its recognised structure: the one place the recognition runs | the modes' kernels for a second-order A, the general ones otherwise |
 //! | [`freqresp`] | C(sI − A)⁻¹B + D at many s | one Hessenberg reduction, then an O(n²) elimination per s |
 //! | [`rrqr`] | numerical rank | Householder QR with column pivoting |
 //! | [`staircase`] | controllability / observability | orthogonal staircase (Van Dooren 1981, Varga) |
@@ -36,17 +38,19 @@ pub mod rrqr;
 pub mod schur;
 pub mod second_order;
 pub mod staircase;
+pub mod state_matrix;
 pub mod structure;
 pub mod zeros;
 
-pub use eigvec::{EigenvectorSet, eigenvectors};
+pub use eigvec::EigenvectorSet;
 pub use freqresp::HessenbergResponse;
 pub use hessenberg::{Hessenberg, hessenberg};
 pub use markov::{RelativeDegree, markov_parameter, relative_degree};
 pub use minreal::{MinimalRealization, minimal_realization};
 pub use schur::{RealSchur, SchurOptions, real_schur, schur_eigenvalues};
 pub use staircase::{Staircase, controllability_staircase, observability_staircase};
-pub use structure::{EigenCluster, EigenStructure, eigen_structure};
+pub use state_matrix::{StateMatrix, eigen_structure, eigenvectors};
+pub use structure::{EigenCluster, EigenStructure};
 pub use zeros::{InvariantZeros, invariant_zeros, transmission_zeros};
 
 use nalgebra::DMatrix;

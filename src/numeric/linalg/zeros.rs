@@ -35,7 +35,7 @@ use num_complex::Complex64;
 
 use super::minreal::minimal_realization;
 use super::rrqr::rank_revealing_qr;
-use super::structure::eigen_structure;
+use super::state_matrix::StateMatrix;
 use crate::error::{LtiError, Result};
 use crate::numeric::balance::{exponent, ldexp};
 
@@ -243,7 +243,8 @@ pub fn invariant_zeros(
         let x = ldf.solve(&f.c).ok_or_else(not_regular)?;
         &f.a - &f.b * x
     };
-    let st = eigen_structure(&m_f)?;
+    // the zero dynamics is a matrix of its own: its structure is recognised like a model's
+    let st = StateMatrix::recognise(&m_f).eigen_structure()?;
     let back = |z: Complex64| Complex64::new(ldexp(z.re, ea), ldexp(z.im, ea));
     let mut zeros = Vec::with_capacity(nf);
     let mut distinct = Vec::new();

@@ -13,23 +13,22 @@
 //! 3. The off-diagonal blocks are removed by a unit upper-triangular Y from the Sylvester
 //!    equations Sᵢᵢ·Z − Z·Sⱼⱼ = −Sᵢⱼ (triangular, solved by substitution).
 //!
-//! A model with the mechanical structure of [`super::second_order`] gets its modal form from
-//! its modes instead ([`ModalForm::from_second_order`]: no Schur form, 1×1 blocks except for
-//! critical modes).
+//! This is the general path ([`ModalForm::from_schur`]), whatever the structure of A. A model
+//! with the mechanical structure of [`super::second_order`] gets its modal form from its modes
+//! instead ([`SecondOrder::modal_form`](super::second_order::SecondOrder::modal_form): no Schur
+//! form, 1×1 blocks except for critical modes); [`ModalForm::new`] (with the model's
+//! [`StateMatrix`](super::StateMatrix)) chooses.
 //!
 //! The form is **used only when it is safe**: blocks of at most [`MAX_BLOCK`], a transformation
 //! whose condition estimate ‖Y‖_F·‖Y⁻¹‖_F is at most [`MAX_COND`], and agreement with the
-//! Hessenberg evaluation to [`CHECK_REL`] at probe points; otherwise [`ModalForm::new`] returns
-//! `None` and the caller keeps the Hessenberg path.
+//! Hessenberg evaluation to [`CHECK_REL`] at probe points; otherwise [`ModalForm::from_schur`]
+//! returns `None` and the caller keeps the Hessenberg path.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use super::freqresp::HessenbergResponse;
 use super::schur::{SchurOptions, real_schur};
-use super::second_order::SecondOrder;
-
-mod from_modes;
 use crate::error::Result;
 
 /// Eigenvalues closer than this times ‖A‖_F share a block (a 2×2 Jordan block of A computed
@@ -216,7 +215,9 @@ fn fro(m: &DMatrix<C>) -> f64 {
 }
 
 impl ModalForm {
-    /// The modal form of (A, B, C, D), or `None` when it is not safe (see the module docs).
+    /// The modal form of (A, B, C, D) by the general (Schur) path whatever the structure of A,
+    /// or `None` when it is not safe (see the module docs). [`ModalForm::new`] takes a
+    /// second-order model's modes instead when A has that structure.
     ///
     /// Errors: the Schur step's.
     ///
@@ -228,7 +229,7 @@ impl ModalForm {
     /// let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
     /// let b = DMatrix::from_row_slice(3, 1, &[0.0, 1.0, 1.0]);
     /// let c = DMatrix::from_row_slice(1, 3, &[1.0, 0.0, 1.0]);
-    /// let m = ModalForm::new(&a, &b, &c, &DMatrix::zeros(1, 1)).unwrap().unwrap();
+    /// let m = ModalForm::from_schur(&a, &b, &c, &DMatrix::zeros(1, 1)).unwrap().unwrap();
     /// let mut sizes: Vec<usize> = m.blocks.iter().map(|k| k.lambda.nrows()).collect();
     /// sizes.sort();
     /// assert_eq!(sizes, vec![1, 2]);
@@ -237,7 +238,7 @@ impl ModalForm {
     /// let g = m.eval(s)[(0, 0)];
     /// assert!((g - (1.0 / (s * s) + 1.0 / (s + 1.0))).norm() < 1e-14);
     /// ```
-    pub fn new(
+    pub fn from_schur(
         a: &DMatrix<f64>,
         b: &DMatrix<f64>,
         c: &DMatrix<f64>,
@@ -246,11 +247,6 @@ impl ModalForm {
         let n = a.nrows();
         if n == 0 {
             return Ok(None);
-        }
-        if a.iter().all(|x| x.is_finite())
-            && let Some(so) = SecondOrder::detect(a)
-        {
-            return Ok(Self::from_second_order(&so, b, c, d));
         }
         let real = real_schur(a, SchurOptions::default())?;
         let Some(q) = &real.q else {
@@ -380,6 +376,32 @@ impl ModalForm {
             return Ok(None);
         }
         Ok(Some(form))
+    }
+
+    /// A modal form in the coordinates of a second-order model's modes (built by
+    /// [`SecondOrder::modal_form`](super::second_order::SecondOrder::modal_form)): X⁻¹ maps a
+    /// state (q, q̇) to (X_q⁻¹·q, X_q⁻¹·q̇) and then, per mode k, by the 2×2 map `maps[k]` onto
+    /// the modal coordinates 2k, 2k + 1.
+    pub(crate) fn in_mode_coordinates(
+        blocks: Vec<ModalBlock>,
+        b: DMatrix<C>,
+        c: DMatrix<C>,
+        d: DMatrix<f64>,
+        cond: f64,
+        shapes_inv: DMatrix<f64>,
+        maps: Vec<[[C; 2]; 2]>,
+    ) -> ModalForm {
+        ModalForm {
+            blocks,
+            b,
+            c,
+            inverse: Inverse::SecondOrder {
+                shapes_inv,
+                modes: maps,
+            },
+            d,
+            cond,
+        }
     }
 
     /// Modal coordinates z = X⁻¹·x of a state x.
