@@ -6,7 +6,7 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use super::ss_source::merge;
+use super::pole_zero::merge;
 use crate::lti::StateSpace;
 use crate::numeric::linalg::second_order::{self, SecondOrder};
 use crate::numeric::linalg::structure::{radius, snap};

@@ -26,8 +26,8 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use super::pole_zero::{PoleZero, count};
-use super::source::LowFrequency;
+use super::low_frequency::LowFrequency;
+use super::pole_zero::{MAX_FACTORED_ORDER, PoleZero, count, merge};
 use super::ss_modal;
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
@@ -93,10 +93,10 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         )));
     }
     let n = ss.a.nrows();
-    if n > super::MAX_FACTORED_ORDER {
+    if n > MAX_FACTORED_ORDER {
         return Err(LtiError::OrderTooHigh {
             order: n,
-            max: super::MAX_FACTORED_ORDER,
+            max: MAX_FACTORED_ORDER,
         });
     }
     // the one recognition of this model's A: every kernel below takes the structure from here
@@ -310,18 +310,6 @@ fn roots_of_matrix(a: &DMatrix<f64>) -> Result<Vec<Root>> {
 /// Equal values merged (exact equality), with multiplicities.
 fn group(values: &[Complex64]) -> Vec<(Complex64, usize)> {
     merge(&values.iter().map(|&v| (v, 1)).collect::<Vec<_>>())
-}
-
-/// Equal values merged, multiplicities added.
-pub(super) fn merge(values: &[(Complex64, usize)]) -> Vec<(Complex64, usize)> {
-    let mut out: Vec<(Complex64, usize)> = Vec::new();
-    for &(v, m) in values {
-        match out.iter_mut().find(|(w, _)| *w == v) {
-            Some((_, k)) => *k += m,
-            None => out.push((v, m)),
-        }
-    }
-    out
 }
 
 /// Roots closed under conjugation: real values and upper ones are kept, each upper one with

@@ -4,8 +4,8 @@
 
 use std::f64::consts::{FRAC_PI_2, LN_2, PI};
 
-use crate::analysis::stability::{HalfPlane, half_plane};
 use crate::poly::Root;
+use crate::poly::{HalfPlane, half_plane};
 
 /// A real quadratic factor (1 − aω²) + jbω of a conjugate pair p, p̄ (p = σ + jβ):
 /// a = 1/|p|², b = −2σ/|p|²; `r` = |p| and `sn` = σ/r for the overflow-free path.
