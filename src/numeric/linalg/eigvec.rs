@@ -60,7 +60,7 @@ pub struct EigenvectorSet {
 /// }
 /// ```
 pub fn general_eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStructure)> {
-    let n = super::check_square(a, "the matrix")?;
+    let n = super::checks::check_square(a, "the matrix")?;
     let real = real_schur(a, SchurOptions::default())?;
     let cs = complex_schur(&real);
     let (structure, bases) = structure_of(&real, &cs, true);
@@ -84,7 +84,7 @@ pub fn general_eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, Ei
     let k = cols.len();
     let vr = q * DMatrix::from_column_slice(n, k, &y_re);
     let vi = q * DMatrix::from_column_slice(n, k, &y_im);
-    let norm_a = super::norm_1_inf(a);
+    let norm_a = super::norms::norm_1_inf(a);
     let mut sets: Vec<Option<EigenvectorSet>> = vec![None; structure.clusters.len()];
     for (ci, cluster) in structure.clusters.iter().enumerate() {
         let idx: Vec<usize> = (0..k).filter(|&c| cols[c].0 == ci).collect();

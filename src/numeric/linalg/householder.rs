@@ -37,7 +37,7 @@ pub fn make_reflector(x: &mut [f64]) -> (f64, f64) {
     let Some((&alpha, tail)) = x.split_first() else {
         return (0.0, 0.0);
     };
-    let tail_norm = super::frobenius(tail.iter());
+    let tail_norm = super::norms::frobenius(tail.iter());
     if tail_norm == 0.0 {
         x[0] = 1.0;
         return (alpha, 0.0);

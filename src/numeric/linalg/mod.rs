@@ -42,6 +42,9 @@ pub mod state_matrix;
 pub mod structure;
 pub mod zeros;
 
+pub(crate) mod checks;
+pub(crate) mod norms;
+
 pub use eigvec::EigenvectorSet;
 pub use freqresp::HessenbergResponse;
 pub use hessenberg::{Hessenberg, hessenberg};
@@ -52,91 +55,3 @@ pub use staircase::{Staircase, controllability_staircase, observability_staircas
 pub use state_matrix::{StateMatrix, eigen_structure, eigenvectors};
 pub use structure::{EigenCluster, EigenStructure};
 pub use zeros::{InvariantZeros, invariant_zeros, transmission_zeros};
-
-use nalgebra::DMatrix;
-
-use crate::error::{LtiError, Result};
-
-/// Errors unless `a` is square with finite entries; returns its order.
-pub(crate) fn check_square(a: &DMatrix<f64>, what: &str) -> Result<usize> {
-    if !a.is_square() {
-        return Err(LtiError::invalid(format!(
-            "{what} must be square, got {}×{}",
-            a.nrows(),
-            a.ncols()
-        )));
-    }
-    check_finite(a, what)?;
-    Ok(a.nrows())
-}
-
-/// Errors at the first NaN or infinite entry (named by its row and column).
-pub(crate) fn check_finite(a: &DMatrix<f64>, what: &str) -> Result<()> {
-    for j in 0..a.ncols() {
-        for i in 0..a.nrows() {
-            let x = a[(i, j)];
-            if !x.is_finite() {
-                return Err(LtiError::NonFinite {
-                    what: format!("entry ({}, {}) of {what}", i + 1, j + 1),
-                    value: x,
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Errors unless (A, B, C, D) have consistent dimensions (n×n, n×m, p×n, p×m) and finite
-/// entries; returns (n, m, p).
-pub(crate) fn check_system(
-    a: &DMatrix<f64>,
-    b: &DMatrix<f64>,
-    c: &DMatrix<f64>,
-    d: &DMatrix<f64>,
-) -> Result<(usize, usize, usize)> {
-    let n = check_square(a, "A")?;
-    let (m, p) = (b.ncols(), c.nrows());
-    let bad = |what: &str, got: (usize, usize), want: (usize, usize)| {
-        LtiError::invalid(format!(
-            "{what} must be {}×{} to match A ({n}×{n}), B and C, got {}×{}",
-            want.0, want.1, got.0, got.1
-        ))
-    };
-    if b.nrows() != n {
-        return Err(bad("B", b.shape(), (n, m)));
-    }
-    if c.ncols() != n {
-        return Err(bad("C", c.shape(), (p, n)));
-    }
-    if d.shape() != (p, m) {
-        return Err(bad("D", d.shape(), (p, m)));
-    }
-    check_finite(b, "B")?;
-    check_finite(c, "C")?;
-    check_finite(d, "D")?;
-    Ok((n, m, p))
-}
-
-/// Frobenius norm without overflow or harmful underflow (scaled by the largest magnitude).
-pub(crate) fn frobenius<'a>(values: impl Iterator<Item = &'a f64> + Clone) -> f64 {
-    let big = values.clone().fold(0.0f64, |m, x| m.max(x.abs()));
-    if big == 0.0 || !big.is_finite() {
-        return big;
-    }
-    let s: f64 = values.map(|x| (x / big) * (x / big)).sum();
-    big * s.sqrt()
-}
-
-/// max(‖A‖₁, ‖A‖∞) — a cheap upper bound of the 2-norm within a factor √n, the scale in which
-/// eigenvalue tolerances are stated.
-pub(crate) fn norm_1_inf(a: &DMatrix<f64>) -> f64 {
-    let one = a
-        .column_iter()
-        .map(|c| c.iter().map(|x| x.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    let inf = a
-        .row_iter()
-        .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    one.max(inf)
-}

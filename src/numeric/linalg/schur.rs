@@ -83,7 +83,7 @@ pub struct RealSchur {
 /// for z in s.eigenvalues() { assert!((z.norm() - 1.0).abs() < 1e-14); }
 /// ```
 pub fn real_schur(a: &DMatrix<f64>, opts: SchurOptions) -> Result<RealSchur> {
-    let n = super::check_square(a, "the matrix")?;
+    let n = super::checks::check_square(a, "the matrix")?;
     let want_t = opts.want_t || opts.want_q;
     let mut m = a.clone();
     let d = if opts.balance && n >= 2 {
@@ -207,11 +207,11 @@ impl RealSchur {
                 r[(i, j)] = r[(i, j)] * self.d[i] / self.d[j] - a[(i, j)];
             }
         }
-        let na = super::frobenius(a.iter());
+        let na = super::norms::frobenius(a.iter());
         if na == 0.0 {
-            return super::frobenius(r.iter());
+            return super::norms::frobenius(r.iter());
         }
-        super::frobenius(r.iter()) / na
+        super::norms::frobenius(r.iter()) / na
     }
 }
 

@@ -16,7 +16,7 @@
 
 use nalgebra::DMatrix;
 
-use super::check_square;
+use super::checks::check_square;
 use super::eigvec::{EigenvectorSet, general_eigenvectors};
 use super::modal::ModalForm;
 use super::second_order::SecondOrder;

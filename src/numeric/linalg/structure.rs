@@ -108,7 +108,7 @@ pub(crate) fn structure_of(
     want_vectors: bool,
 ) -> (EigenStructure, Vec<Option<DMatrix<Complex64>>>) {
     let n = real.order();
-    let scale = super::norm_1_inf(&real.t);
+    let scale = super::norms::norm_1_inf(&real.t);
     let rank_tol = f64::EPSILON.sqrt() * scale;
     let ev: Vec<Complex64> = (0..n).map(|k| cs.s[(k, k)]).collect();
     let mut groups = link_clusters(&ev, scale);

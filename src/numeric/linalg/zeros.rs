@@ -86,7 +86,7 @@ pub(crate) struct ReduceLog {
 /// Power-of-two scaling of (A, B, C, D): returns the scaled system and (eα, eβ, eγ) with
 /// A/2^eα, B/2^eβ, C/2^eγ, D·2^(eα−eβ−eγ).
 pub(crate) fn scale_system(s: &Sys) -> (Sys, (i32, i32, i32)) {
-    let e = |m: &DMatrix<f64>| exponent(super::norm_1_inf(m)).unwrap_or(0);
+    let e = |m: &DMatrix<f64>| exponent(super::norms::norm_1_inf(m)).unwrap_or(0);
     let (ea, eb, ec) = (e(&s.a), e(&s.b), e(&s.c));
     let scaled = Sys {
         a: s.a.map(|x| ldexp(x, -ea)),
@@ -189,7 +189,7 @@ pub fn invariant_zeros(
     d: &DMatrix<f64>,
     tol: Option<f64>,
 ) -> Result<InvariantZeros> {
-    let (n, m, p) = super::check_system(a, b, c, d)?;
+    let (n, m, p) = super::checks::check_system(a, b, c, d)?;
     if m != p {
         return Err(LtiError::invalid(format!(
             "invariant zeros need a square system (as many inputs as outputs), got {p} outputs and {m} inputs"
@@ -202,7 +202,7 @@ pub fn invariant_zeros(
         d: d.clone(),
     };
     let (scaled, (ea, _, _)) = scale_system(&sys);
-    let norm = super::frobenius(
+    let norm = super::norms::frobenius(
         scaled
             .a
             .iter()

@@ -7,7 +7,7 @@ use num_complex::Complex64;
 use super::SecondOrder;
 use crate::numeric::linalg::eigvec::{EigenvectorSet, normalise_phase, orthonormal, residuals};
 use crate::numeric::linalg::modal::single_linkage;
-use crate::numeric::linalg::norm_1_inf;
+use crate::numeric::linalg::norms::norm_1_inf;
 use crate::numeric::linalg::structure::{EigenCluster, EigenStructure, radius};
 
 impl SecondOrder {
