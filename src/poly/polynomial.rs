@@ -1,22 +1,12 @@
-//! Real polynomials in s, with coefficients in **descending** powers at the interface.
-//!
-//! `Poly::from_descending(&[1.0, 3.0, 2.0])` is s² + 3s + 2 — the order MATLAB, python-control
-//! and ControlSystems.jl use. Leading zeros are trimmed; the zero polynomial is `[0]` and has
-//! degree 0 (check [`Poly::is_zero`]). Storage is descending too, so `coeffs()` is what was given
-//! minus leading zeros.
-//!
-//! Roots come with exact multiplicities ([`Poly::roots`], see [`roots`] for the method).
-
-pub mod exact;
-mod root;
-pub mod roots;
+//! The real polynomial [`Poly`] (descending coefficients), its arithmetic and its text (see
+//! the [module docs](super)).
 
 use num_complex::Complex64;
 use std::fmt;
 
+use super::root::Root;
 use crate::error::{LtiError, Result, check_finite};
 use crate::fmt::fmt_num;
-pub use root::{HalfPlane, Root, half_plane, same_root};
 
 /// Highest polynomial degree (system order) ltikit accepts.
 pub const MAX_ORDER: usize = 200;
@@ -25,7 +15,7 @@ pub const MAX_ORDER: usize = 200;
 /// (except for the zero polynomial `[0.0]`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Poly {
-    c: Vec<f64>,
+    pub(in crate::poly) c: Vec<f64>,
 }
 
 impl Poly {
@@ -317,7 +307,7 @@ impl Poly {
         self.c.iter().rev().take_while(|&&x| x == 0.0).count()
     }
 
-    /// Roots with exact multiplicities. See [`roots::roots`].
+    /// Roots with exact multiplicities. See [`roots`](super::roots::roots).
     ///
     /// ```
     /// use ltikit::Poly;
@@ -329,7 +319,7 @@ impl Poly {
     /// assert!((r[0].value.re + 1.0).abs() < 1e-14);
     /// ```
     pub fn roots(&self) -> Result<Vec<Root>> {
-        roots::roots(self)
+        super::roots::roots(self)
     }
 }
 

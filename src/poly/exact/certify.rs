@@ -4,6 +4,7 @@
 
 use num_complex::Complex64;
 
+use super::budget::{beyond, check_budget};
 use super::cdd::dd_sqrt;
 use super::number::Rational;
 use super::qpoly::ExactPoly;
@@ -11,7 +12,6 @@ use super::refine::simple_roots;
 use super::sqfree::{BasisElement, insert, square_free};
 use super::sturm::{HalfPlaneCounts, square_free_counts};
 use super::zpoly::ZPoly;
-use super::{beyond, check_budget};
 use crate::error::{LtiError, Result};
 use crate::poly::Root;
 

@@ -4,11 +4,11 @@ use std::fmt;
 
 use dashu_int::IBig;
 
+use super::budget::{beyond, check_budget};
 use super::number::{Rational, ratio_to_f64};
 use super::sqfree::square_free;
 use super::sturm::{HalfPlaneCounts, count_real_roots, square_free_counts};
 use super::zpoly::ZPoly;
-use super::{beyond, check_budget};
 use crate::error::{LtiError, Result};
 use crate::poly::Poly;
 

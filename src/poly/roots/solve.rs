@@ -1,60 +1,18 @@
-//! Roots of a real polynomial with exact multiplicities.
-//!
-//! # Method
-//! 1. Exact zero roots (trailing zero coefficients) are deflated exactly; coefficients of
-//!    extreme range are split at wide gaps between the tropical roots and each piece is centred
-//!    by an exact power of two (`scale.rs`).
-//! 2. Candidates: degree 1 and 2 by stable closed forms; otherwise the eigenvalues of the
-//!    balanced companion matrix (Francis double-shift QR directly on the Hessenberg companion
-//!    matrix, capped, with [`crate::numeric::eigenvalues`] as the fallback). Simple roots come out to
-//!    ~eps, but an m-fold root scatters by ~eps^(1/m) (numpy gives (s+1)⁴ as −1 ± 2e-4).
-//! 3. Clustering on the closed upper half plane (each upper candidate stands for a conjugate
-//!    pair): candidates closer than a generous relative distance form a group; a group is
-//!    *accepted* as one root of multiplicity m when Newton's method on p^(m−1) (where an m-fold
-//!    root is simple) from the group mean converges to a point c at which p, p′, …, p^(m−2)
-//!    vanish to rounding level (|p^(j)(c)| ≤ γ·eps·Σ|aᵢ^(j)||c|ⁱ): i.e. a polynomial within
-//!    rounding of p has an exact m-fold root at c. A group that is not accepted is split at the
-//!    longest edge of its minimum spanning tree and each part is tried again. Groups that touch
-//!    the real axis are tried as a real root first (multiplicity = #real + 2·#upper).
-//! 4. Simple roots get a guarded Newton polish on p (accepted only while |p| decreases and the
-//!    step stays inside the root's neighbourhood).
-//! 5. The result must reproduce the coefficients (lead·Π(s − rₖ)^mₖ against p, componentwise
-//!    to a small multiple of eps); if it does not, the polished candidates are returned as
-//!    simple roots — no multiplicity is ever claimed that the coefficients do not support.
-//!
-//! When a multiple root is found, all roots are refined together by Gauss–Newton with the
-//! structure fixed and a double-double residual (`refine.rs`); when the checks of step 5 fail,
-//! a second stage takes the structure from the derivatives (`derivatives.rs`).
-//!
-//! Files, by step: `scale.rs` (1), `candidates.rs` and `companion.rs` (2), `group.rs` and
-//! `newton.rs` (3, 4), `refine.rs`, `checks.rs` (5) and `derivatives.rs`.
-//!
-//! Two simple roots closer than about 2e-7 relative are indistinguishable from a double root
-//! perturbed by rounding of the coefficients and are reported as one double root; roots
-//! 5e-4 apart (which scipy's `residue` merges) stay distinct.
+//! The root finder's pipeline ([`roots`]): exact zero roots, scaling, candidates, grouping
+//! into multiple roots, refinement and the checks (see the [module docs](super)).
 
 use num_complex::Complex64;
 
-mod candidates;
-pub(crate) use candidates::candidates;
-mod checks;
-mod companion;
-mod derivatives;
-mod group;
-mod newton;
-mod refine;
-mod scale;
-
-use super::{MAX_ORDER, Poly, Root};
+use super::candidates::candidates;
+use super::checks::{any_more_multiple, reconstructs, simple_roots};
+use super::derivatives::{hidden_multiple_root, structure_from_derivatives};
+use super::found::{GROUP_REL, expand_conjugates};
+use super::group::{group_weight, link_groups, resolve_group};
+use super::order::sort_roots;
+use super::refine::refine_structured;
+use super::scale;
 use crate::error::{LtiError, Result};
-use checks::{any_more_multiple, reconstructs, simple_roots};
-use derivatives::{hidden_multiple_root, structure_from_derivatives};
-use group::{group_weight, link_groups, resolve_group};
-use refine::refine_structured;
-
-/// Generous relative distance under which candidates are grouped for the multiplicity test.
-/// The scatter of an m-fold root is ~eps^(1/m) relative: 2.5e-3 for m = 6, 0.03 for m = 10.
-pub(super) const GROUP_REL: f64 = 0.1;
+use crate::poly::{MAX_ORDER, Poly, Root};
 
 /// Roots of `p` with exact multiplicities, sorted by decreasing real part, then decreasing
 /// imaginary part (a conjugate pair appears as +, −). Complex roots come in exact conjugate
@@ -103,7 +61,7 @@ pub fn roots(p: &Poly) -> Result<Vec<Root>> {
     Ok(out)
 }
 
-/// Roots of `q` (no zero roots), in its own frame or piece by piece (see [`scale`]).
+/// Roots of `q` (no zero roots), in its own frame or piece by piece (see `scale.rs`).
 fn solve(q: &Poly) -> Result<Vec<Root>> {
     let pieces = match scale::plan(q)? {
         scale::Plan::Native => {
@@ -137,24 +95,6 @@ fn solve(q: &Poly) -> Result<Vec<Root>> {
         });
     }
     Ok(out)
-}
-
-/// Roots listed with repetition (a double root appears twice), in the order of [`roots`].
-pub fn flatten(roots: &[Root]) -> Vec<Complex64> {
-    roots
-        .iter()
-        .flat_map(|r| std::iter::repeat_n(r.value, r.multiplicity))
-        .collect()
-}
-
-/// Sorts by decreasing real part, then decreasing imaginary part.
-pub fn sort_roots(r: &mut [Root]) {
-    r.sort_by(|a, b| {
-        b.value
-            .re
-            .total_cmp(&a.value.re)
-            .then(b.value.im.total_cmp(&a.value.im))
-    });
 }
 
 /// Groups the candidates and returns roots with multiplicities (or, if the grouped result fails
@@ -202,30 +142,6 @@ pub(super) fn resolve_multiplicities(q: &Poly, cand: &[Complex64]) -> Vec<Root> 
         }
     }
     simple_roots(q, cand)
-}
-
-/// A root found in the closed upper half plane; a non-real one stands for a conjugate pair.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Found {
-    pub(super) value: Complex64,
-    pub(super) multiplicity: usize,
-}
-
-pub(super) fn expand_conjugates(found: &[Found]) -> Vec<Root> {
-    let mut out = Vec::new();
-    for f in found {
-        out.push(Root {
-            value: f.value,
-            multiplicity: f.multiplicity,
-        });
-        if f.value.im != 0.0 {
-            out.push(Root {
-                value: f.value.conj(),
-                multiplicity: f.multiplicity,
-            });
-        }
-    }
-    out
 }
 
 #[cfg(test)]
