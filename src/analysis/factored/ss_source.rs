@@ -188,7 +188,7 @@ fn finish(
         conjugate_closed(&k.zeros)
     } else {
         let tz = transmission_zeros(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?;
-        let scale = crate::numeric::linalg::norm_1_inf(&minimal.a);
+        let scale = crate::numeric::linalg::norms::norm_1_inf(&minimal.a);
         let nm = minimal.order().max(1);
         let snapped: Vec<(Complex64, usize)> = tz
             .distinct

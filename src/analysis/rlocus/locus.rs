@@ -1,34 +1,12 @@
-//! Root locus of D(s) + K·N(s) = 0 — the closed-loop poles of unity negative feedback around
-//! K·G(s), G = N/D — for K from 0 to ∞ (or from 0 to −∞ on request).
-//!
-//! Everything a user reads off the locus is computed by root-finding on polynomials, not from
-//! the traced curve:
-//! - **asymptotes**: n − m of them, centroid (Σp − Σz)/(n − m) from the two leading
-//!   coefficients of N and D, angles (180° + 360°·l)/(n − m) (l·360°/(n − m) for the
-//!   complementary locus);
-//! - **break-away and break-in points**: the real roots σ of N·D′ − N′·D at which
-//!   K = −D(σ)/N(σ) has the locus's sign; break-away where |K| has a local maximum along the
-//!   real axis, break-in at a local minimum (decided by the sign of the first non-vanishing
-//!   derivative of N·D′ − N′·D);
-//! - **imaginary-axis crossings**: [`axis_crossings`](super::routh::axis_crossings), the same
-//!   polynomial the Routh stable-gain set is built on;
-//! - **departure and arrival angles** at every pole and zero of G in lowest terms from the
-//!   angle condition (with multiplicity μ: μ angles 360°/μ apart); roots that N and D share
-//!   are closed-loop poles for every K and listed as fixed.
-//!
-//! The branches (`trace.rs`) are the roots of D + K·N at adaptively chosen gains, matched
-//! from one gain to the next.
-
-mod features;
-mod trace;
+//! The root locus itself ([`root_locus`], [`RootLocus`]): its features and traced branches in
+//! one struct (see the [module docs](super)).
 
 use num_complex::Complex64;
 use serde::Serialize;
 
-pub use features::{Asymptotes, BreakKind, BreakPoint, LocusAngle, LocusCrossing};
-pub use trace::{Branches, locus_roots, trace_at_gains};
-
-use super::factored::Factored;
+use super::features::{Asymptotes, BreakPoint, LocusAngle, LocusCrossing};
+use super::trace::Branches;
+use crate::analysis::factored::Factored;
 use crate::error::{LtiError, Result};
 use crate::poly::{Poly, Root};
 
@@ -110,14 +88,14 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
     check(num, den)?;
     let poles = den.roots()?;
     let zeros = num.roots()?;
-    let (fixed, red_poles, red_zeros) = features::cancel(&poles, &zeros);
+    let (fixed, red_poles, red_zeros) = super::features::cancel(&poles, &zeros);
     let sign = if opts.negative { -1.0 } else { 1.0 };
     let k0 = num.leading() / den.leading();
     // the 180° locus when K·k0 > 0, the 0° locus otherwise
     let base = if sign * k0 > 0.0 { 180.0 } else { 0.0 };
-    let asymptotes = features::asymptotes(num, den, base);
+    let asymptotes = super::features::asymptotes(num, den, base);
     let mut notes = Vec::new();
-    let break_points = match features::break_points(num, den, sign)? {
+    let break_points = match super::features::break_points(num, den, sign)? {
         Some(b) => b,
         None => {
             notes.push(format!(
@@ -128,7 +106,7 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
             Vec::new()
         }
     };
-    let crossings = match features::crossings(num, den, sign)? {
+    let crossings = match super::features::crossings(num, den, sign)? {
         Some(c) => c,
         None => {
             notes.push(format!(
@@ -139,8 +117,8 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
             Vec::new()
         }
     };
-    let departures = features::departures(&red_poles, &red_zeros, base);
-    let arrivals = features::arrivals(&red_poles, &red_zeros, base);
+    let departures = super::features::departures(&red_poles, &red_zeros, base);
+    let arrivals = super::features::arrivals(&red_poles, &red_zeros, base);
     let escape_gain = (num.degree() == den.degree())
         .then(|| -den.leading() / num.leading())
         .filter(|k| k.is_finite() && k * sign > 0.0);
@@ -153,10 +131,10 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
     if let Some(a) = &asymptotes {
         scale_points.push(Complex64::new(a.centroid, 0.0));
     }
-    let branches = trace::trace(
+    let branches = super::trace::trace(
         num,
         den,
-        &trace::Plan {
+        &super::trace::Plan {
             sign,
             special: &special,
             escape_gain,
