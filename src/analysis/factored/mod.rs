@@ -1,6 +1,6 @@
 //! The factored form of a SISO plant: computed once, read by every analysis.
 //!
-//! A plant enters ltikit as ODE coefficients (a [`TransferFunction`]) or as zeros, poles and a
+//! A plant enters ltikit as ODE coefficients (a [`TransferFunction`](crate::TransferFunction)) or as zeros, poles and a
 //! gain; a state-space channel will enter through its eigenvalues, transmission zeros and
 //! first Markov parameter. Whatever the source, it is factored **once** into a [`Factored`]:
 //!
@@ -11,11 +11,11 @@
 //!   transfer function evaluate G accurately where the roots are ill-conditioned (clusters),
 //!   give the dc gain exactly and realise the response in controllable canonical form;
 //! - lazily, the evaluation form of the frequency kernels (built at the first frequency
-//!   response, margin or grid, then shared; it belongs to this core, [`bode`]).
+//!   response, margin or grid, then shared; it belongs to this core, `bode/`).
 //!
 //! Stability, modes, partial fractions, closed forms and exact responses, step metrics,
 //! frequency response, margins, Nyquist, asymptotes and the automatic grids are methods of
-//! [`Factored`]; the [`TransferFunction`] methods of the same names are one-line delegates that
+//! [`Factored`]; the [`TransferFunction`](crate::TransferFunction) methods of the same names are one-line delegates that
 //! factor first. A caller that runs several analyses of one plant factors it once:
 //!
 //! ```

@@ -3,7 +3,7 @@
 //!
 //! # Method
 //! From the balanced real Schur form A = D·Q·T·Qᵀ·D⁻¹ and its complex triangular form S
-//! ([`super::complex_schur`]): for every eigenvalue cluster of [`super::structure`] the
+//! (`complex_schur.rs`): for every eigenvalue cluster of [`super::structure`] the
 //! eigenspace of S is found by back-substitution (a simple eigenvalue: x\[p\] = 1 and the rows
 //! above solved; a multiple one: the null space of the reduced m×m problem), then mapped
 //! back, v = D·Q·Z·y (one real matrix product for all clusters), and orthonormalised per

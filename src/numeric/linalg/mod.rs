@@ -1,14 +1,16 @@
 //! Dense linear-algebra kernels for state-space models, one algorithm per file.
 //!
 //! Everything here is a pure function (or a struct built once) on nalgebra matrices, with our
-//! own implementations where nalgebra 0.35 has none or is too slow or too inaccurate:
+//! own implementations where nalgebra 0.35 has none or is too slow or too inaccurate. The
+//! kernels that only serve the others (Householder reflectors, the Francis iteration, the
+//! complex Schur form) are internal:
 //!
 //! | file | what | method |
 //! |---|---|---|
 //! | [`mod@hessenberg`] | H = QᵀAQ | Householder reflectors, column-major sweeps |
-//! | [`francis`] | real Schur form of a Hessenberg matrix | double-shift QR (Francis), Ahues–Tisseur deflation, exceptional shifts, 2×2 blocks standardised |
+//! | [`francis`] (its iteration cap; the kernel is internal) | real Schur form of a Hessenberg matrix | double-shift QR (Francis), Ahues–Tisseur deflation, exceptional shifts, 2×2 blocks standardised |
 //! | [`schur`] | A = D·Q·T·Qᵀ·D⁻¹ with eigenvalues | balancing + power-of-two scaling + the two above, capped, one retry after a Householder similarity |
-//! | [`complex_schur`] | complex triangular Schur form | one unitary rotation per 2×2 block |
+//! | `complex_schur.rs` (internal) | complex triangular Schur form | one unitary rotation per 2×2 block |
 //! | [`structure`] | multiplicities of eigenvalues | size-dependent clustering, dim null(A − λI) from a reduced m×m problem |
 //! | [`eigvec`] | eigenvectors (mode shapes) with residuals | back-substitution on the Schur form |
 //! | [`modal`] | block-diagonal (modal) form | clusters, reordering and Sylvester solves on the complex Schur form |
@@ -25,12 +27,12 @@
 //! backward error ‖QTQᵀ − A‖_F/‖A‖_F of 2e-13 (7.6e-13 at n = 1000, 11 s); it hangs without
 //! an iteration cap on cyclic matrices (DESIGN §5) and its 2×2 blocks are not standardised.
 
-pub mod complex_schur;
+pub(crate) mod complex_schur;
 pub mod eigvec;
 pub mod francis;
 pub mod freqresp;
 pub mod hessenberg;
-pub mod householder;
+pub(crate) mod householder;
 pub mod markov;
 pub mod minreal;
 pub mod modal;

@@ -18,12 +18,12 @@
 //!
 //! # Failure modes (errors, never panics)
 //! - the state leaves the finite numbers or exceeds [`DIVERGENCE_LIMIT`] in magnitude →
-//!   [`LtiError::Diverged`] with the time and the size reached;
+//!   [`LtiError::Diverged`](crate::LtiError::Diverged) with the time and the size reached;
 //! - the step size falls below 16·eps·|t| (MATLAB's minimum): at a finite-time singularity
 //!   (ẋ = x² from x(0) = 1 blows up at t = 1) the state has grown by orders of magnitude and
-//!   this is reported as [`LtiError::Diverged`]; otherwise (a discontinuous or non-finite right
-//!   hand side) as [`LtiError::Undefined`];
-//! - more than `max_steps` attempted steps → [`LtiError::StepLimit`];
+//!   this is reported as [`LtiError::Diverged`](crate::LtiError::Diverged); otherwise (a discontinuous or non-finite right
+//!   hand side) as [`LtiError::Undefined`](crate::LtiError::Undefined);
+//! - more than `max_steps` attempted steps → [`LtiError::StepLimit`](crate::LtiError::StepLimit);
 //! - bad options, non-finite initial state, `t_end ≤ t0` → `InvalidParameter`, `NonFinite`,
 //!   `InvalidTime`.
 

@@ -30,7 +30,7 @@
 //! Degree ≤ [`MAX_EXACT_DEGREE`], coefficients of the primitive integer polynomial ≤
 //! [`MAX_EXACT_BITS`] bits, gcd coefficients within the modular prime table (~3900 bits) and
 //! roots separable in double-double (relative separation above ~10⁻²⁸). Beyond it the functions
-//! return [`LtiError::BeyondExactBudget`]: use the
+//! return [`LtiError::BeyondExactBudget`](crate::LtiError::BeyondExactBudget): use the
 //! numerical path.
 
 mod budget;

@@ -5,7 +5,7 @@
 //! product.
 //!
 //! # Method (Golub–Van Loan §7.6.3, Bavely–Stewart)
-//! 1. The complex Schur form A = D·Q·Z·S·Zᴴ·Qᵀ·D⁻¹ ([`super::complex_schur`]).
+//! 1. The complex Schur form A = D·Q·Z·S·Zᴴ·Qᵀ·D⁻¹ (`complex_schur.rs`).
 //! 2. Clusters: eigenvalues closer than [`CLUSTER_REL`]·‖A‖ (single linkage) — repeated
 //!    eigenvalues, semisimple or defective (a 2×2 Jordan block splits by ~√ε·‖A‖), stay in one
 //!    block. S is reordered by adjacent swaps (unitary rotations, as LAPACK `ztrexc`) so each
