@@ -1,7 +1,6 @@
 //! The exact path's budget: beyond these sizes it is not taken, and the numerical path runs
 //! and says why.
 
-use super::qpoly::ExactPoly;
 use crate::error::{LtiError, Result};
 
 /// Highest degree the exact path takes.
@@ -24,24 +23,22 @@ pub(crate) fn beyond(reason: impl Into<String>) -> LtiError {
     }
 }
 
-/// Degree and coefficient size within the budget.
-pub(crate) fn check_budget(p: &ExactPoly) -> Result<()> {
-    if p.degree() > MAX_EXACT_DEGREE {
+/// A polynomial of degree `degree` whose primitive integer form has coefficients of at most
+/// `bits` bits is within the budget (see [`super::qpoly::ExactPoly::check_budget`]).
+pub(crate) fn check_sizes(degree: usize, bits: usize) -> Result<()> {
+    if degree > MAX_EXACT_DEGREE {
         return Err(beyond(format!(
-            "degree {} exceeds {MAX_EXACT_DEGREE}",
-            p.degree()
+            "degree {degree} exceeds {MAX_EXACT_DEGREE}"
         )));
     }
-    let bits = p.prim().max_bits();
     if bits > MAX_EXACT_BITS {
         return Err(beyond(format!(
             "coefficients of {bits} bits exceed {MAX_EXACT_BITS} bits"
         )));
     }
-    if p.degree().saturating_mul(bits) > MAX_EXACT_WORK {
+    if degree.saturating_mul(bits) > MAX_EXACT_WORK {
         return Err(beyond(format!(
-            "degree {} × {bits}-bit coefficients exceeds {MAX_EXACT_WORK}",
-            p.degree()
+            "degree {degree} × {bits}-bit coefficients exceeds {MAX_EXACT_WORK}"
         )));
     }
     Ok(())

@@ -4,7 +4,7 @@
 
 use num_complex::Complex64;
 
-use super::budget::{beyond, check_budget};
+use super::budget::beyond;
 use super::cdd::dd_sqrt;
 use super::number::Rational;
 use super::qpoly::ExactPoly;
@@ -90,8 +90,8 @@ pub fn certify(num: &ExactPoly, den: &ExactPoly) -> Result<Structure> {
             what: "denominator".into(),
         });
     }
-    check_budget(num)?;
-    check_budget(den)?;
+    num.check_budget()?;
+    den.check_budget()?;
     let mut basis: Vec<BasisElement> = Vec::new();
     let (kn, kd) = (num.zero_root_multiplicity(), den.zero_root_multiplicity());
     let parts = [(num, kn, true), (den, kd, false)];

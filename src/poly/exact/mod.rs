@@ -36,6 +36,7 @@
 mod budget;
 mod cdd;
 mod certify;
+mod disk;
 mod modular;
 mod mp;
 mod number;
