@@ -176,16 +176,20 @@ impl ModalForm {
     ///
     /// ```
     /// use nalgebra::DMatrix;
-    /// use ltikit::numeric::linalg::modal::ModalForm;
-    /// // ẍ = u (a double integrator: a Jordan block at 0) next to ẋ = −x + u: one block of
-    /// // size 2 and one of size 1.
-    /// let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]);
-    /// let b = DMatrix::from_row_slice(3, 1, &[0.0, 1.0, 1.0]);
-    /// let c = DMatrix::from_row_slice(1, 3, &[1.0, 0.0, 1.0]);
-    /// let m = ModalForm::new(&a, &b, &c, &DMatrix::zeros(1, 1)).unwrap().unwrap();
-    /// let mut sizes: Vec<usize> = m.blocks.iter().map(|k| k.lambda.nrows()).collect();
-    /// sizes.sort();
-    /// assert_eq!(sizes, vec![1, 2]);
+    /// use num_complex::Complex64;
+    /// use ltikit::numeric::linalg::{HessenbergResponse, modal::ModalForm};
+    /// // Two masses between walls, force on the first, position of the second: second order,
+    /// // so the form comes from the modes (four 1×1 blocks); it agrees with the Hessenberg solve.
+    /// let a = DMatrix::from_row_slice(4, 4, &[
+    ///     0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -2.0, 1.0, -0.2, 0.1, 1.0, -2.0, 0.1, -0.2,
+    /// ]);
+    /// let b = DMatrix::from_row_slice(4, 1, &[0.0, 0.0, 1.0, 0.0]);
+    /// let (c, d) = (DMatrix::from_row_slice(1, 4, &[0.0, 1.0, 0.0, 0.0]), DMatrix::zeros(1, 1));
+    /// let m = ModalForm::new(&a, &b, &c, &d).unwrap().unwrap();
+    /// assert_eq!(m.blocks.len(), 4);
+    /// let s = Complex64::new(0.3, 2.0);
+    /// let h = HessenbergResponse::new(&a, &b, &c, &d).unwrap();
+    /// assert!((m.eval(s)[(0, 0)] - h.eval_siso(s)).norm() < 1e-14);
     /// ```
     pub fn new(
         a: &DMatrix<f64>,
