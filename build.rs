@@ -1,8 +1,8 @@
 //! Build script: turns on the x86-64 SIMD paths of the frequency response (`cfg(ltikit_simd)`,
-//! `src/analysis/freq/{avx2,avx512}.rs`) when the compiler has what they need stable — safe
-//! `#[target_feature]` functions (rustc 1.86) and the AVX-512 intrinsics (1.89). Older
-//! compilers (the crate's `rust-version` is 1.85) build the portable loop only, with the same
-//! results.
+//! `src/analysis/factored/bode/{avx2,avx512}.rs`) when the compiler has what they need
+//! stable — safe `#[target_feature]` functions (rustc 1.86) and the AVX-512 intrinsics (1.89).
+//! Older compilers (the crate's `rust-version` is 1.85) build the portable loop only, with the
+//! same results.
 
 use std::process::Command;
 

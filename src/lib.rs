@@ -86,8 +86,9 @@ pub mod numeric;
 pub mod plot;
 pub mod poly;
 
+pub use analysis::Factored;
 pub use error::{LtiError, Result};
-pub use lti::{StateSpace, TransferFunction};
+pub use lti::{Plant, StateSpace, TransferFunction};
 pub use poly::{MAX_ORDER, Poly, Root};
 
 /// The README's Rust example, compiled and run as a doctest.

@@ -40,7 +40,7 @@ use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use super::factored::Factored;
-use super::freq::{BodeForm, mul_pow2};
+use super::factored::{BodeForm, mul_pow2};
 use crate::error::Result;
 use crate::lti::TransferFunction;
 use crate::numeric::scalar::{Bracket, all_crossings, brent};

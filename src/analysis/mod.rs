@@ -5,6 +5,20 @@
 //! A plant is factored once ([`Factored`], from [`crate::TransferFunction::factored`] or
 //! [`Factored::from_zpk`]); every analysis is a method of the factored form, and the
 //! [`crate::TransferFunction`] methods of the same names factor first.
+//!
+//! # Where to start
+//! | you have | you want | call |
+//! |---|---|---|
+//! | coefficients, a plant file, a model | the factored form | [`crate::TransferFunction::factored`], [`crate::Plant::factored`], [`Factored::from_zpk`], [`Factored::from_state_space`] |
+//! | a factored plant | the whole report (poles, zeros, stability, modes, step metrics) | [`Factored::analyze`] |
+//! | | frequency response, margins, Nyquist, Bode asymptotes | [`Factored::freq_response`], [`Factored::margins`], [`Factored::nyquist`], [`Factored::bode_asymptotes`] |
+//! | | time responses, closed forms | [`Factored::step_response`], [`Factored::response`], [`Factored::partial_fractions`] |
+//! | | closed loops, root locus | [`ClosedLoop::new`], [`Factored::feedback`], [`Factored::root_locus`] |
+//! | a state-space model | its whole analysis (eigen structure, minimal realisation, zeros) | [`crate::StateSpace::analysis`] |
+//! | | MIMO responses | [`crate::StateSpace::step_response_from`], [`crate::StateSpace::freq_response_mimo`] |
+//!
+//! The numerical kernels underneath (`crate::numeric`) are building blocks; an analysis needs
+//! none of them directly.
 
 pub mod asymptotes;
 pub mod closed_form;
@@ -42,7 +56,9 @@ pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use nyquist::{ContourPart, NyquistContour, NyquistPoint, nyquist_contour};
 pub use pfe::{PartialFractions, PfTerm, partial_fractions};
 pub use response::{Response, ResponseSamples};
+pub use rlocus::{RootLocus, RootLocusOptions, root_locus};
 pub use routh::{RouthEvent, RouthTable, axis_crossings, routh, stable_gains};
+pub use ss::{DcGain, Hold, InputSignal, MimoFreqResponse, SsAnalysis, SsTimeResponse};
 pub use stability::{HalfPlane, Stability, StabilityClass, half_plane};
 pub use step_info::{MetricNote, StepInfo, StepInfoOptions};
 pub use summary::Analysis;

@@ -118,7 +118,8 @@ impl StateSpace {
     /// A diagonally similar realisation (D⁻¹AD, D⁻¹B, CD) with row and column norms of A
     /// balanced (Parlett–Reinsch, powers of two: exact). Improves the accuracy of `exp(A t)`
     /// for companion matrices with coefficients of very different sizes. Overflow-safe and
-    /// bounded ([`crate::numeric::balance()`]): an entry of 1e200 is balanced like any other.
+    /// bounded (at most [`MAX_BALANCE_SWEEPS`](crate::numeric::balance::MAX_BALANCE_SWEEPS)
+    /// sweeps, exponents clamped): an entry of 1e200 is balanced like any other.
     ///
     /// ```
     /// use ltikit::{StateSpace, TransferFunction};
@@ -128,7 +129,7 @@ impl StateSpace {
     /// ```
     pub fn balanced(&self) -> StateSpace {
         let mut a = self.a.clone();
-        let d = crate::numeric::balance(&mut a);
+        let d = crate::numeric::balance::balance(&mut a);
         let mut b = self.b.clone();
         let mut c = self.c.clone();
         for (i, &di) in d.iter().enumerate() {

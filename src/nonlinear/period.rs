@@ -16,7 +16,7 @@ pub use crate::nonlinear::elliptic::{agm, elliptic_k};
 use crate::nonlinear::models::Pendulum;
 use crate::nonlinear::system::{DynSystem, check_point};
 use crate::numeric::rk45::{Rk45Options, StepControl, integrate};
-use crate::numeric::{Bracket, brent};
+use crate::numeric::scalar::{Bracket, brent};
 
 fn check_amplitude(theta0: f64) -> Result<()> {
     check_finite(|| "the amplitude".into(), theta0)?;

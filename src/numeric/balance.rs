@@ -1,36 +1,29 @@
 //! Overflow-safe balancing and power-of-two scaling of real square matrices.
 //!
 //! nalgebra's `balance_parlett_reinsch` loops for ever when a squared row or column norm
-//! overflows (an entry of 1e200 is enough: `inf / 2 == inf`). [`balance`] makes the same
+//! overflows (an entry of 1e200 is enough: `inf / 2 == inf`). `balance` makes the same
 //! decisions (the modified Parlett–Reinsch method with 2-norms of whole rows and columns,
 //! James, Langou & Lowery 2014) but computes every norm with a power-of-two scale, so nothing
 //! overflows; its radix loops and its sweeps are capped, and the diagonal factors stay within
 //! 2^±[`MAX_SCALE_EXP`]. On matrices whose squared norms do not over- or underflow it gives
 //! bitwise the same result as nalgebra's routine (power-of-two scaling commutes with rounding).
 //!
-//! [`ldexp`] and [`exponent`] scale by exact powers of two; eigenvalue solvers use them to
+//! `ldexp` and `exponent` scale by exact powers of two; eigenvalue solvers use them to
 //! bring a matrix's entries into a range where no intermediate can overflow.
 
 use nalgebra::DMatrix;
 
-/// Sweeps allowed in [`balance`]. Balancing converges in a handful of sweeps in practice (each
+/// Sweeps allowed in `balance`. Balancing converges in a handful of sweeps in practice (each
 /// accepted step lowers the sum of squared norms by ≥ 5 %); the cap only bounds the time.
 pub const MAX_BALANCE_SWEEPS: usize = 100;
 
-/// The diagonal factors of [`balance`] stay within 2^±`MAX_SCALE_EXP`, so that scaling the
+/// The diagonal factors of `balance` stay within 2^±`MAX_SCALE_EXP`, so that scaling the
 /// input and output matrices of a state-space model by them cannot overflow either.
 pub const MAX_SCALE_EXP: i32 = 512;
 
 /// x · 2^e, exactly unless the result over- or underflows (then ±∞, or rounded to the
 /// subnormal range / 0, like C's `ldexp`).
-///
-/// ```
-/// use ltikit::numeric::balance::ldexp;
-/// assert_eq!(ldexp(3.0, 4), 48.0);
-/// assert_eq!(ldexp(1.0, -1074), f64::from_bits(1));
-/// assert_eq!(ldexp(1e300, 100), f64::INFINITY);
-/// ```
-pub fn ldexp(x: f64, e: i32) -> f64 {
+pub(crate) fn ldexp(x: f64, e: i32) -> f64 {
     // Steps of at most 2^±1000 keep each factor a normal number.
     let mut x = x;
     let mut e = e;
@@ -59,15 +52,7 @@ fn pow2(e: i32) -> f64 {
 
 /// The binary exponent e of |x| (2^e ≤ |x| < 2^(e+1)), for finite non-zero x; subnormals
 /// included. `None` for 0 and non-finite values.
-///
-/// ```
-/// use ltikit::numeric::balance::exponent;
-/// assert_eq!(exponent(1.0), Some(0));
-/// assert_eq!(exponent(-0.75), Some(-1));
-/// assert_eq!(exponent(f64::MIN_POSITIVE / 4.0), Some(-1024));
-/// assert_eq!(exponent(0.0), None);
-/// ```
-pub fn exponent(x: f64) -> Option<i32> {
+pub(crate) fn exponent(x: f64) -> Option<i32> {
     if x == 0.0 || !x.is_finite() {
         return None;
     }
@@ -84,7 +69,7 @@ pub fn exponent(x: f64) -> Option<i32> {
 
 /// Smallest and largest binary exponents of the non-zero entries; `None` for a zero matrix.
 /// Entries must be finite.
-pub fn exponent_range(values: impl Iterator<Item = f64>) -> Option<(i32, i32)> {
+pub(crate) fn exponent_range(values: impl Iterator<Item = f64>) -> Option<(i32, i32)> {
     values.filter_map(exponent).fold(None, |acc, e| match acc {
         None => Some((e, e)),
         Some((lo, hi)) => Some((lo.min(e), hi.max(e))),
@@ -118,17 +103,7 @@ fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> (f64, f64, f64) {
 /// taken), and returns the diagonal of D. See the [module docs](self).
 ///
 /// The input must be square and finite; the result is finite.
-///
-/// ```
-/// use nalgebra::DMatrix;
-/// use ltikit::numeric::balance::balance;
-/// // nalgebra's own balancing never returns on this matrix (its squared norm overflows).
-/// let mut m = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -1e200]);
-/// let d = balance(&mut m);
-/// assert_eq!(d.len(), 2);
-/// assert!(m.iter().all(|x| x.is_finite()));
-/// ```
-pub fn balance(m: &mut DMatrix<f64>) -> Vec<f64> {
+pub(crate) fn balance(m: &mut DMatrix<f64>) -> Vec<f64> {
     let n = m.nrows();
     let mut d = vec![1.0; n];
     let mut d_exp = vec![0i32; n];
@@ -202,6 +177,40 @@ pub fn balance(m: &mut DMatrix<f64>) -> Vec<f64> {
 mod tests {
     #![allow(clippy::float_cmp)] // exact powers of two are the contract
     use super::*;
+
+    /// `balance` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn balance_example() {
+        use crate::numeric::balance::balance;
+        use nalgebra::DMatrix;
+        // nalgebra's own balancing never returns on this matrix (its squared norm overflows).
+        let mut m = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -1e200]);
+        let d = balance(&mut m);
+        assert_eq!(d.len(), 2);
+        assert!(m.iter().all(|x| x.is_finite()));
+    }
+
+    /// `exponent` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn exponent_example() {
+        use crate::numeric::balance::exponent;
+        assert_eq!(exponent(1.0), Some(0));
+        assert_eq!(exponent(-0.75), Some(-1));
+        assert_eq!(exponent(f64::MIN_POSITIVE / 4.0), Some(-1024));
+        assert_eq!(exponent(0.0), None);
+    }
+
+    /// `ldexp` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn ldexp_example() {
+        use crate::numeric::balance::ldexp;
+        assert_eq!(ldexp(3.0, 4), 48.0);
+        assert_eq!(ldexp(1.0, -1074), f64::from_bits(1));
+        assert_eq!(ldexp(1e300, 100), f64::INFINITY);
+    }
 
     #[test]
     fn same_as_nalgebra_on_ordinary_matrices() {

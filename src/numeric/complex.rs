@@ -8,15 +8,6 @@
 use num_complex::Complex64;
 
 /// a / b (Smith's algorithm).
-///
-/// ```
-/// use ltikit::numeric::complex::div;
-/// use num_complex::Complex64 as C;
-/// let q = div(C::new(1.0, 0.0), C::new(1e200, 0.0));
-/// assert_eq!(q, C::new(1e-200, 0.0)); // num-complex gives 0
-/// let q = div(C::new(3e300, 4e300), C::new(0.0, 1e300));
-/// assert!((q - C::new(4.0, -3.0)).norm() < 1e-15);
-/// ```
 pub fn div(a: Complex64, b: Complex64) -> Complex64 {
     if b.im == 0.0 {
         return Complex64::new(a.re / b.re, a.im / b.re);
@@ -43,6 +34,18 @@ pub fn recip(b: Complex64) -> Complex64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `div` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn div_example() {
+        use crate::numeric::complex::div;
+        use num_complex::Complex64 as C;
+        let q = div(C::new(1.0, 0.0), C::new(1e200, 0.0));
+        assert_eq!(q, C::new(1e-200, 0.0)); // num-complex gives 0
+        let q = div(C::new(3e300, 4e300), C::new(0.0, 1e300));
+        assert!((q - C::new(4.0, -3.0)).norm() < 1e-15);
+    }
 
     #[test]
     fn agrees_with_plain_division_in_range_and_survives_outside() {

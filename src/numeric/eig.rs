@@ -3,7 +3,7 @@
 //! nalgebra 0.35's `complex_eigenvalues()` runs an uncapped Schur iteration that never
 //! terminates on the companion matrix of sⁿ ± c for even n ≥ 6 (n ≥ 4 for sⁿ + c) — the
 //! controllable canonical `A` of 1/(s⁴+1) is that matrix. We therefore
-//! 1. balance the matrix ([`balance`]: Parlett–Reinsch with
+//! 1. balance the matrix (`balance::balance`: Parlett–Reinsch with
 //!    overflow-safe norms and capped loops — nalgebra's own balancing never returns once a
 //!    squared norm overflows), which equalises row and column norms and makes the eigenvalues
 //!    of badly scaled companion matrices accurate;

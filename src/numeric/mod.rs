@@ -6,17 +6,15 @@
 //! [`Complex64`](num_complex::Complex64) and nalgebra matrices.
 
 pub mod balance;
-pub mod complex;
+pub(crate) mod complex;
 pub mod dd;
 pub mod eig;
 pub mod expm;
 pub mod linalg;
 pub mod lstsq;
 pub mod rk45;
-pub mod scalar;
+pub(crate) mod scalar;
 pub mod tol;
 
-pub use balance::balance;
 pub use eig::{eigenvalues, eigenvalues_checked};
 pub use expm::expm;
-pub use scalar::{Bracket, brent};

@@ -22,13 +22,6 @@ pub struct Bracket {
 /// Brent's method (inverse quadratic interpolation with bisection safeguard).
 ///
 /// Returns x in the bracket with |x − x*| ≤ `xtol` (plus 4·eps·|x|). The bracket must change sign.
-///
-/// ```
-/// use ltikit::numeric::{brent, Bracket};
-/// let f = |x: f64| x * x - 2.0;
-/// let r = brent(f, Bracket { a: 0.0, b: 2.0, fa: -2.0, fb: 2.0 }, 1e-15).unwrap();
-/// assert!((r - 2f64.sqrt()).abs() < 1e-14);
-/// ```
 #[allow(clippy::float_cmp)] // `a == c`: the same bracket end, as in Brent's algorithm
 pub fn brent(f: impl Fn(f64) -> f64, bracket: Bracket, xtol: f64) -> Result<f64> {
     let Bracket {
@@ -151,6 +144,26 @@ pub fn all_crossings(f: impl Fn(f64) -> f64, xs: &[f64], fs: &[f64], xtol: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `brent` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn brent_example() {
+        use crate::numeric::scalar::{Bracket, brent};
+        let f = |x: f64| x * x - 2.0;
+        let r = brent(
+            f,
+            Bracket {
+                a: 0.0,
+                b: 2.0,
+                fa: -2.0,
+                fb: 2.0,
+            },
+            1e-15,
+        )
+        .unwrap();
+        assert!((r - 2f64.sqrt()).abs() < 1e-14);
+    }
 
     #[test]
     fn brent_finds_cos_root() {

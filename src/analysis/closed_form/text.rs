@@ -2,7 +2,8 @@
 
 use std::fmt;
 
-use super::{ClosedForm, ClosedFormTerm};
+use super::form::ClosedForm;
+use super::term::ClosedFormTerm;
 use crate::fmt::fmt_num;
 
 impl ClosedForm {

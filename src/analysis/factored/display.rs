@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use super::Factored;
+use super::form::Factored;
 use crate::fmt::fmt_num;
 use crate::poly::{Poly, Root};
 

@@ -5,42 +5,15 @@
 //! the numerical path factors it and the factored form says why.
 
 use num_complex::Complex64;
-use serde::Serialize;
 
-use super::{Factored, PoleZero, Source, count_factorization};
+use super::decision::{Decision, StructurePath};
+use super::form::{Factored, assemble};
+use super::pole_zero::PoleZero;
+use super::source::Source;
 use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
 use crate::poly::exact::{ExactPoly, Side, Structure, certify};
 use crate::poly::{HalfPlane, half_plane};
-
-/// Which path decided a plant's structure (multiplicities, cancellations, stability).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StructurePath {
-    /// Certified by rational arithmetic on the coefficients as typed: no tolerance.
-    Exact,
-    /// Found by the floating-point root finder (f64 input, or exact input beyond the budget).
-    Numerical,
-}
-
-impl StructurePath {
-    /// `"exact"` or `"numerical"` (the JSON value).
-    pub fn as_str(self) -> &'static str {
-        match self {
-            StructurePath::Exact => "exact",
-            StructurePath::Numerical => "numerical",
-        }
-    }
-}
-
-/// How the structure of a factored plant was decided.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Decision {
-    /// The exactly decided half plane of every distinct root (exact path only).
-    sides: Option<Vec<(Complex64, HalfPlane)>>,
-    /// Why exact input went the numerical way.
-    fallback: Option<String>,
-}
 
 impl Factored {
     /// A plant from exact coefficients (descending powers), factored on the exact path:
@@ -82,13 +55,11 @@ impl Factored {
 
     /// The numerical path for exact input that the exact path could not take.
     pub(crate) fn numerical_fallback(tf: &TransferFunction, why: &LtiError) -> Result<Factored> {
-        let mut f = Factored::from_tf(tf)?;
         let reason = match why {
             LtiError::BeyondExactBudget { reason } => reason.clone(),
             other => other.to_string(),
         };
-        f.decision.fallback = Some(reason);
-        Ok(f)
+        Factored::from_tf_deciding(tf, Decision::fallback(reason))
     }
 
     fn from_structure(tf: &TransferFunction, s: &Structure) -> Result<Factored> {
@@ -133,14 +104,12 @@ impl Factored {
                 s.reduced_denominator().to_poly()?,
             )?
         };
-        count_factorization();
-        let mut f = Factored::with_source(
+        Ok(assemble(
             pz,
             if zero { 0.0 } else { tf.gain() },
             Source::coefficients_of(tf.clone(), reduced),
-        );
-        f.decision.sides = Some(sides);
-        Ok(f)
+            Decision::exact(sides),
+        ))
     }
 
     /// Which path decided the structure: [`StructurePath::Exact`] for coefficients that
@@ -154,7 +123,7 @@ impl Factored {
     /// assert_eq!(g.factored().unwrap().structure_path(), StructurePath::Numerical);
     /// ```
     pub fn structure_path(&self) -> StructurePath {
-        if self.decision.sides.is_some() {
+        if self.decision().sides.is_some() {
             StructurePath::Exact
         } else {
             StructurePath::Numerical
@@ -165,7 +134,7 @@ impl Factored {
     /// roots closer than the refinement separates); `None` when the exact path decided or the
     /// input was plain f64.
     pub fn exact_fallback(&self) -> Option<&str> {
-        self.decision.fallback.as_deref()
+        self.decision().fallback.as_deref()
     }
 
     /// One line saying which path decided the structure.
@@ -177,10 +146,10 @@ impl Factored {
     /// assert_eq!(line, "exact (certified by rational arithmetic on the coefficients as typed)");
     /// ```
     pub fn structure_note(&self) -> String {
-        if let super::Source::StateSpace(ss) = &self.source {
+        if let Source::StateSpace(ss) = self.source() {
             return ss.note.clone();
         }
-        match (self.structure_path(), &self.decision.fallback) {
+        match (self.structure_path(), &self.decision().fallback) {
             (StructurePath::Exact, _) => {
                 "exact (certified by rational arithmetic on the coefficients as typed)".into()
             }
@@ -196,7 +165,7 @@ impl Factored {
     /// The half plane of a root of this plant: decided exactly on the exact path, else by
     /// [`half_plane`] (a relative tolerance about the axis).
     pub(crate) fn side_of(&self, v: Complex64) -> HalfPlane {
-        self.decision
+        self.decision()
             .sides
             .as_ref()
             .and_then(|s| s.iter().find(|(r, _)| *r == v).map(|(_, h)| *h))
@@ -205,7 +174,7 @@ impl Factored {
 
     /// True when the structure was decided exactly.
     pub(crate) fn decided_exactly(&self) -> bool {
-        self.decision.sides.is_some()
+        self.decision().sides.is_some()
     }
 }
 

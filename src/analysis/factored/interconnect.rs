@@ -2,9 +2,11 @@
 //! the roots of the one new polynomial (the sum's numerator, the closed-loop characteristic
 //! polynomial) and report what cancels.
 
-use std::sync::OnceLock;
-
-use super::{Factored, PoleZero, Source, canonical_roots, count_factorization};
+use super::coefficients::coefficient_source;
+use super::decision::Decision;
+use super::form::{Factored, assemble};
+use super::pole_zero::{PoleZero, count};
+use super::zpk::canonical_roots;
 use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
 use crate::poly::{Poly, Root};
@@ -31,7 +33,8 @@ impl Factored {
     /// (s + 1)⁻¹⁰ · (s + 1)⁻¹⁰ is exactly a 20-fold pole; a zero of one that is a pole of the
     /// other cancels in the reduced form and stays a characteristic root (a hidden mode).
     ///
-    /// Errors: those of [`Factored::from_zpk`] (more than [`super::MAX_FACTORED_ORDER`] roots).
+    /// Errors: those of [`Factored::from_zpk`] (more than
+    /// [`MAX_FACTORED_ORDER`](super::pole_zero::MAX_FACTORED_ORDER) roots).
     ///
     /// ```
     /// use ltikit::analysis::Factored;
@@ -114,7 +117,7 @@ impl Factored {
         if self.is_zero() {
             return Poly::from_descending(&[0.0]);
         }
-        Ok(Poly::from_root_list(self.zeros())?.scale(self.gain))
+        Ok(Poly::from_root_list(self.zeros())?.scale(self.gain()))
     }
 
     /// A factored form whose roots are already known: coefficients `tf` (kept as the source)
@@ -132,22 +135,9 @@ impl Factored {
             canonical_roots(&zeros, "zero")?
         };
         let pz = PoleZero::new(poles, zeros, zero);
-        let reduced = if pz.cancelled.is_empty() {
-            tf.clone()
-        } else {
-            let common = Poly::from_root_list(&pz.cancelled)?;
-            let (num, _) = tf.num().div_rem(&common)?;
-            let (den, _) = tf.den().div_rem(&common)?;
-            TransferFunction::new(num, den)?
-        };
-        count_factorization();
-        Ok(Factored {
-            gain: if zero { 0.0 } else { tf.gain() },
-            pz,
-            source: Source::coefficients_of(tf, reduced),
-            bode: OnceLock::new(),
-            decision: super::exact::Decision::default(),
-        })
+        let gain = if zero { 0.0 } else { tf.gain() };
+        let source = coefficient_source(tf, &pz)?;
+        Ok(assemble(pz, gain, source, Decision::default()))
     }
 }
 
@@ -162,7 +152,7 @@ pub(crate) fn series_parts(a: &Factored, b: &Factored) -> (Vec<Root>, Vec<Root>,
     z.extend_from_slice(b.zeros());
     let mut p = a.poles().to_vec();
     p.extend_from_slice(b.poles());
-    (z, p, a.gain * b.gain)
+    (z, p, a.gain() * b.gain())
 }
 
 /// Closes the loop L = k·Π(s − zᵢ)/Π(s − pⱼ) (every factor as given) with `sign`: the
@@ -178,7 +168,7 @@ pub(crate) fn close(
     let zeros = canonical_roots(zeros, "zero")?;
     let poles = canonical_roots(poles, "pole")?;
     let pz = PoleZero::new(poles.clone(), zeros.clone(), k == 0.0);
-    let (n, m) = (super::count(&poles), super::count(&zeros));
+    let (n, m) = (count(&poles), count(&zeros));
     if k != 0.0 && m > n {
         return Err(LtiError::Improper {
             operation: "closing the loop".into(),

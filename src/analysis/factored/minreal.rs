@@ -10,7 +10,10 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::{Factored, PoleZero, Source, count};
+use super::form::assemble;
+use super::pole_zero::count;
+use super::source::Source;
+use super::{Factored, PoleZero};
 use crate::error::{LtiError, Result};
 use crate::poly::Root;
 
@@ -103,10 +106,14 @@ impl Factored {
     /// assert!((near[0].distance - 1e-11).abs() < 1e-15); // one ulp of 2
     /// ```
     pub fn near_cancellations(&self, rel: f64) -> Vec<NearPair> {
-        pairs(&self.pz.reduced_zeros, &self.pz.reduced_poles, rel)
-            .into_iter()
-            .filter(|p| p.zero.im >= 0.0)
-            .collect()
+        pairs(
+            &self.pole_zero().reduced_zeros,
+            &self.pole_zero().reduced_poles,
+            rel,
+        )
+        .into_iter()
+        .filter(|p| p.zero.im >= 0.0)
+        .collect()
     }
 
     /// G with the pole-zero pairs within a relative `tol` (|z − p| ≤ tol·max(|z|, |p|))
@@ -136,7 +143,11 @@ impl Factored {
                 reason: "must be a relative distance in [0, 1)".into(),
             });
         }
-        let all = pairs(&self.pz.reduced_zeros, &self.pz.reduced_poles, tol);
+        let all = pairs(
+            &self.pole_zero().reduced_zeros,
+            &self.pole_zero().reduced_poles,
+            tol,
+        );
         if all.is_empty() {
             return Ok((self.clone(), Vec::new()));
         }
@@ -153,15 +164,15 @@ impl Factored {
                 })
                 .collect()
         };
-        let reduced_zeros = take(&self.pz.reduced_zeros, &|p| p.zero);
-        let reduced_poles = take(&self.pz.reduced_poles, &|p| p.pole);
-        let mut cancelled = self.pz.cancelled.clone();
+        let reduced_zeros = take(&self.pole_zero().reduced_zeros, &|p| p.zero);
+        let reduced_poles = take(&self.pole_zero().reduced_poles, &|p| p.pole);
+        let mut cancelled = self.pole_zero().cancelled.clone();
         for p in &all {
             cancelled.push(Root::new(p.pole, p.multiplicity));
         }
         let pz = PoleZero::from_parts(
-            self.pz.poles.clone(),
-            self.pz.zeros.clone(),
+            self.pole_zero().poles.clone(),
+            self.pole_zero().zeros.clone(),
             cancelled,
             reduced_poles,
             reduced_zeros,
@@ -169,10 +180,9 @@ impl Factored {
         );
         debug_assert_eq!(
             count(&pz.reduced_poles) + all.iter().map(|p| p.multiplicity).sum::<usize>(),
-            count(&self.pz.reduced_poles)
+            count(&self.pole_zero().reduced_poles)
         );
-        let mut g = Factored::with_source(pz, self.gain, Source::Factors);
-        g.decision = self.decision.clone();
+        let g = assemble(pz, self.gain(), Source::Factors, self.decision().clone());
         let upper = all.into_iter().filter(|p| p.zero.im >= 0.0).collect();
         Ok((g, upper))
     }

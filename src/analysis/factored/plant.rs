@@ -1,7 +1,10 @@
 //! A plant's factored form: a transfer function is factored by its roots, a SISO state-space
 //! model (or one channel of a MIMO one) by its eigenvalues and transmission zeros.
 
-use super::Factored;
+use super::decision::Decision;
+use super::form::{Factored, assemble};
+use super::source::Source;
+use super::ss_source::factor_state_space;
 use crate::error::{LtiError, Result};
 use crate::lti::plant::Coefficient;
 use crate::lti::{Model, Plant, StateSpace, TransferFunction};
@@ -82,7 +85,8 @@ impl Factored {
     /// zeros and the gain is the first non-zero Markov parameter. G(s) and the dc gain come
     /// from the minimal realisation (its Hessenberg form and an LU solve).
     ///
-    /// Errors: a model that is not SISO, more than [`super::MAX_FACTORED_ORDER`] states.
+    /// Errors: a model that is not SISO, more than
+    /// [`MAX_FACTORED_ORDER`](super::pole_zero::MAX_FACTORED_ORDER) states.
     ///
     /// ```
     /// use nalgebra::{DMatrix, DVector};
@@ -100,14 +104,12 @@ impl Factored {
     /// assert!((f.dc_gain().unwrap() - 0.5).abs() < 1e-15);
     /// ```
     pub fn from_state_space(ss: &StateSpace) -> Result<Factored> {
-        let (pz, gain, source) = super::ss_source::factor_state_space(ss)?;
-        super::count_factorization();
-        Ok(Factored {
+        let (pz, gain, source) = factor_state_space(ss)?;
+        Ok(assemble(
             pz,
             gain,
-            source: super::Source::StateSpace(Box::new(source)),
-            bode: std::sync::OnceLock::new(),
-            decision: super::exact::Decision::default(),
-        })
+            Source::StateSpace(Box::new(source)),
+            Decision::default(),
+        ))
     }
 }

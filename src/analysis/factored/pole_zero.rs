@@ -1,8 +1,14 @@
 //! Poles, zeros and the common roots that cancel (the pole/zero part of the factored form).
 
+use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::poly::Root;
+
+/// Highest order (number of poles with multiplicity) of a factored plant. Polynomial
+/// coefficients stop at [`crate::MAX_ORDER`]; a factored plant (a state-space channel) may be
+/// larger.
+pub const MAX_FACTORED_ORDER: usize = 4096;
 
 /// Everything about the roots of a SISO plant.
 ///
@@ -30,6 +36,18 @@ pub struct PoleZero {
 /// Total multiplicity of a root list.
 pub(crate) fn count(roots: &[Root]) -> usize {
     roots.iter().map(|r| r.multiplicity).sum()
+}
+
+/// Equal values merged (exact equality), multiplicities added, in order of first appearance.
+pub(super) fn merge(values: &[(Complex64, usize)]) -> Vec<(Complex64, usize)> {
+    let mut out: Vec<(Complex64, usize)> = Vec::new();
+    for &(v, m) in values {
+        match out.iter_mut().find(|(w, _)| *w == v) {
+            Some((_, k)) => *k += m,
+            None => out.push((v, m)),
+        }
+    }
+    out
 }
 
 impl PoleZero {

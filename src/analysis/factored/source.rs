@@ -14,8 +14,9 @@
 
 use num_complex::Complex64;
 
-use super::Factored;
-use super::series::{ScaledProduct, eval_factors};
+use super::low_frequency::LowFrequency;
+use super::pole_zero::PoleZero;
+use super::series::eval_factors;
 use super::ss_source::SsSource;
 use crate::lti::TransferFunction;
 
@@ -39,40 +40,6 @@ pub(crate) enum Source {
     StateSpace(Box<SsSource>),
 }
 
-/// The low-frequency asymptote K·s^k of the reduced G: K = sign·e^(ln_abs).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct LowFrequency {
-    /// Sign of K (±1).
-    pub sign: f64,
-    /// ln|K|.
-    pub ln_abs: f64,
-    /// k: zeros at s = 0 minus poles at s = 0.
-    pub int_order: i32,
-    /// K itself when it is a normal f64 (NaN otherwise).
-    pub k: f64,
-}
-
-impl LowFrequency {
-    /// The asymptote of a G finite at s = 0 with value `k`.
-    pub(crate) fn of_value(k: f64) -> LowFrequency {
-        LowFrequency {
-            sign: if k < 0.0 { -1.0 } else { 1.0 },
-            ln_abs: k.abs().ln(),
-            int_order: 0,
-            k,
-        }
-    }
-
-    /// K as an f64 (from the logarithm when the direct ratio under- or overflowed).
-    pub fn value(&self) -> f64 {
-        if self.k.is_finite() && self.k != 0.0 {
-            self.k
-        } else {
-            self.sign * self.ln_abs.exp()
-        }
-    }
-}
-
 /// Relative distance to a cancelled root within which the reduced coefficients are used.
 const NEAR_CANCELLED: f64 = 1e-6;
 
@@ -88,24 +55,26 @@ impl Source {
         Source::Coefficients(Box::new(Coeffs { tf, reduced }))
     }
 
-    /// G(s).
-    pub(crate) fn eval(&self, f: &Factored, s: Complex64) -> Complex64 {
+    /// G(s) of the plant with gain `gain` and pole–zero part `pz` that came from this source.
+    pub(crate) fn eval(&self, gain: f64, pz: &PoleZero, s: Complex64) -> Complex64 {
         match self {
             Source::Coefficients(c) => {
-                let near =
-                    f.pz.cancelled.iter().any(|r| {
-                        (s - r.value).norm() <= NEAR_CANCELLED * r.value.norm().max(1e-300)
-                    });
+                let near = pz
+                    .cancelled
+                    .iter()
+                    .any(|r| (s - r.value).norm() <= NEAR_CANCELLED * r.value.norm().max(1e-300));
                 let g = if near { &c.reduced } else { &c.tf };
                 g.eval(s)
             }
-            Source::Factors => eval_factors(f.gain, &f.pz.reduced_zeros, &f.pz.reduced_poles, s),
+            Source::Factors => eval_factors(gain, &pz.reduced_zeros, &pz.reduced_poles, s),
             Source::StateSpace(ss) => ss.eval(s),
         }
     }
 
-    /// The low-frequency asymptote of the reduced G.
-    pub(crate) fn low_frequency(&self, f: &Factored) -> LowFrequency {
+    /// The low-frequency asymptote of the reduced G (of the plant with gain `gain` and
+    /// pole–zero part `pz` that came from this source).
+    pub(crate) fn low_frequency(&self, gain: f64, pz: &PoleZero) -> LowFrequency {
+        let factors = || LowFrequency::from_factors(gain, &pz.reduced_zeros, &pz.reduced_poles);
         match self {
             Source::Coefficients(c) => {
                 let (n, d) = (c.tf.num(), c.tf.den());
@@ -120,57 +89,14 @@ impl Source {
                 }
             }
             Source::StateSpace(ss) => {
-                let at_origin = f.pz.reduced_poles.iter().chain(&f.pz.reduced_zeros);
+                let at_origin = pz.reduced_poles.iter().chain(&pz.reduced_zeros);
                 if at_origin.clone().any(|r| r.is_origin()) {
-                    factors_low_frequency(f)
+                    factors()
                 } else {
-                    ss.low_frequency()
-                        .unwrap_or_else(|| factors_low_frequency(f))
+                    ss.low_frequency().unwrap_or_else(factors)
                 }
             }
-            Source::Factors => factors_low_frequency(f),
+            Source::Factors => factors(),
         }
     }
-}
-
-/// The low-frequency asymptote from the reduced factors.
-fn factors_low_frequency(f: &Factored) -> LowFrequency {
-    let mut acc = ScaledProduct::new(Complex64::new(f.gain, 0.0));
-    let mut int_order = 0i32;
-    let mut ln_abs = f.gain.abs().ln();
-    for z in &f.pz.reduced_zeros {
-        if z.is_origin() {
-            int_order += z.multiplicity as i32;
-        } else {
-            acc.mul_pow(-z.value, z.multiplicity);
-            ln_abs += z.multiplicity as f64 * z.value.norm().ln();
-        }
-    }
-    for p in &f.pz.reduced_poles {
-        if p.is_origin() {
-            int_order -= p.multiplicity as i32;
-        } else {
-            acc.div_pow(-p.value, p.multiplicity);
-            ln_abs -= p.multiplicity as f64 * p.value.norm().ln();
-        }
-    }
-    let k = acc.value().re;
-    let sign = if f.gain < 0.0 { -1.0 } else { 1.0 }
-        * real_root_sign(&f.pz.reduced_zeros)
-        * real_root_sign(&f.pz.reduced_poles);
-    LowFrequency {
-        sign,
-        ln_abs,
-        int_order,
-        k,
-    }
-}
-
-/// Sign of Π(−r)^m over the non-zero roots (conjugate pairs contribute |r|² > 0).
-fn real_root_sign(roots: &[crate::poly::Root]) -> f64 {
-    let negative = roots
-        .iter()
-        .filter(|r| r.is_real() && r.value.re > 0.0 && r.multiplicity % 2 == 1)
-        .count();
-    if negative % 2 == 1 { -1.0 } else { 1.0 }
 }

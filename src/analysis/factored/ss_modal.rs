@@ -6,7 +6,7 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use super::ss_source::merge;
+use super::pole_zero::merge;
 use crate::lti::StateSpace;
 use crate::numeric::linalg::second_order::{self, SecondOrder};
 use crate::numeric::linalg::structure::{radius, snap};
@@ -252,7 +252,7 @@ pub(super) fn rayleigh_zeros(
     if rho == 0 || p + rho != red.pairs {
         return None;
     }
-    let scale = crate::numeric::linalg::norm_1_inf(&a_w);
+    let scale = crate::numeric::linalg::norms::norm_1_inf(&a_w);
     let mut zeros: Vec<(Complex64, usize)> = Vec::new();
     for &(w, m) in &tz.distinct {
         let r = radius(m, d, scale);
@@ -291,7 +291,7 @@ pub(super) fn model_zeros(ss: &StateSpace, red: &ModalReduction) -> Option<Known
     if p + r != red.minimal.order() {
         return None;
     }
-    let scale = crate::numeric::linalg::norm_1_inf(&ss.a);
+    let scale = crate::numeric::linalg::norms::norm_1_inf(&ss.a);
     let n = ss.a.nrows();
     let zeros = tz
         .distinct

@@ -4,16 +4,17 @@
 //! [`crate::numeric::linalg::minimal_realization`]); the removed uncontrollable and
 //! unobservable modes become the *cancelled* roots, as common roots of a transfer function do.
 //! Poles are the eigenvalues of A with the multiplicities of their eigen structure
-//! ([`crate::numeric::linalg::eigen_structure`]), zeros are the transmission zeros (the
+//! ([`StateMatrix::eigen_structure`]), zeros are the transmission zeros (the
 //! invariant zeros of the minimal part), and the gain k of G(s) = k·Π(s − zᵢ)/Π(s − pⱼ) is the
 //! first non-zero Markov parameter (D, or C·A^(r−1)·B for relative degree r). The minimal
 //! realisation is kept: G(s) is evaluated by one Hessenberg reduction and an O(n²) solve per
 //! point, and the dc gain by a solve, D − C·A⁻¹·B (from the factors when A has an eigenvalue
 //! exactly 0 or a zero lies exactly at 0). No polynomial coefficient is ever formed.
 //!
-//! A model with the mechanical structure of [`crate::numeric::linalg::second_order`] whose
-//! input acts on the velocities is reduced in modal coordinates instead ([`super::ss_modal`]):
-//! modes of equal
+//! The model's A is recognised once, here, where the model enters the factored core
+//! ([`StateMatrix::recognise`]); every kernel below takes the structure from it. A model with
+//! the mechanical structure of [`crate::numeric::linalg::second_order`] whose input acts on the
+//! velocities is reduced in modal coordinates instead ([`super::ss_modal`]): modes of equal
 //! stiffness and damping merge into one block (the rest of the group is uncontrollable), a
 //! root the output cannot see is removed, and every pole — kept or removed — is a mode's root,
 //! exact to the symmetric eigenproblem.
@@ -25,15 +26,14 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use super::pole_zero::{PoleZero, count};
-use super::source::LowFrequency;
+use super::low_frequency::LowFrequency;
+use super::pole_zero::{MAX_FACTORED_ORDER, PoleZero, count, merge};
 use super::ss_modal;
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
-use crate::numeric::linalg::second_order::SecondOrder;
 use crate::numeric::linalg::structure::{radius, snap};
 use crate::numeric::linalg::{
-    EigenStructure, HessenbergResponse, MinimalRealization, eigen_structure, minimal_realization,
+    EigenStructure, HessenbergResponse, MinimalRealization, StateMatrix, minimal_realization,
     relative_degree, transmission_zeros,
 };
 use crate::poly::Root;
@@ -93,17 +93,19 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         )));
     }
     let n = ss.a.nrows();
-    if n > super::MAX_FACTORED_ORDER {
+    if n > MAX_FACTORED_ORDER {
         return Err(LtiError::OrderTooHigh {
             order: n,
-            max: super::MAX_FACTORED_ORDER,
+            max: MAX_FACTORED_ORDER,
         });
     }
+    // the one recognition of this model's A: every kernel below takes the structure from here
+    let a = StateMatrix::recognise(&ss.a);
     let finite = ss.a.iter().chain(&ss.b).chain(&ss.c).all(|x| x.is_finite());
     let second = finite
-        .then(|| SecondOrder::detect(&ss.a))
+        .then(|| a.second_order())
         .flatten()
-        .and_then(|so| ss_modal::second_order_minimal(ss, &so).map(|m| (so, m)));
+        .and_then(|so| ss_modal::second_order_minimal(ss, so).map(|m| (so, m)));
     let mut known = None;
     let mut method = String::from(
         "eigenvalues of A by the Schur form, minimal realisation by staircases, transmission \
@@ -111,7 +113,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
     );
     let (eigenvalues, minimal, reduced_poles, removed) = match second {
         Some((so, red)) => {
-            let rayleigh = ss_modal::rayleigh_zeros(ss, &so, &red);
+            let rayleigh = ss_modal::rayleigh_zeros(ss, so, &red);
             method = format!(
                 "second order — modes by the symmetric eigenproblem of the stiffness, minimal \
                  realisation in modal coordinates, zeros {}",
@@ -132,7 +134,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             let st = if n == 0 {
                 None
             } else {
-                Some(eigen_structure(&ss.a)?)
+                Some(a.eigen_structure()?)
             };
             let minimal = minimal_realization(&ss.a, &ss.b, &ss.c, &ss.d, None)?;
             let reduced = roots_of_matrix(&minimal.a)?;
@@ -186,7 +188,7 @@ fn finish(
         conjugate_closed(&k.zeros)
     } else {
         let tz = transmission_zeros(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?;
-        let scale = crate::numeric::linalg::norm_1_inf(&minimal.a);
+        let scale = crate::numeric::linalg::norms::norm_1_inf(&minimal.a);
         let nm = minimal.order().max(1);
         let snapped: Vec<(Complex64, usize)> = tz
             .distinct
@@ -296,29 +298,18 @@ impl Eigenvalues {
     }
 }
 
-/// Eigenvalues of `a` as roots with algebraic multiplicities, sorted as polynomial roots.
+/// Eigenvalues of `a` as roots with algebraic multiplicities, sorted as polynomial roots. (The
+/// minimal realisation is a model of its own: its structure is recognised like the model's.)
 fn roots_of_matrix(a: &DMatrix<f64>) -> Result<Vec<Root>> {
     if a.nrows() == 0 {
         return Ok(Vec::new());
     }
-    Ok(Eigenvalues::new(eigen_structure(a)?, a.nrows()).roots())
+    Ok(Eigenvalues::new(StateMatrix::recognise(a).eigen_structure()?, a.nrows()).roots())
 }
 
 /// Equal values merged (exact equality), with multiplicities.
 fn group(values: &[Complex64]) -> Vec<(Complex64, usize)> {
     merge(&values.iter().map(|&v| (v, 1)).collect::<Vec<_>>())
-}
-
-/// Equal values merged, multiplicities added.
-pub(super) fn merge(values: &[(Complex64, usize)]) -> Vec<(Complex64, usize)> {
-    let mut out: Vec<(Complex64, usize)> = Vec::new();
-    for &(v, m) in values {
-        match out.iter_mut().find(|(w, _)| *w == v) {
-            Some((_, k)) => *k += m,
-            None => out.push((v, m)),
-        }
-    }
-    out
 }
 
 /// Roots closed under conjugation: real values and upper ones are kept, each upper one with

@@ -20,10 +20,10 @@ use crate::error::Result;
 use crate::fmt::fmt_root;
 use crate::lti::StateSpace;
 use crate::numeric::linalg::structure::radius;
-use crate::numeric::linalg::{EigenCluster, eigen_structure};
+use crate::numeric::linalg::{EigenCluster, StateMatrix, eigen_structure};
 use crate::numeric::linalg::{
-    controllability_staircase, eigenvectors, invariant_zeros, minimal_realization,
-    observability_staircase, transmission_zeros,
+    controllability_staircase, invariant_zeros, minimal_realization, observability_staircase,
+    transmission_zeros,
 };
 use crate::poly::{HalfPlane, half_plane};
 
@@ -159,7 +159,8 @@ impl StateSpace {
     pub fn analysis(&self) -> Result<SsAnalysis> {
         let (n, m, p) = (self.order(), self.b.ncols(), self.c.nrows());
         let (a, b, c, d) = (&self.a, &self.b, &self.c, &self.d);
-        let (mut sets, st) = eigenvectors(a)?;
+        // the model's A, recognised once (a second-order A answers from its modes)
+        let (mut sets, st) = StateMatrix::recognise(a).eigenvectors()?;
         let scale = st.scale;
         // An eigenvalue within its cluster radius of 0 is 0 for a matrix within ε‖A‖ of A
         // (an integrator, a free translation), one with a real part within it is on the axis

@@ -37,18 +37,6 @@ impl ComplexSchur {
 }
 
 /// Converts a real Schur form (with the whole T) to the complex triangular form.
-///
-/// ```
-/// use nalgebra::DMatrix;
-/// use ltikit::numeric::linalg::{SchurOptions, real_schur};
-/// use ltikit::numeric::linalg::complex_schur::complex_schur;
-/// let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, -2.0, -0.3, 1.0, 0.0, 0.0, -1.0]);
-/// let cs = complex_schur(&real_schur(&a, SchurOptions::default()).unwrap());
-/// for i in 0..3 { for j in 0..i { assert_eq!(cs.s[(i, j)].norm(), 0.0); } }
-/// // The diagonal: −1 and the pair −0.15 ± i·√(2 − 0.15²).
-/// let im = (2.0f64 - 0.0225).sqrt();
-/// assert!((0..3).any(|k| (cs.s[(k, k)] - num_complex::Complex64::new(-0.15, im)).norm() < 1e-14));
-/// ```
 pub fn complex_schur(real: &RealSchur) -> ComplexSchur {
     let n = real.order();
     let mut s = real.t.map(|x| Complex64::new(x, 0.0));
@@ -97,5 +85,29 @@ fn rotate_cols(
         let (x, y) = (m[(i, k)], m[(i, k + 1)]);
         m[(i, k)] = x * g11 + y * g21;
         m[(i, k + 1)] = x * g12 + y * g22;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// `complex_schur` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn complex_schur_example() {
+        use crate::numeric::linalg::complex_schur::complex_schur;
+        use crate::numeric::linalg::{SchurOptions, real_schur};
+        use nalgebra::DMatrix;
+        let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, -2.0, -0.3, 1.0, 0.0, 0.0, -1.0]);
+        let cs = complex_schur(&real_schur(&a, SchurOptions::default()).unwrap());
+        for i in 0..3 {
+            for j in 0..i {
+                assert_eq!(cs.s[(i, j)].norm(), 0.0);
+            }
+        }
+        // The diagonal: −1 and the pair −0.15 ± i·√(2 − 0.15²).
+        let im = (2.0f64 - 0.0225).sqrt();
+        assert!(
+            (0..3).any(|k| (cs.s[(k, k)] - num_complex::Complex64::new(-0.15, im)).norm() < 1e-14)
+        );
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! # Method
 //! From the balanced real Schur form A = D·Q·T·Qᵀ·D⁻¹ and its complex triangular form S
-//! ([`super::complex_schur`]): for every eigenvalue cluster of [`super::structure`] the
+//! (`complex_schur.rs`): for every eigenvalue cluster of [`super::structure`] the
 //! eigenspace of S is found by back-substitution (a simple eigenvalue: x\[p\] = 1 and the rows
 //! above solved; a multiple one: the null space of the reduced m×m problem), then mapped
 //! back, v = D·Q·Z·y (one real matrix product for all clusters), and orthonormalised per
@@ -15,8 +15,10 @@
 //!
 //! A defective eigenvalue gets its g < m true eigenvectors only (no generalised ones).
 //!
-//! A matrix with the mechanical structure of [`super::second_order`] takes its vectors from the
-//! modes instead: (x, μx) for mode shape x and root μ.
+//! This is the general path ([`general_eigenvectors`]). A matrix with the mechanical structure of
+//! [`super::second_order`] takes its vectors from the modes instead: (x, μx) for mode shape x and
+//! root μ ([`SecondOrder::eigenvectors`](super::second_order::SecondOrder::eigenvectors));
+//! [`eigenvectors`](super::eigenvectors) chooses.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -40,15 +42,15 @@ pub struct EigenvectorSet {
     pub residuals: Vec<f64>,
 }
 
-/// Eigenvalues with their eigenspaces, in the order of the clusters of
-/// [`eigen_structure`](super::eigen_structure) (also returned).
+/// Eigenvalues with their eigenspaces by the Schur form whatever the structure of A, in the
+/// order of the clusters of the eigen structure (also returned).
 ///
 /// ```
 /// use nalgebra::DMatrix;
-/// use ltikit::numeric::linalg::eigenvectors;
+/// use ltikit::numeric::linalg::eigvec::general_eigenvectors;
 /// // Undamped oscillator x'' = −4x: eigenvalues ±2i, mode shapes (1, ±2i)/√5.
 /// let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, 0.0]);
-/// let (sets, _) = eigenvectors(&a).unwrap();
+/// let (sets, _) = general_eigenvectors(&a).unwrap();
 /// assert_eq!(sets.len(), 2);
 /// for s in &sets {
 ///     assert!(s.residuals[0] < 1e-15);
@@ -57,11 +59,8 @@ pub struct EigenvectorSet {
 ///     assert!((ratio - s.value).norm() < 1e-14); // v ∝ (1, λ)
 /// }
 /// ```
-pub fn eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStructure)> {
-    let n = super::check_square(a, "the matrix")?;
-    if let Some(so) = super::second_order::SecondOrder::detect(a) {
-        return Ok(second_order_vectors(a, &so));
-    }
+pub fn general_eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStructure)> {
+    let n = super::checks::check_square(a, "the matrix")?;
     let real = real_schur(a, SchurOptions::default())?;
     let cs = complex_schur(&real);
     let (structure, bases) = structure_of(&real, &cs, true);
@@ -85,7 +84,7 @@ pub fn eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStruc
     let k = cols.len();
     let vr = q * DMatrix::from_column_slice(n, k, &y_re);
     let vi = q * DMatrix::from_column_slice(n, k, &y_im);
-    let norm_a = super::norm_1_inf(a);
+    let norm_a = super::norms::norm_1_inf(a);
     let mut sets: Vec<Option<EigenvectorSet>> = vec![None; structure.clusters.len()];
     for (ci, cluster) in structure.clusters.iter().enumerate() {
         let idx: Vec<usize> = (0..k).filter(|&c| cols[c].0 == ci).collect();
@@ -133,47 +132,8 @@ pub fn eigenvectors(a: &DMatrix<f64>) -> Result<(Vec<EigenvectorSet>, EigenStruc
     Ok((sets.into_iter().flatten().collect(), structure))
 }
 
-/// The eigenvectors of a second-order model from its modes: mode k with shape x (position
-/// coordinates) and root μ has the eigenvector (x, μx); a multiple eigenvalue takes one vector
-/// per mode (a critical mode's double root has only one), orthonormalised.
-fn second_order_vectors(
-    a: &DMatrix<f64>,
-    so: &super::second_order::SecondOrder,
-) -> (Vec<EigenvectorSet>, EigenStructure) {
-    let structure = so.eigen_structure();
-    let (d, n) = (so.dof, so.order());
-    let norm_a = super::norm_1_inf(a);
-    let mut sets = Vec::with_capacity(structure.clusters.len());
-    for cluster in &structure.clusters {
-        // one vector per mode of the cluster (the first root of a critical mode stands for it)
-        let mut modes: Vec<usize> = cluster.positions.iter().map(|&p| p / 2).collect();
-        modes.dedup();
-        let mut v = DMatrix::<Complex64>::zeros(n, modes.len());
-        for (j, &k) in modes.iter().enumerate() {
-            for i in 0..d {
-                let x = Complex64::new(so.shapes[(i, k)], 0.0);
-                v[(i, j)] = x;
-                v[(d + i, j)] = x * cluster.value;
-            }
-        }
-        let mut v = orthonormal(&v);
-        if cluster.value.im == 0.0 {
-            v.iter_mut().for_each(|z| z.im = 0.0);
-        }
-        normalise_phase(&mut v);
-        let residuals = residuals(a, &v, cluster.value, norm_a);
-        sets.push(EigenvectorSet {
-            value: cluster.value,
-            algebraic: cluster.algebraic,
-            vectors: v,
-            residuals,
-        });
-    }
-    (sets, structure)
-}
-
 /// Orthonormal columns spanning the same space (thin QR).
-fn orthonormal(v: &DMatrix<Complex64>) -> DMatrix<Complex64> {
+pub(crate) fn orthonormal(v: &DMatrix<Complex64>) -> DMatrix<Complex64> {
     if v.ncols() == 1 {
         let nv = v.norm();
         return if nv > 0.0 {
@@ -213,7 +173,7 @@ fn real_basis(v: &DMatrix<Complex64>, g: usize) -> DMatrix<Complex64> {
 }
 
 /// Scales each column so that its largest entry is real and positive.
-fn normalise_phase(v: &mut DMatrix<Complex64>) {
+pub(crate) fn normalise_phase(v: &mut DMatrix<Complex64>) {
     for mut col in v.column_iter_mut() {
         let big = col
             .iter()
@@ -228,7 +188,12 @@ fn normalise_phase(v: &mut DMatrix<Complex64>) {
 }
 
 /// ‖Av − λv‖₂/(‖A‖·‖v‖₂) per column.
-fn residuals(a: &DMatrix<f64>, v: &DMatrix<Complex64>, lambda: Complex64, norm_a: f64) -> Vec<f64> {
+pub(crate) fn residuals(
+    a: &DMatrix<f64>,
+    v: &DMatrix<Complex64>,
+    lambda: Complex64,
+    norm_a: f64,
+) -> Vec<f64> {
     let vr = v.map(|z| z.re);
     let vi = v.map(|z| z.im);
     let (ar, ai) = (a * &vr, a * &vi);

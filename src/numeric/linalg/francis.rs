@@ -13,7 +13,7 @@
 //!   of the active block) breaks cycles such as the companion matrix of sⁿ ± c (DESIGN §5);
 //! - the bulge starts at the lowest row where two consecutive small subdiagonal entries
 //!   allow it;
-//! - **2×2 blocks** are standardised by [`lanv2`]: a block with real eigenvalues is split
+//! - **2×2 blocks** are standardised by `lanv2`: a block with real eigenvalues is split
 //!   (made upper triangular by a rotation), a complex pair has equal diagonal entries and
 //!   off-diagonal entries of opposite signs, so eigenvalues are read without cancellation
 //!   (nalgebra's Schur leaves blocks with real eigenvalues and a NaN imaginary part).
@@ -444,7 +444,7 @@ fn apply_right3(d: &mut [f64], n: usize, r: &Refl3, rows: std::ops::Range<usize>
     }
 }
 
-/// Standardises the 2×2 block at rows/columns k, k+1 with [`lanv2`] and applies the rotation to
+/// Standardises the 2×2 block at rows/columns k, k+1 with `lanv2` and applies the rotation to
 /// the rest of T (if `want_t`) and to z.
 fn standardize_block(m: &mut Mat, k: usize, want_t: bool, z: Option<&mut [f64]>) {
     let n = m.n;
@@ -493,7 +493,7 @@ pub(crate) fn rotate_columns(
 
 /// A standardised 2×2 block [a b; c d] = Gᵀ·[a₀ b₀; c₀ d₀]·G, G = [cs −sn; sn cs].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Block2 {
+pub(crate) struct Block2 {
     /// Top-left entry.
     pub a: f64,
     /// Top-right entry.
@@ -510,7 +510,7 @@ pub struct Block2 {
 
 impl Block2 {
     /// The two eigenvalues as (re₁, im₁, re₂, im₂); a complex pair has im₁ > 0 = −im₂.
-    pub fn eigenvalues(&self) -> (f64, f64, f64, f64) {
+    pub(crate) fn eigenvalues(&self) -> (f64, f64, f64, f64) {
         if self.c == 0.0 {
             (self.a, 0.0, self.d, 0.0)
         } else {
@@ -523,19 +523,7 @@ impl Block2 {
 /// Schur factorisation of a real 2×2 matrix in standard form (the method of LAPACK's
 /// `dlanv2`, Bai & Demmel 1993): either c = 0 (real eigenvalues a, d) or a = d and b·c < 0
 /// (eigenvalues a ± i√(−bc)), computed without cancellation for nearly equal eigenvalues.
-///
-/// ```
-/// use ltikit::numeric::linalg::francis::lanv2;
-/// // Two real eigenvalues 1 and 3 from a non-triangular block.
-/// let blk = lanv2(2.0, 1.0, 1.0, 2.0);
-/// assert_eq!(blk.c, 0.0);
-/// let (r1, _, r2, _) = blk.eigenvalues();
-/// assert!((r1.max(r2) - 3.0).abs() < 1e-15 && (r1.min(r2) - 1.0).abs() < 1e-15);
-/// // A rotation block: ±2i.
-/// let (re, im, _, _) = lanv2(0.0, 2.0, -2.0, 0.0).eigenvalues();
-/// assert!(re == 0.0 && (im - 2.0).abs() < 1e-15);
-/// ```
-pub fn lanv2(a: f64, b: f64, c: f64, d: f64) -> Block2 {
+pub(crate) fn lanv2(a: f64, b: f64, c: f64, d: f64) -> Block2 {
     let eps = f64::EPSILON;
     let sgn = |x: f64, y: f64| if y >= 0.0 { x.abs() } else { -x.abs() };
     if c == 0.0 {
@@ -638,6 +626,21 @@ pub fn lanv2(a: f64, b: f64, c: f64, d: f64) -> Block2 {
 #[cfg(test)]
 mod tests {
     #![allow(clippy::float_cmp)] // these tests expect exact zeros and exact values
+
+    /// `lanv2` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn lanv2_example() {
+        use crate::numeric::linalg::francis::lanv2;
+        // Two real eigenvalues 1 and 3 from a non-triangular block.
+        let blk = lanv2(2.0, 1.0, 1.0, 2.0);
+        assert_eq!(blk.c, 0.0);
+        let (r1, _, r2, _) = blk.eigenvalues();
+        assert!((r1.max(r2) - 3.0).abs() < 1e-15 && (r1.min(r2) - 1.0).abs() < 1e-15);
+        // A rotation block: ±2i.
+        let (re, im, _, _) = lanv2(0.0, 2.0, -2.0, 0.0).eigenvalues();
+        assert!(re == 0.0 && (im - 2.0).abs() < 1e-15);
+    }
     use super::*;
 
     fn check_block(a: f64, b: f64, c: f64, d: f64) {

@@ -84,7 +84,7 @@ impl HessenbergResponse {
         c: &DMatrix<f64>,
         d: &DMatrix<f64>,
     ) -> Result<Self> {
-        let (n, m, p) = super::check_system(a, b, c, d)?;
+        let (n, m, p) = super::checks::check_system(a, b, c, d)?;
         let mut h = a.clone();
         let mut bb = b.clone();
         let mut cc = c.clone();
@@ -101,7 +101,7 @@ impl HessenbergResponse {
             r.apply_left(&mut bb, 0..m);
             r.apply_right(&mut cc, 0..p);
         }
-        let tiny = f64::EPSILON * super::frobenius(h.iter()).max(f64::MIN_POSITIVE);
+        let tiny = f64::EPSILON * super::norms::frobenius(h.iter()).max(f64::MIN_POSITIVE);
         if p > m {
             // Dual: Gᵀ = B̃ᵀ·(sI − Hᵀ)⁻¹·C̃ᵀ + Dᵀ; with J the reversal, J·Hᵀ·J is upper
             // Hessenberg: H_d = J·Hᵀ·J, B_d = J·C̃ᵀ, C_d = B̃ᵀ·J.

@@ -34,7 +34,7 @@ pub struct Hessenberg {
 /// assert!((&q * &hess.h * q.transpose() - &a).norm() < 1e-13 * a.norm());
 /// ```
 pub fn hessenberg(a: &DMatrix<f64>, want_q: bool) -> Result<Hessenberg> {
-    super::check_square(a, "the matrix")?;
+    super::checks::check_square(a, "the matrix")?;
     let mut h = a.clone();
     let reflectors = reduce_in_place(&mut h);
     let q = want_q.then(|| super::householder::form_product(a.nrows(), &reflectors));

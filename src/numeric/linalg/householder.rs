@@ -22,22 +22,11 @@ pub struct Reflector {
 /// Builds the reflector that maps x to β·e₁ (LAPACK's `dlarfg` convention: β = −sign(x₀)‖x‖,
 /// so no cancellation) and returns (β, τ); `x` is overwritten by v (x\[0\] = 1).
 /// For x[1..] = 0 the reflector is the identity (τ = 0) and β = x₀.
-///
-/// ```
-/// use ltikit::numeric::linalg::householder::make_reflector;
-/// let mut x = [3.0, 4.0];
-/// let (beta, tau) = make_reflector(&mut x);
-/// assert!((beta + 5.0).abs() < 1e-15);
-/// // P·[3, 4] = β e₁ with P = I − τ v vᵀ
-/// let v = x;
-/// let s = 3.0 * v[0] + 4.0 * v[1];
-/// assert!((4.0 - tau * s * v[1]).abs() < 1e-15);
-/// ```
 pub fn make_reflector(x: &mut [f64]) -> (f64, f64) {
     let Some((&alpha, tail)) = x.split_first() else {
         return (0.0, 0.0);
     };
-    let tail_norm = super::frobenius(tail.iter());
+    let tail_norm = super::norms::frobenius(tail.iter());
     if tail_norm == 0.0 {
         x[0] = 1.0;
         return (alpha, 0.0);
@@ -132,6 +121,20 @@ pub(crate) fn fixed_reflector(n: usize) -> Reflector {
 #[cfg(test)]
 mod tests {
     #![allow(clippy::float_cmp)] // these tests expect exact zeros and exact values
+
+    /// `make_reflector` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn make_reflector_example() {
+        use crate::numeric::linalg::householder::make_reflector;
+        let mut x = [3.0, 4.0];
+        let (beta, tau) = make_reflector(&mut x);
+        assert!((beta + 5.0).abs() < 1e-15);
+        // P·[3, 4] = β e₁ with P = I − τ v vᵀ
+        let v = x;
+        let s = 3.0 * v[0] + 4.0 * v[1];
+        assert!((4.0 - tau * s * v[1]).abs() < 1e-15);
+    }
     use super::*;
 
     #[test]

@@ -50,7 +50,7 @@ pub fn relative_degree(
     d: &DMatrix<f64>,
     tol: Option<f64>,
 ) -> Result<RelativeDegree> {
-    let (n, m, p) = super::check_system(a, b, c, d)?;
+    let (n, m, p) = super::checks::check_system(a, b, c, d)?;
     if m != 1 || p != 1 {
         return Err(LtiError::invalid(format!(
             "relative degree needs a single-input single-output system, got {p} outputs and {m} inputs"
@@ -63,7 +63,7 @@ pub fn relative_degree(
         d: d.clone(),
     };
     let (scaled, (ea, eb, ec)) = scale_system(&sys);
-    let norm = super::frobenius(
+    let norm = super::norms::frobenius(
         scaled
             .a
             .iter()
@@ -115,7 +115,7 @@ pub fn markov_parameter(
     d: &DMatrix<f64>,
     k: usize,
 ) -> Result<DMatrix<f64>> {
-    super::check_system(a, b, c, d)?;
+    super::checks::check_system(a, b, c, d)?;
     if k == 0 {
         return Ok(d.clone());
     }

@@ -73,7 +73,7 @@ pub fn minimal_realization(
     d: &DMatrix<f64>,
     tol: Option<f64>,
 ) -> Result<MinimalRealization> {
-    super::check_system(a, b, c, d)?;
+    super::checks::check_system(a, b, c, d)?;
     let ctrl = controllability_staircase(a, b, c, tol, false)?;
     let nc = ctrl.dim;
     let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;

@@ -109,7 +109,7 @@ pub fn rank_revealing_qr(x: &DMatrix<f64>, tol: f64) -> RankQr {
 
 /// 2-norm of column j from row `from` down (overflow-safe).
 fn col_norm(m: &DMatrix<f64>, j: usize, from: usize) -> f64 {
-    super::frobenius(m.column(j).rows_range(from..m.nrows()).iter())
+    super::norms::frobenius(m.column(j).rows_range(from..m.nrows()).iter())
 }
 
 #[cfg(test)]

@@ -83,7 +83,7 @@ pub struct RealSchur {
 /// for z in s.eigenvalues() { assert!((z.norm() - 1.0).abs() < 1e-14); }
 /// ```
 pub fn real_schur(a: &DMatrix<f64>, opts: SchurOptions) -> Result<RealSchur> {
-    let n = super::check_square(a, "the matrix")?;
+    let n = super::checks::check_square(a, "the matrix")?;
     let want_t = opts.want_t || opts.want_q;
     let mut m = a.clone();
     let d = if opts.balance && n >= 2 {
@@ -207,11 +207,11 @@ impl RealSchur {
                 r[(i, j)] = r[(i, j)] * self.d[i] / self.d[j] - a[(i, j)];
             }
         }
-        let na = super::frobenius(a.iter());
+        let na = super::norms::frobenius(a.iter());
         if na == 0.0 {
-            return super::frobenius(r.iter());
+            return super::norms::frobenius(r.iter());
         }
-        super::frobenius(r.iter()) / na
+        super::norms::frobenius(r.iter()) / na
     }
 }
 
@@ -236,18 +236,7 @@ pub(crate) fn blocks_of(t: &DMatrix<f64>) -> Vec<(usize, usize)> {
 /// Eigenvalues of a quasi-triangular matrix, each 2×2 block through [`lanv2`] (robust when
 /// the block has two nearly equal real eigenvalues, where the discriminant formula gives
 /// NaN or cancels).
-///
-/// ```
-/// use nalgebra::DMatrix;
-/// use ltikit::numeric::linalg::schur::quasi_triangular_eigenvalues;
-/// // A 2×2 block with real eigenvalues 1 ± 1e-10 (not standardised).
-/// let t = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1e-20, 1.0]);
-/// let ev = quasi_triangular_eigenvalues(&t);
-/// assert!(ev.iter().all(|z| z.im == 0.0));
-/// // Near 1 an f64 resolves ε = 2.2e-16: the split is 2e-10 to about that.
-/// assert!(((ev[0].re - ev[1].re).abs() - 2e-10).abs() <= 2.0 * f64::EPSILON);
-/// ```
-pub fn quasi_triangular_eigenvalues(t: &DMatrix<f64>) -> Vec<Complex64> {
+pub(crate) fn quasi_triangular_eigenvalues(t: &DMatrix<f64>) -> Vec<Complex64> {
     let mut out = Vec::with_capacity(t.nrows());
     for (k, size) in blocks_of(t) {
         if size == 1 {
@@ -272,6 +261,20 @@ pub fn quasi_triangular_eigenvalues(t: &DMatrix<f64>) -> Vec<Complex64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `quasi_triangular_eigenvalues` on a worked example (an internal kernel: a unit test, not a doctest).
+    #[test]
+    #[allow(clippy::float_cmp)] // exact values are meant
+    fn quasi_triangular_eigenvalues_example() {
+        use crate::numeric::linalg::schur::quasi_triangular_eigenvalues;
+        use nalgebra::DMatrix;
+        // A 2×2 block with real eigenvalues 1 ± 1e-10 (not standardised).
+        let t = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1e-20, 1.0]);
+        let ev = quasi_triangular_eigenvalues(&t);
+        assert!(ev.iter().all(|z| z.im == 0.0));
+        // Near 1 an f64 resolves ε = 2.2e-16: the split is 2e-10 to about that.
+        assert!(((ev[0].re - ev[1].re).abs() - 2e-10).abs() <= 2.0 * f64::EPSILON);
+    }
 
     #[test]
     fn cyclic_companions_terminate() {

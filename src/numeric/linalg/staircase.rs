@@ -90,12 +90,12 @@ pub fn controllability_staircase(
     want_z: bool,
 ) -> Result<Staircase> {
     let d = DMatrix::zeros(c.nrows(), b.ncols());
-    let (n, m, p) = super::check_system(a, b, c, &d)?;
+    let (n, m, p) = super::checks::check_system(a, b, c, &d)?;
     let mut a = a.clone();
     let mut b = b.clone();
     let mut c = c.clone();
     let mut z = want_z.then(|| DMatrix::<f64>::identity(n, n));
-    let norm = super::frobenius(a.iter().chain(b.iter()));
+    let norm = super::norms::frobenius(a.iter().chain(b.iter()));
     let abs_tol = tol.unwrap_or_else(|| default_tol(n)) * norm;
     let mut blocks = Vec::new();
     let mut r0 = 0; // first row not yet in the staircase

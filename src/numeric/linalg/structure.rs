@@ -74,34 +74,20 @@ pub struct EigenStructure {
 }
 
 /// Eigenvalues of a square, finite A grouped into multiple eigenvalues with algebraic and
-/// geometric multiplicities (see the [module docs](self)). A matrix with the mechanical
-/// structure of [`super::second_order`] gets its structure from the modes (a symmetric
-/// eigenproblem of half the order) instead of the Schur form.
+/// geometric multiplicities (see the [module docs](self)), by the Schur form whatever the
+/// structure of A. [`eigen_structure`](super::eigen_structure) takes a second-order model's
+/// modes instead when A has that structure.
 ///
 /// ```
 /// use nalgebra::DMatrix;
-/// use ltikit::numeric::linalg::eigen_structure;
+/// use ltikit::numeric::linalg::structure::general_eigen_structure;
 /// // A Jordan block of size 2 at −1 next to a simple eigenvalue −3.
 /// let a = DMatrix::from_row_slice(3, 3, &[-1.0, 1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -3.0]);
-/// let s = eigen_structure(&a).unwrap();
+/// let s = general_eigen_structure(&a).unwrap();
 /// let double = s.clusters.iter().find(|c| c.algebraic == 2).unwrap();
 /// assert!((double.value.re + 1.0).abs() < 1e-14 && double.value.im == 0.0);
 /// assert_eq!(double.geometric, 1);
-/// // The identity: one eigenvalue of multiplicity 3, semisimple.
-/// let s = eigen_structure(&DMatrix::identity(3, 3)).unwrap();
-/// assert_eq!(s.clusters.len(), 1);
-/// assert!(s.clusters[0].is_semisimple() && s.clusters[0].algebraic == 3);
 /// ```
-pub fn eigen_structure(a: &DMatrix<f64>) -> Result<EigenStructure> {
-    if a.iter().all(|x| x.is_finite())
-        && let Some(so) = super::second_order::SecondOrder::detect(a)
-    {
-        return Ok(so.eigen_structure());
-    }
-    general_eigen_structure(a)
-}
-
-/// [`eigen_structure`] by the Schur form alone, whatever the structure of A.
 pub fn general_eigen_structure(a: &DMatrix<f64>) -> Result<EigenStructure> {
     let opts = SchurOptions {
         balance: true,
@@ -122,7 +108,7 @@ pub(crate) fn structure_of(
     want_vectors: bool,
 ) -> (EigenStructure, Vec<Option<DMatrix<Complex64>>>) {
     let n = real.order();
-    let scale = super::norm_1_inf(&real.t);
+    let scale = super::norms::norm_1_inf(&real.t);
     let rank_tol = f64::EPSILON.sqrt() * scale;
     let ev: Vec<Complex64> = (0..n).map(|k| cs.s[(k, k)]).collect();
     let mut groups = link_clusters(&ev, scale);

@@ -35,7 +35,7 @@ use num_complex::Complex64;
 
 use super::minreal::minimal_realization;
 use super::rrqr::rank_revealing_qr;
-use super::structure::eigen_structure;
+use super::state_matrix::StateMatrix;
 use crate::error::{LtiError, Result};
 use crate::numeric::balance::{exponent, ldexp};
 
@@ -86,7 +86,7 @@ pub(crate) struct ReduceLog {
 /// Power-of-two scaling of (A, B, C, D): returns the scaled system and (eα, eβ, eγ) with
 /// A/2^eα, B/2^eβ, C/2^eγ, D·2^(eα−eβ−eγ).
 pub(crate) fn scale_system(s: &Sys) -> (Sys, (i32, i32, i32)) {
-    let e = |m: &DMatrix<f64>| exponent(super::norm_1_inf(m)).unwrap_or(0);
+    let e = |m: &DMatrix<f64>| exponent(super::norms::norm_1_inf(m)).unwrap_or(0);
     let (ea, eb, ec) = (e(&s.a), e(&s.b), e(&s.c));
     let scaled = Sys {
         a: s.a.map(|x| ldexp(x, -ea)),
@@ -189,7 +189,7 @@ pub fn invariant_zeros(
     d: &DMatrix<f64>,
     tol: Option<f64>,
 ) -> Result<InvariantZeros> {
-    let (n, m, p) = super::check_system(a, b, c, d)?;
+    let (n, m, p) = super::checks::check_system(a, b, c, d)?;
     if m != p {
         return Err(LtiError::invalid(format!(
             "invariant zeros need a square system (as many inputs as outputs), got {p} outputs and {m} inputs"
@@ -202,7 +202,7 @@ pub fn invariant_zeros(
         d: d.clone(),
     };
     let (scaled, (ea, _, _)) = scale_system(&sys);
-    let norm = super::frobenius(
+    let norm = super::norms::frobenius(
         scaled
             .a
             .iter()
@@ -243,7 +243,8 @@ pub fn invariant_zeros(
         let x = ldf.solve(&f.c).ok_or_else(not_regular)?;
         &f.a - &f.b * x
     };
-    let st = eigen_structure(&m_f)?;
+    // the zero dynamics is a matrix of its own: its structure is recognised like a model's
+    let st = StateMatrix::recognise(&m_f).eigen_structure()?;
     let back = |z: Complex64| Complex64::new(ldexp(z.re, ea), ldexp(z.im, ea));
     let mut zeros = Vec::with_capacity(nf);
     let mut distinct = Vec::new();

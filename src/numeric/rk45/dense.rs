@@ -1,7 +1,7 @@
 //! One accepted step with its continuous extension (Hairer's quartic interpolant).
 
 /// One accepted step [t₀, t₁] with its continuous extension, handed to the observer of
-/// [`integrate`](super::integrate).
+/// [`integrate`](super::integrate()).
 #[derive(Debug, Clone, Copy)]
 pub struct DenseStep<'a> {
     pub(super) t0: f64,

@@ -1,6 +1,7 @@
 //! Integration sampled at requested times, from the dense output.
 
-use super::{Rk45Options, Rk45Stats, StepControl, integrate};
+use super::integration::{Rk45Stats, StepControl, integrate};
+use super::options::Rk45Options;
 use crate::error::{LtiError, Result, check_finite};
 
 /// A solution sampled at requested times.

@@ -1,7 +1,7 @@
 //! One Dormand–Prince step (the six new stages, the error estimate, the dense-output
 //! coefficients), Hairer's starting step, and the step-size controller.
 
-use super::Rk45Options;
+use super::options::Rk45Options;
 use super::tableau::*;
 
 /// The work vectors of one integration: the seven stages (k₁ is the FSAL stage), the stage

@@ -4,6 +4,7 @@
 
 use num_complex::Complex64;
 
+use super::budget::beyond;
 use super::cdd::dd_sqrt;
 use super::number::Rational;
 use super::qpoly::ExactPoly;
@@ -11,7 +12,6 @@ use super::refine::simple_roots;
 use super::sqfree::{BasisElement, insert, square_free};
 use super::sturm::{HalfPlaneCounts, square_free_counts};
 use super::zpoly::ZPoly;
-use super::{beyond, check_budget};
 use crate::error::{LtiError, Result};
 use crate::poly::Root;
 
@@ -90,8 +90,8 @@ pub fn certify(num: &ExactPoly, den: &ExactPoly) -> Result<Structure> {
             what: "denominator".into(),
         });
     }
-    check_budget(num)?;
-    check_budget(den)?;
+    num.check_budget()?;
+    den.check_budget()?;
     let mut basis: Vec<BasisElement> = Vec::new();
     let (kn, kd) = (num.zero_root_multiplicity(), den.zero_root_multiplicity());
     let parts = [(num, kn, true), (den, kd, false)];

@@ -30,11 +30,13 @@
 //! Degree ≤ [`MAX_EXACT_DEGREE`], coefficients of the primitive integer polynomial ≤
 //! [`MAX_EXACT_BITS`] bits, gcd coefficients within the modular prime table (~3900 bits) and
 //! roots separable in double-double (relative separation above ~10⁻²⁸). Beyond it the functions
-//! return [`LtiError::BeyondExactBudget`]: use the
+//! return [`LtiError::BeyondExactBudget`](crate::LtiError::BeyondExactBudget): use the
 //! numerical path.
 
+mod budget;
 mod cdd;
 mod certify;
+mod disk;
 mod modular;
 mod mp;
 mod number;
@@ -44,52 +46,8 @@ mod sqfree;
 mod sturm;
 mod zpoly;
 
+pub use budget::{MAX_EXACT_BITS, MAX_EXACT_DEGREE, MAX_EXACT_WORK};
 pub use certify::{CertifiedRoot, Factor, Side, Structure, certify};
 pub use number::{MAX_DIGITS, MAX_EXPONENT, Rational};
 pub use qpoly::ExactPoly;
 pub use sturm::HalfPlaneCounts;
-
-use crate::error::{LtiError, Result};
-
-/// Highest degree the exact path takes.
-pub const MAX_EXACT_DEGREE: usize = 100;
-
-/// Largest coefficient (in bits) of the primitive integer form of an exact polynomial: about
-/// 1200 decimal digits.
-pub const MAX_EXACT_BITS: usize = 4096;
-
-/// Largest product degree × coefficient bits: the subresultant, Sturm and certification
-/// steps grow with both (a degree-49 polynomial of 2000-bit coefficients — decimals spanning
-/// 1e±300 — took 11.5 s; degree 20 at 2000 bits 0.05 s). Beyond it the numerical path runs
-/// and says so.
-pub const MAX_EXACT_WORK: usize = 40_000;
-
-/// The budget error.
-pub(crate) fn beyond(reason: impl Into<String>) -> LtiError {
-    LtiError::BeyondExactBudget {
-        reason: reason.into(),
-    }
-}
-
-/// Degree and coefficient size within the budget.
-pub(crate) fn check_budget(p: &ExactPoly) -> Result<()> {
-    if p.degree() > MAX_EXACT_DEGREE {
-        return Err(beyond(format!(
-            "degree {} exceeds {MAX_EXACT_DEGREE}",
-            p.degree()
-        )));
-    }
-    let bits = p.prim().max_bits();
-    if bits > MAX_EXACT_BITS {
-        return Err(beyond(format!(
-            "coefficients of {bits} bits exceed {MAX_EXACT_BITS} bits"
-        )));
-    }
-    if p.degree().saturating_mul(bits) > MAX_EXACT_WORK {
-        return Err(beyond(format!(
-            "degree {} × {bits}-bit coefficients exceeds {MAX_EXACT_WORK}",
-            p.degree()
-        )));
-    }
-    Ok(())
-}

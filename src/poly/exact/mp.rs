@@ -12,7 +12,7 @@ use dashu_int::ops::{BitTest, UnsignedAbs};
 use num_complex::Complex64;
 
 use super::cdd::Cdd;
-use super::refine::DiskRoot;
+use super::disk::DiskRoot;
 use super::zpoly::{ZPoly, pow2_mul};
 use crate::numeric::dd::Dd;
 

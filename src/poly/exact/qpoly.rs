@@ -4,11 +4,11 @@ use std::fmt;
 
 use dashu_int::IBig;
 
+use super::budget::{beyond, check_sizes};
 use super::number::{Rational, ratio_to_f64};
 use super::sqfree::square_free;
 use super::sturm::{HalfPlaneCounts, count_real_roots, square_free_counts};
 use super::zpoly::ZPoly;
-use super::{beyond, check_budget};
 use crate::error::{LtiError, Result};
 use crate::poly::Poly;
 
@@ -183,6 +183,13 @@ impl ExactPoly {
         &self.prim
     }
 
+    /// Degree and coefficient size within the exact path's budget (errors with
+    /// [`LtiError::BeyondExactBudget`](crate::LtiError::BeyondExactBudget) naming the size
+    /// that is not).
+    pub(crate) fn check_budget(&self) -> Result<()> {
+        check_sizes(self.degree(), self.prim().max_bits())
+    }
+
     /// The polynomial with each coefficient rounded to the nearest double (for the numerical
     /// steps). Errors when a coefficient overflows the doubles.
     ///
@@ -251,8 +258,8 @@ impl ExactPoly {
         if self.is_zero() && o.is_zero() {
             return Ok(ExactPoly::zero());
         }
-        check_budget(self)?;
-        check_budget(o)?;
+        self.check_budget()?;
+        o.check_budget()?;
         let (g, _, _) = super::modular::gcd_cofactors(&self.prim, &o.prim)
             .ok_or_else(|| beyond("the gcd's coefficients exceed the modular prime table"))?;
         Ok(ExactPoly::from_integer_poly(g, &Rational::from_integer(1)))
@@ -274,7 +281,7 @@ impl ExactPoly {
         if self.degree() == 0 {
             return Ok(Vec::new());
         }
-        check_budget(self)?;
+        self.check_budget()?;
         let f = square_free(&self.prim)
             .ok_or_else(|| beyond("a gcd's coefficients exceed the modular prime table"))?;
         Ok(f.into_iter()
@@ -303,7 +310,7 @@ impl ExactPoly {
                 what: "polynomial".into(),
             });
         }
-        check_budget(self)?;
+        self.check_budget()?;
         count_real_roots(&self.prim).ok_or_else(|| beyond("internal: inexact subresultant"))
     }
 
@@ -324,7 +331,7 @@ impl ExactPoly {
                 what: "polynomial".into(),
             });
         }
-        check_budget(self)?;
+        self.check_budget()?;
         let k = self.prim.low_zeros();
         let mut total = HalfPlaneCounts {
             axis: k,

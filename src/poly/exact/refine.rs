@@ -27,6 +27,7 @@
 use num_complex::Complex64;
 
 use super::cdd::{Cdd, mul_f64};
+use super::disk::DiskRoot;
 use super::number::ratio_to_f64;
 use super::zpoly::ZPoly;
 use crate::numeric::dd::Dd;
@@ -48,33 +49,6 @@ const QUICK_RADIUS: f64 = 8.470329472543003e-22;
 /// u = 2⁻¹⁰⁴: the unit of the double-double error bounds (with slack for the sloppy
 /// double-double additions, whose error is a few u relative to the summands).
 const U_DD: f64 = 4.930380657631324e-32;
-
-/// A root with its inclusion radius.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct DiskRoot {
-    /// Centre of the disk (the reported root is its rounding to doubles).
-    pub z: Cdd,
-    /// Radius (rigorous upper bound of the distance to the one root inside).
-    pub r: f64,
-}
-
-impl DiskRoot {
-    /// True when the disk lies in the open left (−1) or right (+1) half plane; 0 when it
-    /// touches the imaginary axis.
-    pub fn side(&self) -> i32 {
-        let re = self.z.re.to_f64();
-        if re.abs() > self.r * (1.0 + 1e-12) + f64::MIN_POSITIVE {
-            if re > 0.0 { 1 } else { -1 }
-        } else {
-            0
-        }
-    }
-
-    /// The root as a complex double (real roots have an imaginary part of exactly 0).
-    pub fn value(&self) -> Complex64 {
-        self.z.to_c64()
-    }
-}
 
 /// The polynomial of the iteration: ascending double-double coefficients.
 struct DdPoly {

@@ -3,8 +3,8 @@
 
 use num_complex::Complex64;
 
+use super::found::{Found, GROUP_REL};
 use super::newton::{confirm_complex, confirm_real, polish_complex, polish_real};
-use super::{Found, GROUP_REL};
 use crate::poly::{Poly, Root};
 
 /// Componentwise relative tolerance of the final reconstruction test. It only has to catch a

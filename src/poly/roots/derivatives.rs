@@ -4,10 +4,10 @@
 use num_complex::Complex64;
 
 use super::candidates::candidates;
+use super::found::{Found, GROUP_REL};
 use super::group::{group_weight, link_groups};
 use super::newton::{confirm_complex, confirm_real};
 use super::refine::factor_of;
-use super::{Found, GROUP_REL};
 use crate::poly::Poly;
 
 /// The derivative stage's work bound, in full-degree eigenvalue problems (see

@@ -3,8 +3,8 @@
 
 use num_complex::Complex64;
 
+use super::found::{Found, GROUP_REL};
 use super::newton::{bound, confirm_complex, confirm_real, polish_complex, polish_real};
-use super::{Found, GROUP_REL};
 use crate::poly::Poly;
 
 /// Factor on the predicted scatter radius within which every member of a group must lie for the

@@ -3,7 +3,7 @@
 
 use num_complex::Complex64;
 
-use super::Found;
+use super::found::Found;
 use crate::numeric::dd::{self, Dd, two_prod};
 use crate::numeric::tol::EPS;
 use crate::poly::{Poly, Root};

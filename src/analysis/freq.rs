@@ -38,10 +38,14 @@
 //! (s + 1)²⁰ — magnitude and principal phase come from double-double Horner and the factored
 //! phase only selects the branch, so the phase stays continuous and the values match the
 //! coefficients as given.
+//!
+//! The evaluation form and its kernels belong to the factored core, which builds it once per
+//! plant and caches it (`analysis::factored::bode`); this module turns it into a
+//! [`FrequencyResponse`], one block of frequencies per core for large grids.
 
 use serde::Serialize;
 
-use crate::analysis::factored::Factored;
+use crate::analysis::factored::{BodeForm, Factored};
 use crate::error::{LtiError, Result, check_finite};
 use crate::lti::TransferFunction;
 
@@ -194,20 +198,6 @@ pub fn check_frequencies(w: &[f64]) -> Result<()> {
     }
     Ok(())
 }
-
-#[cfg(all(target_arch = "x86_64", ltikit_simd))]
-mod avx2;
-#[cfg(all(target_arch = "x86_64", ltikit_simd))]
-mod avx512;
-mod bode;
-mod corners;
-mod factors;
-mod fastmath;
-mod horner;
-mod kernel;
-
-pub(crate) use bode::BodeForm;
-pub(crate) use factors::mul_pow2;
 
 #[cfg(test)]
 mod tests {

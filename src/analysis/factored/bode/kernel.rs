@@ -27,9 +27,9 @@
 
 use std::f64::consts::LN_2;
 
-use super::bode::BodeForm;
 use super::factors::{Eval, FactorSet, exponent, mul_pow2, pow2};
 use super::fastmath;
+use super::form::BodeForm;
 
 /// Which evaluation loop `response_fill` runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -292,7 +292,7 @@ impl BodeForm {
 
     /// |G|, 20·log₁₀|G| and the continuous phase (degrees) at every ω of `w` (each finite,
     /// ≥ 0), written to the three slices (each as long as `w`).
-    pub(super) fn response_fill(
+    pub(crate) fn response_fill(
         &self,
         w: &[f64],
         magnitude: &mut [f64],
@@ -469,7 +469,7 @@ mod tests {
     use super::*;
 
     fn form(g: &crate::lti::TransferFunction) -> BodeForm {
-        BodeForm::new(&g.factored().unwrap())
+        g.factored().unwrap().bode().clone()
     }
     use crate::lti::TransferFunction;
     use num_complex::Complex64;

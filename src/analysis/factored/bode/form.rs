@@ -5,8 +5,12 @@ use std::f64::consts::{LN_2, TAU};
 
 use super::factors::*;
 use super::fastmath;
-use super::horner::AxisHorner;
-use crate::analysis::factored::Factored;
+use super::horner::{AxisHorner, FACTORED_CHECK_TOL, wrap_pi};
+use crate::analysis::factored::low_frequency::LowFrequency;
+use crate::lti::TransferFunction;
+use num_complex::Complex64;
+
+use crate::poly::{HalfPlane, Root};
 
 /// The factored (Bode) form of a reduced transfer function, precomputed for evaluation at
 /// many frequencies. Shared by the frequency response, margins and grids.
@@ -34,15 +38,25 @@ pub(crate) struct BodeForm {
 }
 
 impl BodeForm {
-    /// The evaluation form of a factored plant: K and k of the low-frequency asymptote from
-    /// the source (exact from coefficients), the reduced zeros and poles as real factors.
-    pub fn new(f: &Factored) -> BodeForm {
-        if f.is_zero() {
+    /// The evaluation form of a factored plant (G ≡ 0 when `zero`): K and k of the
+    /// low-frequency asymptote `lf` (from the source: exact from coefficients), the reduced
+    /// zeros and poles as real factors; for a plant given by coefficients, `coefficients` are
+    /// (as given, reduced, cancelled roots) and the factors are checked against them
+    /// ([`BodeForm::checked`]). `side` decides the half plane of each root (the factored
+    /// form's decision: exact for coefficients typed as text).
+    pub fn new(
+        zero: bool,
+        lf: LowFrequency,
+        reduced_zeros: &[Root],
+        reduced_poles: &[Root],
+        coefficients: Option<(&TransferFunction, &TransferFunction, &[Root])>,
+        side: &dyn Fn(Complex64) -> HalfPlane,
+    ) -> BodeForm {
+        if zero {
             return Self::zero_form();
         }
-        let lf = f.low_frequency();
-        let num = FactorSet::from_roots(f.reduced_zeros(), |p| f.side_of(p));
-        let den = FactorSet::from_roots(f.reduced_poles(), |p| f.side_of(p));
+        let num = FactorSet::from_roots(reduced_zeros, side);
+        let den = FactorSet::from_roots(reduced_poles, side);
         let rate = num.max_rate().max(den.max_rate());
         let fast_limit = if rate > 0.0 {
             FAST_FACTOR_LIMIT / rate
@@ -70,9 +84,75 @@ impl BodeForm {
             fast_limit,
             exact: None,
         };
-        match f.source().coefficients() {
-            Some(c) => form.checked(&c.tf, &c.reduced, &f.pole_zero().cancelled),
+        match coefficients {
+            Some((given, reduced, cancelled)) => form.checked(given, reduced, cancelled),
             None => form,
+        }
+    }
+
+    /// Compares the factored form with double-double Horner on the coefficients *as given*
+    /// at probe frequencies (the corner frequencies and a log grid); on disagreement beyond
+    /// [`FACTORED_CHECK_TOL`] switches to Horner magnitudes and principal phases. (The reduced
+    /// coefficients come from a division by the computed common factor and carry its error:
+    /// they are only the reference within a relative 1e-6 of a cancelled root on the axis,
+    /// where N and D both vanish.)
+    pub(super) fn checked(
+        mut self,
+        given: &TransferFunction,
+        reduced: &TransferFunction,
+        cancelled: &[Root],
+    ) -> BodeForm {
+        let horner = AxisHorner::new(given, reduced, cancelled);
+        let mut probes = self.corner_frequencies();
+        probes.sort_by(f64::total_cmp);
+        probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
+        if probes.len() > 48 {
+            let step = probes.len() as f64 / 48.0;
+            probes = (0..48)
+                .map(|i| probes[(i as f64 * step) as usize])
+                .collect();
+        }
+        let (a, b) = self.decade_range();
+        probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
+        let axis: Vec<f64> = self
+            .num
+            .axis
+            .iter()
+            .chain(&self.den.axis)
+            .copied()
+            .collect();
+        for &w in &probes {
+            if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
+                continue;
+            }
+            let f = self.eval(w);
+            if !(f.mant > 0.0 && f.mant.is_finite()) {
+                continue;
+            }
+            let (ln_h, arg_h) = horner.eval(w);
+            let dl = (f.ln_mag() - ln_h).abs();
+            let dp = wrap_pi(f.phase_rad() - arg_h).abs();
+            if !(dl <= FACTORED_CHECK_TOL && dp <= FACTORED_CHECK_TOL) {
+                self.exact = Some(Box::new(horner));
+                break;
+            }
+        }
+        self
+    }
+
+    /// Horner magnitude and principal phase on the branch of the factored phase `f`.
+    #[cold]
+    pub(super) fn refine(f: Eval, h: &AxisHorner, w: f64) -> Eval {
+        if !(f.mant > 0.0 && f.mant.is_finite()) {
+            return f; // an exact zero or pole on the axis
+        }
+        let (ln, arg) = h.eval(w);
+        let e = (ln / LN_2).floor().clamp(-2.0e9, 2.0e9);
+        Eval {
+            mant: (ln - e * LN_2).exp(),
+            exp2: e as i32,
+            angle: f.angle + wrap_pi(arg - f.phase_rad()),
+            quarters: f.quarters,
         }
     }
 
@@ -320,7 +400,7 @@ mod tests {
     }
 
     fn form(g: &TransferFunction) -> BodeForm {
-        BodeForm::new(&g.factored().unwrap())
+        g.factored().unwrap().bode().clone()
     }
 
     /// Both evaluation paths agree (fast path against the per-factor logarithmic path).

@@ -1,49 +1,15 @@
-//! Second-order (mechanical) structure: A = [[0, I], [−G, −E]] — positions q, then velocities
-//! q̇, with q̈ = −G·q − E·q̇ + … — where one positive diagonal similarity makes the stiffness G
-//! and the damping E symmetric, and they commute (classical damping: none, Rayleigh
-//! E = αI + βG, or any E with the same modes). Such a model is a set of uncoupled modes
-//! η̈ₖ + γₖ·η̇ₖ + λₖ·ηₖ = …, found by a *symmetric* eigenproblem of half the order, whose
-//! eigenvalues and vectors are accurate to ε‖G‖ whatever their multiplicity.
-//!
-//! MATLAB keeps such models apart as M, C, K (`mechss`); here the structure is recognised in
-//! A itself, so a model built by hand, from a plant file or by the seed's lattice model gets
-//! it without asking.
-//!
-//! # Recognition
-//! 1. A is 2d×2d, its upper-left d×d block is exactly zero and its upper-right block exactly
-//!    the identity (the states are positions, then their velocities).
-//! 2. G = −A₂₁ and E = −A₂₂ are symmetric, or become symmetric under one diagonal similarity
-//!    S = Δ·G·Δ⁻¹ (Δ = diag(δ), δ > 0: the square roots of the masses when G = M⁻¹K with M
-//!    diagonal), found along a spanning forest of the coupling graph (δⱼ² = δᵢ²·gᵢⱼ/gⱼᵢ) and
-//!    then checked on every entry: |sᵢⱼ − sⱼᵢ| ≤ [`SYM_REL`]·max(|sᵢⱼ|, |sⱼᵢ|).
-//! 3. S_G = V·Λ·Vᵀ (nalgebra's `SymmetricEigen`, capped). Within each group of equal λ
-//!    (single linkage at [`snap_tol`]) the damping VᵀS_E·V is diagonalised as well; the model is
-//!    accepted when what is left off the diagonal of VᵀS_E·V is at most the same tolerance
-//!    (the damping does not couple the modes) and the residual ‖S_G·V − V·Λ‖ is too.
-//!
-//! # The modes
-//! Mode k has stiffness λₖ and damping γₖ; both are snapped within [`snap_tol`] — to 0, and
-//! the members of a group of equal values to their mean (a matrix within that distance of A
-//! has them exactly: a free translation, degenerate pairs). Its eigenvalues are the roots of
-//! μ² + γμ + λ = 0 from the discriminant rounded once (a fused multiply-add); when they are closer than the cluster
-//! diameter of [`super::structure`] (2·ν·(64nε)^(1/2)) the mode is *critical*: one double
-//! eigenvalue −γ/2 with a single eigenvector (the 2×2 block is a companion matrix, never
-//! diagonal): a Jordan block, like the rigid-body mode λ = γ = 0.
-//!
-//! (One concept in one file: the recognition and the modes it yields, ~450 lines; the rest
-//! are its unit tests, beside the code as everywhere in the crate. The modal form built from
-//! the modes lives with the modal form, `modal::from_modes`.)
+//! Recognition of the second-order structure in A, and the modes it yields (see the
+//! [module docs](super)).
 
 use nalgebra::{DMatrix, SymmetricEigen};
 use num_complex::Complex64;
-
-use super::structure::{EigenCluster, EigenStructure};
 
 /// Relative asymmetry accepted in the symmetrised stiffness and damping (rounding of the
 /// model's own construction, e.g. M⁻¹K formed in floating point).
 pub const SYM_REL: f64 = 64.0 * f64::EPSILON;
 
-/// Growth factor of the snapping tolerance (as [`super::structure`]'s cluster radius).
+/// Growth factor of the snapping tolerance (as [`crate::numeric::linalg::structure`]'s cluster
+/// radius).
 const GROWTH: f64 = 64.0;
 
 /// One mode η̈ + γη̇ + λη = … of a second-order model.
@@ -60,7 +26,7 @@ pub struct SecondOrderMode {
     pub critical: bool,
 }
 
-/// A state-space matrix recognised as second order (see the [module docs](self)).
+/// A state-space matrix recognised as second order (see the [module docs](super)).
 #[derive(Clone, Debug)]
 pub struct SecondOrder {
     /// Degrees of freedom d (A is 2d × 2d).
@@ -231,7 +197,7 @@ impl SecondOrderMode {
 }
 
 impl SecondOrder {
-    /// Recognises the second-order structure of `a` (see the [module docs](self)); `None` when
+    /// Recognises the second-order structure of `a` (see the [module docs](super)); `None` when
     /// `a` does not have it (or the symmetric eigenproblem does not converge, practically
     /// never). `a` must be finite.
     ///
@@ -349,9 +315,9 @@ impl SecondOrder {
                 }
             }
         }
-        let scale = super::norm_1_inf(a);
+        let scale = crate::numeric::linalg::norms::norm_1_inf(a);
         // the cluster diameter of a double eigenvalue (structure.rs: 2·r₂)
-        let critical_tol = 2.0 * super::structure::radius(2, n, scale);
+        let critical_tol = 2.0 * crate::numeric::linalg::structure::radius(2, n, scale);
         let modes = lam
             .iter()
             .zip(&gam)
@@ -371,88 +337,6 @@ impl SecondOrder {
     /// Order 2d of A.
     pub fn order(&self) -> usize {
         2 * self.dof
-    }
-
-    /// The eigenvalues of A grouped into multiple eigenvalues: roots of different modes within
-    /// the simple-eigenvalue radius of [`super::structure`] share a cluster (semisimple: one
-    /// eigenvector per mode); a critical mode adds two to the algebraic and one to the
-    /// geometric multiplicity. Positions are 2k, 2k + 1 for mode k; `sigma` holds, per
-    /// critical mode, the non-zero singular value of its block minus the eigenvalue (relative
-    /// to ν) and then one 0 per eigenvector.
-    pub fn eigen_structure(&self) -> EigenStructure {
-        let n = self.order();
-        let scale = self.scale;
-        // (value, position, mode critical)
-        let mut ev: Vec<(Complex64, usize, bool)> = Vec::with_capacity(n);
-        for (k, m) in self.modes.iter().enumerate() {
-            ev.push((m.roots[0], 2 * k, m.critical));
-            ev.push((m.roots[1], 2 * k + 1, m.critical));
-        }
-        let tol = super::structure::radius(1, n, scale);
-        let values: Vec<Complex64> = ev.iter().map(|e| e.0).collect();
-        let labels = super::modal::single_linkage(&values, tol);
-        // labels number the clusters in order of first appearance
-        let count = labels.iter().map(|&l| l + 1).max().unwrap_or(0);
-        let mut clusters: Vec<EigenCluster> = (0..count)
-            .map(|_| EigenCluster {
-                value: Complex64::new(0.0, 0.0),
-                algebraic: 0,
-                geometric: 0,
-                members: Vec::new(),
-                positions: Vec::new(),
-                sigma: Vec::new(),
-            })
-            .collect();
-        for (&(value, pos, critical), &label) in ev.iter().zip(&labels) {
-            let c = &mut clusters[label];
-            c.members.push(value);
-            c.positions.push(pos);
-            c.algebraic += 1;
-            // a critical mode's two roots: one eigenvector (counted at its first root)
-            if !critical || pos % 2 == 0 {
-                c.geometric += 1;
-            }
-            if critical && pos % 2 == 0 {
-                let m = &self.modes[pos / 2];
-                let mu = m.roots[0].re;
-                // ‖[[−μ, 1], [−λ, −γ − μ]]‖_F (rank 1)
-                let s =
-                    (mu * mu + 1.0 + m.stiffness * m.stiffness + (m.damping + mu).powi(2)).sqrt();
-                c.sigma.push(s / scale.max(f64::MIN_POSITIVE));
-            }
-        }
-        for c in &mut clusters {
-            let sum: Complex64 = c.members.iter().sum();
-            let mean = sum / c.members.len() as f64;
-            let self_conj = c.members.iter().all(|z| {
-                c.members
-                    .iter()
-                    .any(|w| (w.conj() - z).norm() <= tol || w.conj() == *z)
-            });
-            c.value = if self_conj {
-                Complex64::new(mean.re, 0.0)
-            } else {
-                mean
-            };
-            c.sigma.sort_by(|a, b| b.total_cmp(a));
-            c.sigma.extend(std::iter::repeat_n(0.0, c.geometric));
-        }
-        // exact conjugate values for mirrored clusters
-        let values: Vec<Complex64> = clusters.iter().map(|c| c.value).collect();
-        for c in &mut clusters {
-            if c.value.im < 0.0
-                && let Some(up) = values
-                    .iter()
-                    .find(|v| v.im > 0.0 && (v.conj() - c.value).norm() <= tol)
-            {
-                c.value = up.conj();
-            }
-        }
-        EigenStructure {
-            clusters,
-            scale,
-            rank_tol: f64::EPSILON.sqrt() * scale,
-        }
     }
 }
 

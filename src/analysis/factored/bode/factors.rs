@@ -6,8 +6,7 @@ use std::f64::consts::{FRAC_PI_2, LN_2, PI};
 
 use num_complex::Complex64;
 
-use crate::analysis::stability::HalfPlane;
-use crate::poly::Root;
+use crate::poly::{HalfPlane, Root};
 
 /// A real quadratic factor (1 − aω²) + jbω of a conjugate pair p, p̄ (p = σ + jβ):
 /// a = 1/|p|², b = −2σ/|p|²; `r` = |p| and `sn` = σ/r for the overflow-free path.
@@ -40,7 +39,7 @@ impl FactorSet {
     /// The factors of `roots`, with the half plane of each pair decided by `side` (the
     /// factored form's decision: exact for coefficients typed as text, so a pair 1e-20 left of
     /// the axis is a lightly damped quadratic with a finite peak, not an axis pole).
-    pub(super) fn from_roots(roots: &[Root], side: impl Fn(Complex64) -> HalfPlane) -> FactorSet {
+    pub(super) fn from_roots(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> FactorSet {
         let mut s = FactorSet::default();
         for r in roots {
             let p = r.value;

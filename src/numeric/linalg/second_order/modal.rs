@@ -1,36 +1,39 @@
-//! The modal form of a second-order model from its modes ([`ModalForm::from_second_order`]):
-//! no Schur form, no reordering, no Sylvester solves.
+//! The modal form of a second-order model from its modes ([`SecondOrder::modal_form`]): no
+//! Schur form, no reordering, no Sylvester solves.
 
 use nalgebra::DMatrix;
+use num_complex::Complex64 as C;
 
-use super::{C, CLUSTER_REL, Inverse, MAX_COND, ModalBlock, ModalForm};
-use crate::numeric::linalg::second_order::SecondOrder;
+use super::SecondOrder;
+use crate::numeric::linalg::modal::{CLUSTER_REL, MAX_COND, ModalBlock, ModalForm};
 
-impl ModalForm {
-    /// The modal form of a second-order model (see [`crate::numeric::linalg::second_order`]), built from its
-    /// modes without a Schur form: X = diag(X_q, X_q)·P with, per mode, P = [[1, 1], [μ₁, μ₂]]
-    /// (two 1×1 blocks μ₁, μ₂; the lower one of a complex pair with exactly conjugate data) or,
-    /// for a critical mode or roots closer than [`CLUSTER_REL`]·ν, P = [[1, 0], [μ₁, 1]] and the
-    /// 2×2 block [[μ₁, 1], [0, μ₂]]. `None` when the condition estimate exceeds [`MAX_COND`].
-    /// No Hessenberg check: the modes were verified by their residuals when recognised.
+impl SecondOrder {
+    /// The modal form of the model (A, B, C, D) whose A this structure was recognised in (see
+    /// the [module docs](super)), built from its modes without a Schur form:
+    /// X = diag(X_q, X_q)·P with, per mode, P = [[1, 1], [μ₁, μ₂]] (two 1×1 blocks μ₁, μ₂; the
+    /// lower one of a complex pair with exactly conjugate data) or, for a critical mode or
+    /// roots closer than [`CLUSTER_REL`]·ν, P = [[1, 0], [μ₁, 1]] and the 2×2 block
+    /// [[μ₁, 1], [0, μ₂]]. `None` when the condition estimate exceeds [`MAX_COND`]. No
+    /// Hessenberg check: the modes were verified by their residuals when recognised.
     ///
     /// ```
     /// use nalgebra::DMatrix;
-    /// use ltikit::numeric::linalg::{modal::ModalForm, second_order::SecondOrder};
+    /// use ltikit::numeric::linalg::second_order::SecondOrder;
     /// // q̈ = −4q − 0.8q̇ + u, y = q: G = 1/(s² + 0.8s + 4)
     /// let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -0.8]);
     /// let (b, c) = (DMatrix::from_row_slice(2, 1, &[0.0, 1.0]), DMatrix::from_row_slice(1, 2, &[1.0, 0.0]));
     /// let so = SecondOrder::detect(&a).unwrap();
-    /// let m = ModalForm::from_second_order(&so, &b, &c, &DMatrix::zeros(1, 1)).unwrap();
+    /// let m = so.modal_form(&b, &c, &DMatrix::zeros(1, 1)).unwrap();
     /// let s = num_complex::Complex64::new(0.1, 1.5);
     /// assert!((m.eval(s)[(0, 0)] - 1.0 / (s * s + 0.8 * s + 4.0)).norm() < 1e-15);
     /// ```
-    pub fn from_second_order(
-        so: &SecondOrder,
+    pub fn modal_form(
+        &self,
         b: &DMatrix<f64>,
         c: &DMatrix<f64>,
         d: &DMatrix<f64>,
     ) -> Option<ModalForm> {
+        let so = self;
         let dof = so.dof;
         let n = 2 * dof;
         let (m, p) = (b.ncols(), c.nrows());
@@ -103,16 +106,14 @@ impl ModalForm {
         if !(cond.is_finite() && cond <= MAX_COND) {
             return None;
         }
-        Some(ModalForm {
+        Some(ModalForm::in_mode_coordinates(
             blocks,
-            b: b_hat,
-            c: c_hat,
-            inverse: Inverse::SecondOrder {
-                shapes_inv: so.shapes_inv.clone(),
-                modes: maps,
-            },
-            d: d.clone(),
+            b_hat,
+            c_hat,
+            d.clone(),
             cond,
-        })
+            so.shapes_inv.clone(),
+            maps,
+        ))
     }
 }

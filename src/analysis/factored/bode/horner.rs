@@ -3,8 +3,7 @@
 
 use std::f64::consts::{FRAC_PI_2, LN_2, PI, TAU};
 
-use super::BodeForm;
-use super::factors::{Eval, exponent, mul_pow2};
+use super::factors::{exponent, mul_pow2};
 use crate::lti::TransferFunction;
 use crate::poly::{HalfPlane, Root};
 
@@ -147,72 +146,4 @@ pub(super) const FACTORED_CHECK_TOL: f64 = 1e-11;
 pub(super) fn wrap_pi(x: f64) -> f64 {
     let y = x - TAU * (x / TAU).round();
     if y <= -PI { y + TAU } else { y }
-}
-
-impl BodeForm {
-    /// Compares the factored form with double-double Horner on the coefficients *as given*
-    /// at probe frequencies (the corner frequencies and a log grid); on disagreement beyond
-    /// [`FACTORED_CHECK_TOL`] switches to Horner magnitudes and principal phases. (The reduced
-    /// coefficients come from a division by the computed common factor and carry its error:
-    /// they are only the reference within a relative 1e-6 of a cancelled root on the axis,
-    /// where N and D both vanish.)
-    pub(super) fn checked(
-        mut self,
-        given: &TransferFunction,
-        reduced: &TransferFunction,
-        cancelled: &[Root],
-    ) -> BodeForm {
-        let horner = AxisHorner::new(given, reduced, cancelled);
-        let mut probes = self.corner_frequencies();
-        probes.sort_by(f64::total_cmp);
-        probes.dedup_by(|b, a| (*b - *a).abs() <= 1e-3 * *a);
-        if probes.len() > 48 {
-            let step = probes.len() as f64 / 48.0;
-            probes = (0..48)
-                .map(|i| probes[(i as f64 * step) as usize])
-                .collect();
-        }
-        let (a, b) = self.decade_range();
-        probes.extend((0..16).map(|i| 10f64.powf(a + (b - a) * i as f64 / 15.0)));
-        let axis: Vec<f64> = self
-            .num
-            .axis
-            .iter()
-            .chain(&self.den.axis)
-            .copied()
-            .collect();
-        for &w in &probes {
-            if !(w > 0.0 && w.is_finite()) || axis.iter().any(|&b| (w - b).abs() <= 1e-6 * b) {
-                continue;
-            }
-            let f = self.eval(w);
-            if !(f.mant > 0.0 && f.mant.is_finite()) {
-                continue;
-            }
-            let (ln_h, arg_h) = horner.eval(w);
-            let dl = (f.ln_mag() - ln_h).abs();
-            let dp = wrap_pi(f.phase_rad() - arg_h).abs();
-            if !(dl <= FACTORED_CHECK_TOL && dp <= FACTORED_CHECK_TOL) {
-                self.exact = Some(Box::new(horner));
-                break;
-            }
-        }
-        self
-    }
-
-    /// Horner magnitude and principal phase on the branch of the factored phase `f`.
-    #[cold]
-    pub(super) fn refine(f: Eval, h: &AxisHorner, w: f64) -> Eval {
-        if !(f.mant > 0.0 && f.mant.is_finite()) {
-            return f; // an exact zero or pole on the axis
-        }
-        let (ln, arg) = h.eval(w);
-        let e = (ln / LN_2).floor().clamp(-2.0e9, 2.0e9);
-        Eval {
-            mant: (ln - e * LN_2).exp(),
-            exp2: e as i32,
-            angle: f.angle + wrap_pi(arg - f.phase_rad()),
-            quarters: f.quarters,
-        }
-    }
 }

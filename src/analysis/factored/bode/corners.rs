@@ -1,7 +1,7 @@
 //! The frequency scales of a factored form: corner frequencies, lightly damped pairs, the
 //! decade range of the automatic grids and a sampling grid for sign-change searches.
 
-use super::BodeForm;
+use super::form::BodeForm;
 
 impl BodeForm {
     /// Corner frequencies |p| of every non-zero reduced pole and zero (with repetition).

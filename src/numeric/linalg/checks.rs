@@ -1,0 +1,66 @@
+//! The argument checks of the kernels: a square matrix, finite entries, the dimensions of a
+//! system (A, B, C, D). Each error names the matrix and, for a bad entry, its row and column.
+
+use nalgebra::DMatrix;
+
+use crate::error::{LtiError, Result};
+
+/// Errors unless `a` is square with finite entries; returns its order.
+pub(crate) fn check_square(a: &DMatrix<f64>, what: &str) -> Result<usize> {
+    if !a.is_square() {
+        return Err(LtiError::invalid(format!(
+            "{what} must be square, got {}×{}",
+            a.nrows(),
+            a.ncols()
+        )));
+    }
+    check_finite(a, what)?;
+    Ok(a.nrows())
+}
+
+/// Errors at the first NaN or infinite entry (named by its row and column).
+pub(crate) fn check_finite(a: &DMatrix<f64>, what: &str) -> Result<()> {
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            let x = a[(i, j)];
+            if !x.is_finite() {
+                return Err(LtiError::NonFinite {
+                    what: format!("entry ({}, {}) of {what}", i + 1, j + 1),
+                    value: x,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Errors unless (A, B, C, D) have consistent dimensions (n×n, n×m, p×n, p×m) and finite
+/// entries; returns (n, m, p).
+pub(crate) fn check_system(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+) -> Result<(usize, usize, usize)> {
+    let n = check_square(a, "A")?;
+    let (m, p) = (b.ncols(), c.nrows());
+    let bad = |what: &str, got: (usize, usize), want: (usize, usize)| {
+        LtiError::invalid(format!(
+            "{what} must be {}×{} to match A ({n}×{n}), B and C, got {}×{}",
+            want.0, want.1, got.0, got.1
+        ))
+    };
+    if b.nrows() != n {
+        return Err(bad("B", b.shape(), (n, m)));
+    }
+    if c.ncols() != n {
+        return Err(bad("C", c.shape(), (p, n)));
+    }
+    if d.shape() != (p, m) {
+        return Err(bad("D", d.shape(), (p, m)));
+    }
+    check_finite(b, "B")?;
+    check_finite(c, "C")?;
+    check_finite(d, "D")?;
+    Ok((n, m, p))
+}
