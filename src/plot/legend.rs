@@ -2,10 +2,10 @@
 
 use super::frame::Frame;
 use super::raster::Canvas;
+use super::raster::Color;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
 use super::text::{HAlign, Measured, VAlign};
 use crate::error::Result;
-use crate::plot::Color;
 
 /// A legend or information row: optional swatch, then text.
 #[derive(Debug, Clone)]
@@ -59,6 +59,9 @@ pub(crate) enum Corner {
 
 /// A box (x0, y0, x1, y1) in pixels.
 pub(crate) type Rect = (f64, f64, f64, f64);
+
+/// Pixel points that a legend should not hide (samples of the curves, annotation boxes).
+pub(crate) type Avoid = Vec<(f64, f64)>;
 
 /// A legend fitted to its frame: the rows shown (text measured, and shortened with an
 /// ellipsis where wider than the frame), and the box size.

@@ -5,11 +5,13 @@ use std::path::Path;
 use super::axes::Axis;
 use super::frame::Frame;
 use super::layout::{bounds, check_span, draw_title, layout_single, tick_targets};
-use super::legend::{Corner, LegendEntry, Rect, box_points, draw_legend, sample_run};
+use super::legend::{Avoid, Corner, LegendEntry, Rect, box_points, draw_legend, sample_run};
+use super::options::{PlotOptions, check_label};
 use super::raster::Canvas;
+use super::raster::Color;
+use super::render::render;
 use super::style::{LineStyle, MarkerShape, Theme, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::{Input, StepInfo, TimeResponse};
 use crate::error::{LtiError, Result};
 use crate::fmt::fmt_sig;
@@ -153,7 +155,7 @@ fn check(series: &[StepSeries]) -> Result<()> {
 /// y-axis follows the data).
 ///
 /// Errors: no series, mismatched lengths, fewer than two finite samples, bad options, a title,
-/// label or input name longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an
+/// label or input name longer than [`MAX_TEXT_CHARS`](super::options::MAX_TEXT_CHARS) characters, an
 /// unwritable path; no file is left behind.
 ///
 /// ```no_run
@@ -266,9 +268,6 @@ struct Marks<'a> {
     /// Inline labels (only for a single plant: several would collide; the box lists all).
     inline: bool,
 }
-
-/// Pixel points that legends should not hide.
-type Avoid = Vec<(f64, f64)>;
 
 impl Marks<'_> {
     /// Rise: 10 % and 90 % points with drop lines to the time axis, and the t_r arrow.
