@@ -90,7 +90,21 @@ pub(crate) fn layout_single(
     y_title: bool,
     axes: impl Fn(f64, f64) -> (Axis, Axis),
 ) -> Frame {
-    let (cw, ch) = (f64::from(c.w), f64::from(c.h));
+    layout_single_above(c, th, (title, x_title, y_title), 0.0, axes)
+}
+
+/// [`layout_single`] leaving a strip of `reserve` px free at the bottom of the canvas (under
+/// the x tick labels and title), e.g. for boxes that would hide the data inside the frame;
+/// `titles` says whether there is a title, an x title and a y title.
+pub(crate) fn layout_single_above(
+    c: &Canvas,
+    th: &Theme,
+    (title, x_title, y_title): (bool, bool, bool),
+    reserve: f64,
+    axes: impl Fn(f64, f64) -> (Axis, Axis),
+) -> Frame {
+    let cw = f64::from(c.w);
+    let ch = (f64::from(c.h) - reserve.max(0.0)).max(0.0);
     let (mut l, mut r, mut t, mut b) = (
         80.0 * th.s,
         20.0 * th.s,

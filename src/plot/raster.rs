@@ -51,6 +51,13 @@ impl Canvas {
         }
     }
 
+    /// Paints the whole canvas white again (to draw it anew, e.g. with another layout).
+    pub fn clear(&mut self) {
+        self.buf.fill(255);
+        self.mask.fill(0.0);
+        self.dirty = None;
+    }
+
     /// The RGB bytes, row by row.
     pub fn pixels(&self) -> &[u8] {
         &self.buf

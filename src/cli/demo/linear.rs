@@ -314,7 +314,7 @@ fn step_block(ctx: &mut Ctx, md: &mut Md, name: &str, g: &Factored, a: &Analysis
                     if si.peak_time.is_finite() {
                         format!("{} s", fmt_sig(si.peak_time, 6))
                     } else {
-                        "approached as t → ∞ (monotone)".into()
+                        "approached as t → ∞".into()
                     },
                     fmt_sig(si.steady_state, 6),
                 ]],
