@@ -6,7 +6,7 @@
 use anyhow::Result;
 use num_complex::Complex64;
 
-use super::Ctx;
+use super::context::Ctx;
 use super::md::Md;
 use crate::analysis::{ClosedLoop, LoopSystem};
 use crate::fmt::{fmt_root, fmt_sig};

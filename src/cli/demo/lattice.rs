@@ -7,8 +7,8 @@ use nalgebra::DVector;
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use super::context::{Ctx, fig};
 use super::md::Md;
-use super::{Ctx, fig};
 use crate::fmt::fmt_sig;
 use crate::lti::lattice::{Boundary, Envelope, Lattice, Modes, Output, Packet, Trajectory};
 use crate::plot::{

@@ -6,7 +6,7 @@ use anyhow::Result;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
-use super::Ctx;
+use super::context::Ctx;
 use super::lattice::describe;
 use super::md::Md;
 use crate::StateSpace;

@@ -9,7 +9,7 @@ mod top;
 use anyhow::Result;
 use num_complex::Complex64;
 
-use super::Ctx;
+use super::context::Ctx;
 use super::md::Md;
 use crate::cli::text::vector_text;
 use crate::nonlinear::{Linearization, LocalStability};

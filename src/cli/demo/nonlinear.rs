@@ -2,8 +2,8 @@
 
 use anyhow::Result;
 
+use super::context::{Ctx, fig};
 use super::md::Md;
-use super::{Ctx, fig};
 use crate::cli::text::vector_text;
 use crate::fmt::{fmt_root, fmt_sig};
 use crate::nonlinear::models::{Lorenz, Mems, Pendulum, VanDerPol};

@@ -4,7 +4,7 @@
 use anyhow::Result;
 
 use super::super::plots;
-use super::Ctx;
+use super::context::Ctx;
 use super::linear::roots_text;
 use super::md::Md;
 use crate::TransferFunction;
@@ -83,7 +83,7 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         &plants,
         &Input::Step,
         Some(40.0),
-        &super::fig("Step responses for ζ = 0, 0.1, 1, 2 (ωn = 1; seed figs. 2.3, 2.5)"),
+        &super::context::fig("Step responses for ζ = 0, 0.1, 1, 2 (ωn = 1; seed figs. 2.3, 2.5)"),
     )?;
     let bode = "damping-bode.png";
     plots::bode_figure(
@@ -92,7 +92,7 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         Some((0.01, 100.0)),
         false,
         false,
-        &super::fig("Bode diagrams for ζ = 0, 0.1, 1, 2 (ωn = 1; exercise 3.2)"),
+        &super::context::fig("Bode diagrams for ζ = 0, 0.1, 1, 2 (ωn = 1; exercise 3.2)"),
     )?;
     // Phase plots ẋ against x from x(0) = π/36 (fig. 2.6), from the exact closed forms.
     let mut curves = Vec::new();
@@ -133,7 +133,7 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
             equal_aspect: true,
             ..Default::default()
         },
-        &super::fig("Phase plot ẋ against x from x(0) = π/36 (seed fig. 2.6)"),
+        &super::context::fig("Phase plot ẋ against x from x(0) = π/36 (seed fig. 2.6)"),
     )?;
     md.image("Step responses of the four damping cases", step);
     md.image("Bode diagrams of the four damping cases", bode);

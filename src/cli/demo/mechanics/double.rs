@@ -4,9 +4,9 @@
 use anyhow::Result;
 use num_complex::Complex64;
 
+use super::super::context::{Ctx, fig};
 use super::super::md::Md;
 use super::super::nonlinear::check_jacobians;
-use super::super::{Ctx, fig};
 use super::{eig_error, tight, verdict_table};
 use crate::fmt::fmt_sig;
 use crate::nonlinear::models::{DoublePendulum, Lorenz};

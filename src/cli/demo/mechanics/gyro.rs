@@ -4,9 +4,9 @@
 use anyhow::Result;
 use num_complex::Complex64;
 
+use super::super::context::{Ctx, fig};
 use super::super::md::Md;
 use super::super::nonlinear::check_jacobians;
-use super::super::{Ctx, fig};
 use super::{eig_error, eigen_text, tight};
 use crate::cli::text::vector_text;
 use crate::fmt::fmt_sig;

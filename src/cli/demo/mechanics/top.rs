@@ -3,9 +3,9 @@
 
 use anyhow::Result;
 
+use super::super::context::{Ctx, fig};
 use super::super::md::Md;
 use super::super::nonlinear::check_jacobians;
-use super::super::{Ctx, fig};
 use super::{eig_error, eigen_text, linear_words, tight};
 use crate::fmt::fmt_sig;
 use crate::nonlinear::models::HeavyTop;
