@@ -132,7 +132,6 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     closed_loop::section(&mut ctx, &mut md, plants.len() + 5)?;
 
     ctx.progress("verification");
-    seed::analytic_checks(&mut ctx)?;
     ctx.checks.render(&mut md);
 
     let elapsed = start.elapsed().as_secs_f64();

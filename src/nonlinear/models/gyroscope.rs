@@ -107,6 +107,35 @@ impl Gyroscope {
         self.i3 * self.w / self.i1
     }
 
+    /// The linearisation's transfer function from torque `input` to gimbal angle `output`
+    /// (0-based: u₁, u₂, u₃ → θ₁, θ₂) at `s`, in closed form (module docs):
+    /// G₁₁ = G₂₂ = 1/(Il(s² + ν²)), G₂₁ = −G₁₂ = −ν/(Il s(s² + ν²)), and 0 from u₃.
+    ///
+    /// ```
+    /// use ltikit::nonlinear::models::Gyroscope;
+    /// use num_complex::Complex64;
+    /// let g = Gyroscope::default(); // Il = 0.5, ν = 40 rad/s
+    /// let s = Complex64::new(0.0, 10.0);
+    /// let g11 = g.channel_closed_form(0, 0, s); // 1/(0.5·(1600 − 100))
+    /// assert!((g11 - Complex64::new(1.0 / 750.0, 0.0)).norm() < 1e-18);
+    /// assert_eq!(g.channel_closed_form(2, 1, s), Complex64::new(0.0, 0.0));
+    /// ```
+    pub fn channel_closed_form(
+        &self,
+        input: usize,
+        output: usize,
+        s: num_complex::Complex64,
+    ) -> num_complex::Complex64 {
+        let nu = self.nutation_frequency();
+        let d = s * s + nu * nu;
+        match (input, output) {
+            (0, 0) | (1, 1) => 1.0 / (self.i1 * d),
+            (0, 1) => -nu / (self.i1 * s * d),
+            (1, 0) => nu / (self.i1 * s * d),
+            _ => num_complex::Complex64::new(0.0, 0.0),
+        }
+    }
+
     /// The mean rate −u₁/(Iz ω) at which a constant torque `u1` about the outer gimbal axis
     /// turns the inner gimbal (precession; module docs).
     pub fn precession_rate(&self, u1: f64) -> f64 {
