@@ -531,10 +531,13 @@ fn metric_rows(s: &StepSeries) -> Vec<(String, Color)> {
     rows
 }
 
-/// The information rows: per series its metric rows, prefixed with its name when there are
-/// several; coincident series with the same rows share them ("u1 → y2, u2 → y1: …").
-fn info_rows(series: &[StepSeries], coincide: &[Option<usize>]) -> Vec<LegendEntry> {
-    let mut out: Vec<LegendEntry> = Vec::new();
+/// Rows of a box in groups that stay together when the box is split into columns.
+type Groups = Vec<Vec<LegendEntry>>;
+
+/// The information rows, one group per series: its metric rows, prefixed with its name when
+/// there are several; coincident series with the same rows share them ("u1 → y2, u2 → y1: …").
+fn info_rows(series: &[StepSeries], coincide: &[Option<usize>]) -> Groups {
+    let mut out: Groups = Vec::new();
     let several = series.len() > 1;
     let mut done = vec![false; series.len()];
     for k in 0..series.len() {
@@ -557,9 +560,15 @@ fn info_rows(series: &[StepSeries], coincide: &[Option<usize>]) -> Vec<LegendEnt
             String::new()
         };
         let col = color_of(series, k);
-        for (text, c) in rows {
-            let c = if c == Color::BLACK { col } else { c };
-            out.push(LegendEntry::text(format!("{prefix}{text}"), c));
+        let group: Vec<LegendEntry> = rows
+            .into_iter()
+            .map(|(text, c)| {
+                let c = if c == Color::BLACK { col } else { c };
+                LegendEntry::text(format!("{prefix}{text}"), c)
+            })
+            .collect();
+        if !group.is_empty() {
+            out.push(group);
         }
     }
     out
@@ -620,7 +629,7 @@ fn draw_chart(
 fn inside(
     frame: &Frame,
     th: &Theme,
-    boxes: &[Vec<LegendEntry>],
+    boxes: &[Groups],
     avoid: &[(f64, f64)],
 ) -> Option<Vec<(Fitted, Rect)>> {
     let order = [
@@ -630,8 +639,8 @@ fn inside(
         Corner::BottomLeft,
     ];
     let mut placed: Vec<(Fitted, Rect)> = Vec::new();
-    for rows in boxes.iter().filter(|b| !b.is_empty()) {
-        let fit = Fitted::new(frame, th, rows).filter(|f| !f.cut)?;
+    for rows in boxes.iter().map(|b| b.concat()).filter(|b| !b.is_empty()) {
+        let fit = Fitted::new(frame, th, &rows).filter(|f| !f.cut)?;
         let taken: Vec<Rect> = placed.iter().map(|p| p.1).collect();
         let at = clear_spot(frame, th, (fit.w, fit.h), avoid, &order, &taken)?;
         placed.push((fit, at));
@@ -640,33 +649,42 @@ fn inside(
 }
 
 /// Boxes in a strip under the chart (below the x-axis title), side by side: each box split
-/// into as few columns of at most R rows as keep the strip within the canvas width, R as
-/// small as that allows; the strip is at most 45 % of the canvas height (beyond it rows are
-/// summarised as "… and n more").
+/// into columns of at most R rows (its groups kept whole), R as small as keeps the strip
+/// within the canvas width; the strip is at most 45 % of the canvas height (beyond it rows
+/// are summarised as "… and n more").
 struct Strip {
     boxes: Vec<Fitted>,
 }
 
 impl Strip {
-    fn new(c: &Canvas, th: &Theme, boxes: &[Vec<LegendEntry>]) -> Strip {
+    fn new(c: &Canvas, th: &Theme, boxes: &[Groups]) -> Strip {
         let (cw, ch) = (f64::from(c.w), f64::from(c.h));
         let gap = 8.0 * th.s;
         let (width, budget) = (cw - 2.0 * th.pad, 0.45 * ch);
-        let boxes: Vec<&Vec<LegendEntry>> = boxes.iter().filter(|b| !b.is_empty()).collect();
-        // each box in ⌈n/R⌉ columns of equal length
+        let boxes: Vec<&Groups> = boxes.iter().filter(|b| !b.is_empty()).collect();
+        // each box's groups packed in order into columns of at most `most` rows (a longer
+        // group gets a column of its own)
         let columns = |most: usize| -> Vec<Fitted> {
-            boxes
-                .iter()
-                .flat_map(|b| {
-                    let k = b.len().div_ceil(most.max(1));
-                    b.chunks(b.len().div_ceil(k.max(1)).max(1))
-                })
-                .filter_map(|rows| Fitted::within(th, rows, (width, budget)))
-                .collect()
+            let mut out = Vec::new();
+            for b in &boxes {
+                let mut col: Vec<LegendEntry> = Vec::new();
+                for g in b.iter() {
+                    if !col.is_empty() && col.len() + g.len() > most {
+                        out.extend(Fitted::within(th, &col, (width, budget)));
+                        col.clear();
+                    }
+                    col.extend(g.iter().cloned());
+                }
+                if !col.is_empty() {
+                    out.extend(Fitted::within(th, &col, (width, budget)));
+                }
+            }
+            out
         };
         let total = |cols: &[Fitted]| cols.iter().map(|f| f.w + gap).sum::<f64>() - gap;
-        let most = boxes.iter().map(|b| b.len()).max().unwrap_or(1);
-        (1..=most)
+        let rows = |b: &Groups| b.iter().map(Vec::len).sum::<usize>();
+        let longest = boxes.iter().map(|b| rows(b)).max().unwrap_or(1);
+        (1..=longest)
             .map(columns)
             .find(|cols| total(cols) <= width && cols.iter().all(|f| !f.cut))
             .map(|boxes| Strip { boxes })
@@ -677,7 +695,7 @@ impl Strip {
                 Strip {
                     boxes: boxes
                         .iter()
-                        .filter_map(|b| Fitted::within(th, b, (width, share)))
+                        .filter_map(|b| Fitted::within(th, &b.concat(), (width, share)))
                         .collect(),
                 }
             })
@@ -753,8 +771,11 @@ fn draw(
     let frame = layout_single_above(c, th, titles, 0.0, axes);
     let coincide = coincident(series, &frame, th);
     let styles = line_styles(&coincide);
-    let boxes = [
-        legend_rows(series, &coincide, &styles),
+    let boxes: [Groups; 2] = [
+        legend_rows(series, &coincide, &styles)
+            .into_iter()
+            .map(|r| vec![r])
+            .collect(),
         info_rows(series, &coincide),
     ];
     let avoid = draw_chart(c, th, &frame, series, &styles, opts.grid)?;
@@ -866,6 +887,8 @@ mod tests {
         assert_eq!(legend[2].text, "u2 → y1 (coincides with u1 → y2)");
         // 3 groups of metrics, two rows each; the coincident pair shares its rows
         let info = info_rows(&series, &coincide);
+        assert_eq!(info.len(), 3);
+        let info = info.concat();
         assert_eq!(info.len(), 6);
         assert!(
             info[2].text.starts_with("u1 → y2, u2 → y1: rise time"),
