@@ -27,6 +27,8 @@
 //! [`PoleZero`]: crate::analysis::PoleZero
 //! [`NyquistContour`]: crate::analysis::NyquistContour
 //! [`BodeAsymptotes`]: crate::analysis::BodeAsymptotes
+//! [`LtiError::Plot`]: crate::error::LtiError::Plot
+//! [`LtiError::Io`]: crate::error::LtiError::Io
 
 mod axes;
 mod bode;

@@ -25,7 +25,8 @@ use crate::plot::style::{LineStyle, Theme};
 ///
 /// Errors: no series, mismatched lengths, fewer than two finite points, bad options, a title
 /// or label longer than [`MAX_TEXT_CHARS`](crate::plot::MAX_TEXT_CHARS) characters, an unwritable
-/// path ([`LtiError::Plot`] / [`LtiError::Io`]); no file is left behind.
+/// path ([`LtiError::Plot`](crate::error::LtiError::Plot) /
+/// [`LtiError::Io`](crate::error::LtiError::Io)); no file is left behind.
 ///
 /// ```no_run
 /// use ltikit::analysis::FrequencyResponse;
