@@ -165,20 +165,36 @@ fn elliptic_solution_matches_the_simulation() {
 
 #[test]
 fn conservation_drift_over_100_periods() {
-    let body = RigidBody::new(3.0, 2.0, 1.0).unwrap();
-    let pi0 = [0.6, -1.0, 2.0];
-    let period = FreeRigidMotion::new(&body, &pi0).unwrap().period.unwrap();
-    let sim = simulate(
-        &body,
-        &pi0,
-        &InputSignal::none(),
-        &[0.0, 100.0 * period],
-        &tight(),
-    )
-    .unwrap();
-    assert_eq!(sim.conserved.len(), 2);
-    for c in &sim.conserved {
-        assert!(c.relative_drift <= 1e-10, "{c:?}");
+    // The seed's cases of fig. 2.12 (a), (b), fig. 2.14 and exercise 2.13's ordering, as the
+    // demo shows them. DOPRI5's truncation error accumulates about rtol per period: the
+    // moderate orbits stay within 1e-10 over 100 periods; the ones near the separatrix
+    // (k ≈ 0.9, ~600 steps a period) reach 1.3e-10, so every orbit is held to 2·rtol a period.
+    for (inertia, pi0, within_1e10) in [
+        ([3.0, 2.0, 1.0], [0.6, -1.0, 2.0], true),
+        ([3.0, 2.0, 1.0], [3.0, -1.0, 2.0], false),
+        ([2.0, 2.0, 1.0], [0.6, -1.0, 2.0], true),
+        ([3.0, 1.0, 2.0], [1.0, 0.5, 0.7], false),
+    ] {
+        let body = RigidBody::new(inertia[0], inertia[1], inertia[2]).unwrap();
+        let period = FreeRigidMotion::new(&body, &pi0).unwrap().period.unwrap();
+        let sim = simulate(
+            &body,
+            &pi0,
+            &InputSignal::none(),
+            &[0.0, 100.0 * period],
+            &tight(),
+        )
+        .unwrap();
+        assert_eq!(sim.conserved.len(), 2);
+        for c in &sim.conserved {
+            assert!(
+                c.relative_drift / 100.0 <= 2e-12,
+                "{inertia:?} {pi0:?}: {c:?}"
+            );
+            if within_1e10 {
+                assert!(c.relative_drift <= 1e-10, "{inertia:?} {pi0:?}: {c:?}");
+            }
+        }
     }
 }
 
@@ -289,10 +305,19 @@ fn exercise_2_14_claims() {
     let g = Gyroscope::default();
     let x0 = g.steady_spin();
     let t = sample_times(5.0, 501).unwrap();
-    // 1. No torque: the spin axis keeps its direction.
-    let free = simulate(&g, &x0, &InputSignal::constant(vec![0.0; 3]), &t, &tight()).unwrap();
-    for x in &free.states {
-        assert!((x[0] - x0[0]).abs() < 1e-15 && (x[1] - x0[1]).abs() < 1e-15);
+    // 1. No torque: the spin axis keeps its direction (from θ₂ = π/2 and from a tilted start).
+    for start in [x0, [0.3, 1.1, 0.0, 0.0, g.w]] {
+        let free = simulate(
+            &g,
+            &start,
+            &InputSignal::constant(vec![0.0; 3]),
+            &t,
+            &tight(),
+        )
+        .unwrap();
+        for x in &free.states {
+            assert!((x[0] - start[0]).abs() < 1e-14 && (x[1] - start[1]).abs() < 1e-14);
+        }
     }
     // 2. A torque about the outer gimbal axis moves the inner gimbal: mean rate −u1/(Iz ω).
     let u1 = 0.2;
@@ -360,7 +385,7 @@ fn double_pendulum_energy_and_chaos() {
         &p,
         &x0,
         &InputSignal::constant(vec![0.0]),
-        &[0.0, 20.0],
+        &[0.0, 30.0],
         &tight(),
     )
     .unwrap();

@@ -492,7 +492,8 @@ fn shaped_inputs_match_the_closed_form_of_the_linear_analysis() {
 #[test]
 fn pendulum_period_matches_the_elliptic_integral() {
     let p = Pendulum::default();
-    let amps = [0.1, 0.5, 1.0, 2.0, 2.8, 3.1];
+    // (the demo's table's amplitudes among them)
+    let amps = [0.1, 0.5, 1.0, 1.5, 2.0, 2.5, 2.8, 3.0, 3.1];
     let rows = pendulum_periods(&p, &amps, &tight()).unwrap();
     let mut worst: f64 = 0.0;
     for r in &rows {
@@ -517,7 +518,15 @@ fn pendulum_period_matches_the_elliptic_integral() {
 fn van_der_pol_follows_the_polar_closed_form() {
     let t = sample_times(15.0, 151).unwrap();
     let mut worst: f64 = 0.0;
-    for (x1, x2) in [(0.001, 0.0), (2.0, 0.0), (0.3, -0.4), (-1.5, 1.5)] {
+    // (the demo's phase portrait's starts among them)
+    for (x1, x2) in [
+        (0.001, 0.0),
+        (2.0, 0.0),
+        (0.3, -0.4),
+        (-1.5, 1.5),
+        (0.0, -1.8),
+        (0.3, 0.2),
+    ] {
         let sim = simulate(&VanDerPol, &[x1, x2], &InputSignal::none(), &t, &tight()).unwrap();
         let s0: f64 = x1 * x1 + x2 * x2;
         let phi0 = f64::atan2(x2, x1);

@@ -402,6 +402,64 @@ fn rayleigh_damped_channel_zeros_in_closed_form() {
     }
 }
 
+/// `Lattice::channel_zeros_closed_form` (the cofactor of the tridiagonal stiffness, mapped
+/// through w = (s² + γs)/(1 + ηs)) against the channel's factored form from the state-space
+/// model: zeros, the zero at −1/η, relative degree and gain, with ω0 ≠ 1, m ≠ 1, the input
+/// on either side, and modes with a node at one of the two particles only (N + 1 = 12,
+/// particles 3 and 5: k = 4 and 8 vanish at 3, not at 5).
+#[test]
+fn lattice_channel_zeros_in_closed_form_meet_the_state_space_path() {
+    for (n, w0, m, gamma, eta, input, output) in [
+        (64, 1.0, 1.0, 0.02, 0.01, 10, 20),
+        (11, 1.7, 2.5, 0.05, 0.02, 5, 3),
+        (11, 1.0, 1.0, 0.0, 0.0, 3, 5),
+        (20, 0.8, 1.0, 0.1, 0.0, 7, 7),
+        (9, 1.0, 0.5, 0.0, 0.03, 1, 9),
+    ] {
+        let lat = Lattice::new(n, Boundary::Fixed, w0)
+            .and_then(|l| l.with_mass(m))
+            .and_then(|l| l.with_damping(gamma, eta))
+            .and_then(|l| l.with_input(input))
+            .and_then(|l| l.with_output(Output::Particle(output)))
+            .unwrap();
+        let what =
+            format!("N = {n}, ω0 = {w0}, m = {m}, γ = {gamma}, η = {eta}, {input} → {output}");
+        let z = lat.channel_zeros_closed_form().unwrap();
+        let f = Factored::from_state_space(&lat.state_space().unwrap()).unwrap();
+        assert_eq!(
+            f.relative_degree(),
+            Some(z.relative_degree as i64),
+            "{what}"
+        );
+        assert!(
+            (f.gain() - z.gain).abs() <= 1e-10 * z.gain.abs(),
+            "{what}: gain {} vs {}",
+            f.gain(),
+            z.gain
+        );
+        let mut want = z.zeros.clone();
+        want.extend(std::iter::repeat_n(
+            C::new(-1.0 / eta, 0.0),
+            z.eta_zero_multiplicity,
+        ));
+        let got = flat(&f.pole_zero().reduced_zeros);
+        let scale = want.iter().map(|w| w.norm()).fold(1.0, f64::max);
+        let e = match_err(&got, &want);
+        assert!(e < 1e-10 * scale, "{what}: zeros {e:e}");
+    }
+    // the ring, every particle as the output, and γη = 1 are refused
+    let ring = Lattice::new(8, Boundary::Periodic, 1.0).unwrap();
+    assert!(ring.channel_zeros_closed_form().is_err());
+    let all = Lattice::new(8, Boundary::Fixed, 1.0)
+        .and_then(|l| l.with_output(Output::All))
+        .unwrap();
+    assert!(all.channel_zeros_closed_form().is_err());
+    let degenerate = Lattice::new(8, Boundary::Fixed, 1.0)
+        .and_then(|l| l.with_damping(2.0, 0.5))
+        .unwrap();
+    assert!(degenerate.channel_zeros_closed_form().is_err());
+}
+
 #[test]
 fn damping_to_the_ground_is_one_value_and_its_zeros_are_closed_form() {
     // Fixed N = 128, γ = 0.02 (E = γI: every mode's damping rounds to 0.02 ± 1e-16 and must be

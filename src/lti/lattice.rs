@@ -278,6 +278,28 @@ impl Lattice {
         self.gamma == 0.0 && self.eta == 0.0
     }
 
+    /// The boundary and the damping in words, for reports.
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice};
+    /// let lat = Lattice::new(8, Boundary::Fixed, 1.0).unwrap();
+    /// assert_eq!(lat.describe(), "fixed, undamped");
+    /// let lat = lat.with_damping(0.005, 0.01).unwrap();
+    /// assert_eq!(lat.describe(), "fixed, γ = 0.005, η = 0.01");
+    /// ```
+    pub fn describe(&self) -> String {
+        if self.is_undamped() {
+            format!("{}, undamped", self.boundary.name())
+        } else {
+            format!(
+                "{}, γ = {}, η = {}",
+                self.boundary.name(),
+                crate::fmt::fmt_sig(self.gamma, 3),
+                crate::fmt::fmt_sig(self.eta, 3)
+            )
+        }
+    }
+
     /// The bonds as (left particle, right particle), 0-based, `None` for a wall. Periodic:
     /// N bonds (N → 1 closes the ring); fixed: N + 1 bonds (two to the walls).
     pub fn bonds(&self) -> Vec<(Option<usize>, Option<usize>)> {

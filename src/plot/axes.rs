@@ -2,6 +2,7 @@
 //! tick labels with a common ×10^k factor for tiny or huge values.
 
 use super::raster::Canvas;
+use super::text::{cap_height, descent};
 
 /// Linear or base-10 logarithmic axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -300,6 +301,17 @@ impl Axis {
     /// Whether some tick label carries a superscript (decade labels 10^k).
     pub fn has_superscripts(&self) -> bool {
         self.ticks.iter().any(|t| t.label.contains('^'))
+    }
+
+    /// Height (px) of a row of these tick labels at font size `size`, with room for
+    /// superscripts when a label has one.
+    pub fn label_row_height(&self, size: f64) -> f64 {
+        let base = cap_height(size) + descent(size);
+        if self.has_superscripts() {
+            base + 0.3 * size
+        } else {
+            base
+        }
     }
 }
 

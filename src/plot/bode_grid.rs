@@ -10,10 +10,11 @@ use super::layout::{
     bottom_margin, bounds, check_span, draw_title, left_margin, right_margin, tick_targets,
     top_margin,
 };
+use super::options::{PlotOptions, check_text};
 use super::raster::Canvas;
+use super::render::render;
 use super::style::{Theme, series_color};
 use super::text::{HAlign, Measured, VAlign, cap_height, descent};
-use super::{PlotOptions, check_text, render};
 use crate::analysis::FrequencyResponse;
 use crate::error::{LtiError, Result};
 

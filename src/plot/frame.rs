@@ -1,12 +1,11 @@
 //! The plot frame: data → pixel mapping, clipping (Liang–Barsky), grid, ticks, axis titles.
 
 use super::axes::Axis;
-use super::layout::tick_label_height;
 use super::raster::Canvas;
+use super::raster::Color;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
 use super::text::{HAlign, Measured, VAlign, cap_height};
 use crate::error::Result;
-use crate::plot::Color;
 
 /// Liang–Barsky: clips segment a–b to the rectangle; returns the parameters [t0, t1].
 fn clip(a: (f64, f64), b: (f64, f64), r: (f64, f64, f64, f64)) -> Option<(f64, f64)> {
@@ -254,7 +253,7 @@ impl Frame {
         }
         if x_labels {
             if let Some(f) = &self.x.factor {
-                let h = tick_label_height(&self.x, th);
+                let h = self.x.label_row_height(th.tick);
                 c.text(
                     f,
                     (x1, y1 + gap + h + gap),
@@ -278,7 +277,7 @@ impl Frame {
         left_edge: f64,
     ) -> Result<()> {
         if let Some(t) = x_title {
-            let h = tick_label_height(&self.x, th);
+            let h = self.x.label_row_height(th.tick);
             let y = self.y1 + 5.0 * th.s + h + 8.0 * th.s;
             let t = Measured::new(t, th.label).shortened(self.x1 - self.x0);
             c.draw_measured(

@@ -6,11 +6,13 @@ use std::path::Path;
 use super::axes::Axis;
 use super::frame::Frame;
 use super::layout::{bottom_margin, bounds, draw_title, left_margin, tick_targets, top_margin};
+use super::options::PlotOptions;
 use super::raster::Canvas;
+use super::raster::Color;
+use super::render::render;
 use super::style::{Theme, series_color};
 use super::text::{HAlign, Measured, VAlign, cap_height, descent};
 use super::xy::Curve;
-use super::{Color, PlotOptions, render};
 use crate::error::{LtiError, Result};
 
 /// The largest grid accepted (cells).
@@ -151,10 +153,10 @@ impl HeatMap {
     }
 
     fn validate(&self) -> Result<()> {
-        super::check_text("the x-axis title", &self.x_label)?;
-        super::check_text("the y-axis title", &self.y_label)?;
-        super::check_text("the colour-bar title", &self.z_label)?;
-        super::check_text("the title", &self.title)?;
+        super::options::check_text("the x-axis title", &self.x_label)?;
+        super::options::check_text("the y-axis title", &self.y_label)?;
+        super::options::check_text("the colour-bar title", &self.z_label)?;
+        super::options::check_text("the title", &self.title)?;
         if self.columns == 0 || self.rows == 0 {
             return Err(LtiError::Plot(format!(
                 "a heat map needs at least one cell, got {}×{}",

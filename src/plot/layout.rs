@@ -4,20 +4,10 @@
 use super::axes::{Axis, nice_step, widen};
 use super::frame::Frame;
 use super::raster::Canvas;
+use super::raster::Color;
 use super::style::Theme;
 use super::text::{HAlign, Measured, VAlign, cap_height, descent};
 use crate::error::{LtiError, Result};
-use crate::plot::Color;
-
-/// Height of a row of x tick labels (with room for superscripts).
-pub(crate) fn tick_label_height(a: &Axis, th: &Theme) -> f64 {
-    let base = cap_height(th.tick) + descent(th.tick);
-    if a.has_superscripts() {
-        base + 0.3 * th.tick
-    } else {
-        base
-    }
-}
 
 /// Space (px) to the left of a frame for the y tick labels and the rotated y title.
 pub(crate) fn left_margin(th: &Theme, y: &Axis, has_title: bool) -> f64 {
@@ -33,7 +23,7 @@ pub(crate) fn left_margin(th: &Theme, y: &Axis, has_title: bool) -> f64 {
 /// Space (px) below a frame for x tick labels and the x title.
 pub(crate) fn bottom_margin(th: &Theme, x: &Axis, has_title: bool) -> f64 {
     let labels =
-        5.0 * th.s + tick_label_height(x, th) + if x.factor.is_some() { th.tick } else { 0.0 };
+        5.0 * th.s + x.label_row_height(th.tick) + if x.factor.is_some() { th.tick } else { 0.0 };
     let title = if has_title {
         8.0 * th.s + cap_height(th.label) + descent(th.label)
     } else {
@@ -100,7 +90,21 @@ pub(crate) fn layout_single(
     y_title: bool,
     axes: impl Fn(f64, f64) -> (Axis, Axis),
 ) -> Frame {
-    let (cw, ch) = (f64::from(c.w), f64::from(c.h));
+    layout_single_above(c, th, (title, x_title, y_title), 0.0, axes)
+}
+
+/// [`layout_single`] leaving a strip of `reserve` px free at the bottom of the canvas (under
+/// the x tick labels and title), e.g. for boxes that would hide the data inside the frame;
+/// `titles` says whether there is a title, an x title and a y title.
+pub(crate) fn layout_single_above(
+    c: &Canvas,
+    th: &Theme,
+    (title, x_title, y_title): (bool, bool, bool),
+    reserve: f64,
+    axes: impl Fn(f64, f64) -> (Axis, Axis),
+) -> Frame {
+    let cw = f64::from(c.w);
+    let ch = (f64::from(c.h) - reserve.max(0.0)).max(0.0);
     let (mut l, mut r, mut t, mut b) = (
         80.0 * th.s,
         20.0 * th.s,
@@ -178,13 +182,13 @@ pub(crate) fn bounds(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)
 
 #[cfg(test)]
 mod tests {
+    use super::super::options::PlotOptions;
     use super::super::text::glyph_lookups;
     use super::*;
-    use crate::plot::PlotOptions;
 
     /// Glyph lookups (measuring and drawing) to lay out and draw a title of `n` characters.
     fn lookups_for_title(n: usize) -> usize {
-        let mut c = Canvas::new(1000, 700).unwrap();
+        let mut c = Canvas::new(1000, 700);
         let th = Theme::new(&PlotOptions::default());
         let title: String = "ab c".chars().cycle().take(n).collect();
         let before = glyph_lookups();

@@ -2,10 +2,10 @@
 
 use super::frame::Frame;
 use super::raster::Canvas;
+use super::raster::Color;
 use super::style::{LineStyle, MarkerShape, Theme, draw_marker};
 use super::text::{HAlign, Measured, VAlign};
 use crate::error::Result;
-use crate::plot::Color;
 
 /// A legend or information row: optional swatch, then text.
 #[derive(Debug, Clone)]
@@ -60,13 +60,18 @@ pub(crate) enum Corner {
 /// A box (x0, y0, x1, y1) in pixels.
 pub(crate) type Rect = (f64, f64, f64, f64);
 
+/// Pixel points that a legend should not hide (samples of the curves, annotation boxes).
+pub(crate) type Avoid = Vec<(f64, f64)>;
+
 /// A legend fitted to its frame: the rows shown (text measured, and shortened with an
 /// ellipsis where wider than the frame), and the box size.
-struct Fitted {
+pub(crate) struct Fitted {
     rows: Vec<(Swatch, Measured, Color)>,
     /// Box width and height.
-    w: f64,
-    h: f64,
+    pub w: f64,
+    pub h: f64,
+    /// Whether rows were left out ("… and n more") for want of height.
+    pub cut: bool,
     /// Swatch width (0 when no row has one), horizontal padding, row height.
     swatch: f64,
     padx: f64,
@@ -77,10 +82,23 @@ impl Fitted {
     /// Measures the rows once and fits them into `frame` (inside its 8 px margins): rows too
     /// wide are cut, and when there are more rows than fit, the last row shown says how many
     /// are left out. `None` when not even two rows fit (and there is more than one).
-    fn new(frame: &Frame, th: &Theme, entries: &[LegendEntry]) -> Option<Fitted> {
+    pub(crate) fn new(frame: &Frame, th: &Theme, entries: &[LegendEntry]) -> Option<Fitted> {
+        let m = 8.0 * th.s;
+        Fitted::within(
+            th,
+            entries,
+            (frame.x1 - frame.x0 - 2.0 * m, frame.y1 - frame.y0 - 2.0 * m),
+        )
+    }
+
+    /// [`Fitted::new`] for a box of at most `max_w` × `max_h` px anywhere on the canvas.
+    pub(crate) fn within(
+        th: &Theme,
+        entries: &[LegendEntry],
+        (max_w, max_h): (f64, f64),
+    ) -> Option<Fitted> {
         let size = th.note;
         let row = 1.45 * size;
-        let m = 8.0 * th.s;
         let swatch = if entries.iter().any(|e| !matches!(e.swatch, Swatch::None)) {
             34.0 * th.s
         } else {
@@ -88,8 +106,8 @@ impl Fitted {
         };
         let padx = 8.0 * th.s;
         let gap = if swatch > 0.0 { 6.0 * th.s } else { 0.0 };
-        let max_text = frame.x1 - frame.x0 - 2.0 * m - (padx + swatch + gap + padx);
-        let max_rows = ((frame.y1 - frame.y0 - 2.0 * m - 0.5 * size) / row).floor();
+        let max_text = max_w - (padx + swatch + gap + padx);
+        let max_rows = ((max_h - 0.5 * size) / row).floor();
         let max_rows = if max_rows.is_finite() && max_rows > 0.0 {
             max_rows as usize
         } else {
@@ -115,6 +133,7 @@ impl Fitted {
         let w = padx + swatch + gap + text_w + padx;
         let h = row * rows.len() as f64 + 0.5 * size;
         Some(Fitted {
+            cut: shown < entries.len(),
             rows,
             w,
             h,
@@ -146,16 +165,9 @@ fn place(
         };
         (x, y, x + bw, y + bh)
     };
-    let overlaps = |a: Rect, b: &Rect| a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
     let score = |b: Rect| {
-        let hidden = avoid
-            .iter()
-            .filter(|p| {
-                p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0
-            })
-            .count();
-        hidden
-            + if taken.iter().any(|t| overlaps(b, t)) {
+        hidden(b, avoid)
+            + if taken.iter().any(|t| overlaps(b, *t)) {
                 1_000_000
             } else {
                 0
@@ -215,7 +227,67 @@ pub(crate) fn draw_legend(
         return Ok(None);
     };
     let best = place(frame, th, (fit.w, fit.h), avoid, prefer, taken);
-    let (x0, y0, x1, y1) = best;
+    draw_fitted(c, th, &fit, (best.0, best.1))?;
+    Ok(Some(best))
+}
+
+/// A place in `frame` for a `bw` × `bh` box that hides none of the points `avoid` and overlaps
+/// no `taken` box: the preferred corners in order, then the middles of the edges, then a grid
+/// of positions across the frame. `None` when every one hides something.
+pub(crate) fn clear_spot(
+    frame: &Frame,
+    th: &Theme,
+    (bw, bh): (f64, f64),
+    avoid: &[(f64, f64)],
+    prefer: &[Corner],
+    taken: &[Rect],
+) -> Option<Rect> {
+    let m = 8.0 * th.s;
+    let (x0, x1) = (frame.x0 + m, frame.x1 - m - bw);
+    let (y0, y1) = (frame.y0 + m, frame.y1 - m - bh);
+    if x1 < x0 || y1 < y0 {
+        return None;
+    }
+    let corner = |c: &Corner| match c {
+        Corner::TopRight => (x1, y0),
+        Corner::TopLeft => (x0, y0),
+        Corner::BottomRight => (x1, y1),
+        Corner::BottomLeft => (x0, y1),
+    };
+    const STEPS: usize = 8;
+    let at = |lo: f64, hi: f64, k: usize| lo + (hi - lo) * k as f64 / STEPS as f64;
+    let (xm, ym) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    prefer
+        .iter()
+        .map(corner)
+        .chain([(xm, y0), (xm, y1), (x0, ym), (x1, ym)])
+        .chain((0..=STEPS).flat_map(|j| (0..=STEPS).map(move |i| (at(x0, x1, i), at(y0, y1, j)))))
+        .map(|(x, y)| (x, y, x + bw, y + bh))
+        .find(|&b| hidden(b, avoid) == 0 && !taken.iter().any(|t| overlaps(b, *t)))
+}
+
+/// How many of the points `avoid` a box hides (with a 4 px margin).
+fn hidden(b: Rect, avoid: &[(f64, f64)]) -> usize {
+    avoid
+        .iter()
+        .filter(|p| p.0 >= b.0 - 4.0 && p.0 <= b.2 + 4.0 && p.1 >= b.1 - 4.0 && p.1 <= b.3 + 4.0)
+        .count()
+}
+
+/// Whether two boxes overlap.
+fn overlaps(a: Rect, b: Rect) -> bool {
+    a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+}
+
+/// Draws a fitted box with its top-left corner at `(x0, y0)`: a white, lightly framed box and
+/// its rows.
+pub(crate) fn draw_fitted(
+    c: &mut Canvas,
+    th: &Theme,
+    fit: &Fitted,
+    (x0, y0): (f64, f64),
+) -> Result<()> {
+    let (x1, y1) = (x0 + fit.w, y0 + fit.h);
     c.fill_rect(x0, y0, x1, y1, Color::WHITE, 0.9);
     c.stroke(
         &[(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)],
@@ -234,7 +306,7 @@ pub(crate) fn draw_legend(
         }
         c.draw_measured(text, (tx, cy), *color, (HAlign::Left, VAlign::Middle))?;
     }
-    Ok(Some(best))
+    Ok(())
 }
 
 /// Draws a row's swatch of width `sw` starting at `(x, cy)` (vertically centred on cy).

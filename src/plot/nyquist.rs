@@ -6,10 +6,12 @@ use std::path::Path;
 use super::frame::Frame;
 use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single};
 use super::legend::{Corner, LegendEntry, box_points, draw_legend, sample_run};
+use super::options::{PlotOptions, check_label};
 use super::raster::Canvas;
+use super::raster::Color;
+use super::render::render;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, check_label, render};
 use crate::analysis::NyquistContour;
 use crate::error::{LtiError, Result};
 use crate::fmt::fmt_sig;
@@ -106,7 +108,7 @@ fn runs(contour: &NyquistContour, radius: Option<f64>) -> Vec<Run> {
 /// and Z = N + P are listed.
 ///
 /// Errors: no series, a series without finite points, bad options, a title or label longer
-/// than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, an unwritable path; no file is
+/// than [`MAX_TEXT_CHARS`](super::options::MAX_TEXT_CHARS) characters, an unwritable path; no file is
 /// left behind.
 ///
 /// ```no_run

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use super::PlotOptions;
+use super::options::PlotOptions;
 use super::style::{Color, LineStyle, MarkerShape};
 use super::xy::{Curve, Marker, XyPlot, xy_png};
 use crate::error::{LtiError, Result};
@@ -171,7 +171,7 @@ pub fn sphere_png(path: impl AsRef<Path>, plot: &SpherePlot, opts: &PlotOptions)
         }
     }
     for (i, c) in plot.curves.iter().enumerate() {
-        let color = c.color.unwrap_or_else(|| super::series_color(i));
+        let color = c.color.unwrap_or_else(|| super::style::series_color(i));
         let mut labelled = false;
         for (front, pts) in runs(&plot.view, &c.points) {
             let mut curve = Curve::new(pts).color(color);

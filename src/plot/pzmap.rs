@@ -7,10 +7,12 @@ use num_complex::Complex64;
 use super::frame::Frame;
 use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single};
 use super::legend::{Corner, LegendEntry, Swatch, draw_legend};
+use super::options::{PlotOptions, check_text};
 use super::raster::Canvas;
+use super::raster::Color;
+use super::render::render;
 use super::style::{LineStyle, MarkerShape, Theme};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, check_text, render};
 use crate::analysis::PoleZero;
 use crate::error::Result;
 use crate::fmt::fmt_sig;
@@ -72,7 +74,7 @@ const STABLE_SHADE: Color = Color(44, 160, 44);
 /// half-circles of constant ωₙ.
 ///
 /// Errors: bad options, a title or label longer than
-/// [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS) characters, or an unwritable path; no file is
+/// [`MAX_TEXT_CHARS`](super::options::MAX_TEXT_CHARS) characters, or an unwritable path; no file is
 /// left behind. A map with no finite
 /// poles or zeros (a constant G) is drawn with a note.
 ///

@@ -9,9 +9,6 @@
 //! Coordinates are pixels with (0, 0) the top-left corner of the image; a pixel (i, j) covers
 //! [i, i + 1) × [j, j + 1), so its centre is (i + 0.5, j + 0.5).
 
-use super::text::font;
-use crate::error::{LtiError, Result};
-
 /// An sRGB colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Color(pub u8, pub u8, pub u8);
@@ -41,21 +38,24 @@ pub(crate) struct Canvas {
 }
 
 impl Canvas {
-    /// A white canvas. The caller has validated the size.
-    pub fn new(w: u32, h: u32) -> Result<Canvas> {
-        if font().is_none() {
-            return Err(LtiError::Plot(
-                "the compiled-in font (Noto Sans) could not be loaded".into(),
-            ));
-        }
+    /// A white canvas. The caller has validated the size (at most
+    /// [`MAX_PIXELS`](super::options::MAX_PIXELS)).
+    pub fn new(w: u32, h: u32) -> Canvas {
         let n = w as usize * h as usize;
-        Ok(Canvas {
+        Canvas {
             w,
             h,
             buf: vec![255; n * 3],
             mask: vec![0.0; n],
             dirty: None,
-        })
+        }
+    }
+
+    /// Paints the whole canvas white again (to draw it anew, e.g. with another layout).
+    pub fn clear(&mut self) {
+        self.buf.fill(255);
+        self.mask.fill(0.0);
+        self.dirty = None;
     }
 
     /// The RGB bytes, row by row.
@@ -325,12 +325,12 @@ mod tests {
 
     #[test]
     fn stroke_covers_pixels_and_dashes_leave_gaps() {
-        let mut c = Canvas::new(60, 20).unwrap();
+        let mut c = Canvas::new(60, 20);
         c.stroke(&[(5.0, 10.0), (55.0, 10.0)], 2.0, Color::BLACK, &[]);
         let px = |c: &Canvas, x: usize, y: usize| c.pixels()[3 * (y * 60 + x)];
         assert_eq!(px(&c, 30, 9), 0);
         assert_eq!(px(&c, 30, 14), 255);
-        let mut d = Canvas::new(60, 20).unwrap();
+        let mut d = Canvas::new(60, 20);
         d.stroke(&[(5.0, 10.0), (55.0, 10.0)], 2.0, Color::BLACK, &[6.0, 6.0]);
         let dark: Vec<bool> = (0..60).map(|x| px(&d, x, 9) < 128).collect();
         let n = dark.iter().filter(|&&b| b).count();

@@ -7,9 +7,10 @@ use std::path::Path;
 use num_complex::Complex64;
 
 use super::legend::LegendEntry;
+use super::options::PlotOptions;
+use super::raster::Color;
 use super::style::{LineStyle, MarkerShape, series_color};
 use super::xy::{Curve, Marker, XyPlot, xy_png_with};
-use super::{Color, PlotOptions};
 use crate::analysis::rlocus::RootLocus;
 use crate::error::Result;
 use crate::fmt::fmt_sig;

@@ -1,6 +1,6 @@
 //! Colours, line styles, markers and the size theme shared by every plot.
 
-use super::PlotOptions;
+use super::options::PlotOptions;
 use super::raster::Canvas;
 
 pub use super::raster::Color;

@@ -19,6 +19,16 @@ pub(super) fn font() -> Option<&'static FontRef<'static>> {
         .as_ref()
 }
 
+/// Checks that the compiled-in font can be used (every plot has text): an error names it.
+pub(super) fn check_font() -> Result<()> {
+    match font() {
+        Some(_) => Ok(()),
+        None => Err(LtiError::Plot(
+            "the compiled-in font (Noto Sans) could not be loaded".into(),
+        )),
+    }
+}
+
 /// Horizontal text alignment relative to the anchor point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum HAlign {
@@ -428,7 +438,7 @@ mod tests {
 
     #[test]
     fn text_is_drawn() {
-        let mut c = Canvas::new(80, 30).unwrap();
+        let mut c = Canvas::new(80, 30);
         c.text(
             "Hg 10^{2}",
             (2.0, 15.0),

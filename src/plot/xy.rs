@@ -8,10 +8,12 @@ use super::axes::Axis;
 use super::frame::Frame;
 use super::layout::{bounds, check_span, draw_title, equal_axes, layout_single, tick_targets};
 use super::legend::{Corner, LegendEntry, Swatch, box_points, draw_legend, sample_run};
+use super::options::{PlotOptions, check_label, check_text};
 use super::raster::Canvas;
+use super::raster::Color;
+use super::render::render;
 use super::style::{LineStyle, MarkerShape, Theme, arrows_along, series_color};
 use super::text::{HAlign, VAlign};
-use super::{Color, PlotOptions, check_label, check_text, render};
 use crate::error::{LtiError, Result};
 
 /// One curve: points in drawing order, with its style.
@@ -188,7 +190,7 @@ fn check_range(r: Option<(f64, f64)>, what: &str) -> Result<()> {
     Ok(())
 }
 
-/// Checks every text of the plot against [`super::MAX_TEXT_CHARS`].
+/// Checks every text of the plot against [`MAX_TEXT_CHARS`](super::options::MAX_TEXT_CHARS).
 fn check_texts(plot: &XyPlot) -> Result<()> {
     check_text("the default title", &plot.title)?;
     check_text("the x-axis title", &plot.x_label)?;
@@ -210,7 +212,7 @@ fn check_texts(plot: &XyPlot) -> Result<()> {
 /// Writes a generic x–y plot (see [`XyPlot`]).
 ///
 /// Errors: no curve or marker with a finite point, a bad fixed range, bad options, a title,
-/// axis title, label or note longer than [`MAX_TEXT_CHARS`](super::MAX_TEXT_CHARS)
+/// axis title, label or note longer than [`MAX_TEXT_CHARS`](super::options::MAX_TEXT_CHARS)
 /// characters, an unwritable path.
 pub fn xy_png(path: impl AsRef<Path>, plot: &XyPlot, opts: &PlotOptions) -> Result<()> {
     xy_png_with(path.as_ref(), plot, &[], opts)

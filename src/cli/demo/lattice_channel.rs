@@ -4,10 +4,8 @@
 
 use anyhow::Result;
 use num_complex::Complex64;
-use std::f64::consts::PI;
 
-use super::Ctx;
-use super::lattice::describe;
+use super::context::Ctx;
 use super::md::Md;
 use crate::StateSpace;
 use crate::fmt::fmt_sig;
@@ -75,7 +73,7 @@ pub(super) fn channel_analysis(
     ));
     ctx.checks.add(
         "lattice channel: minimal order from the state-space layer vs the modal sum (difference)",
-        format!("{}, particle {} → {out}", describe(lat), lat.input()),
+        format!("{}, particle {} → {out}", lat.describe(), lat.input()),
         (minimal as f64 - sum.minimal_order() as f64).abs(),
         0.0,
     );
@@ -94,7 +92,7 @@ pub(super) fn channel_analysis(
         / lat.w0();
     ctx.checks.add(
         "lattice channel: reduced poles vs the closed form ±jωₖ of the visible modes (relative to ω0)",
-        format!("{}, particle {} → {out}", describe(lat), lat.input()),
+        format!("{}, particle {} → {out}", lat.describe(), lat.input()),
         pole_err,
         1e-12,
     );
@@ -108,7 +106,7 @@ pub(super) fn channel_analysis(
         "lattice channel G(jω) from the state-space layer vs the closed-form modal sum (relative)",
         format!(
             "{}, particle {} → {out}, 4 frequencies",
-            describe(lat),
+            lat.describe(),
             lat.input()
         ),
         err,
@@ -135,29 +133,6 @@ pub(super) fn channel_analysis(
     Ok(())
 }
 
-/// The modes' ω and the channel's zeros H(w) = e_jᵀ(wI + K)⁻¹e_i of the fixed lattice in
-/// closed form: the cofactor of the tridiagonal wI + K is det(wI + K_(i−1))·det(wI + K_(N−j))
-/// (the blocks before the input and after the output particle), so H's zeros are
-/// −4ω0² sin²(πl/(2i)) and −4ω0² sin²(πl/(2(N − j + 1))), without the values shared with a
-/// mode of the lattice (modes with a node at particle i or j are not in the channel).
-fn fixed_channel_w_zeros(n: usize, i: usize, j: usize) -> Vec<f64> {
-    let eig = |m: usize| -> Vec<f64> {
-        (1..=m)
-            .map(|l| -4.0 * (PI * l as f64 / (2.0 * (m + 1) as f64)).sin().powi(2))
-            .collect()
-    };
-    let modes: Vec<f64> = eig(n);
-    let mut ws = eig(i - 1);
-    for w in eig(n - j) {
-        match ws.iter().position(|v| (v - w).abs() < 1e-12) {
-            // a value of both blocks is a mode of the lattice: one copy cancels with it
-            Some(_) if modes.iter().any(|m| (m - w).abs() < 1e-12) => {}
-            _ => ws.push(w),
-        }
-    }
-    ws
-}
-
 /// A damped, non-collocated channel: Rayleigh damping (γ to the ground, η in the springs)
 /// makes every mode's factor s² + (γ + ηλ)s + λ = (1 + ηs)(w + λ) with w = (s² + γs)/(1 + ηs),
 /// so G(s) = H(w)/(1 + ηs) — the zeros in closed form and an exact multiple zero at −1/η, which
@@ -171,73 +146,15 @@ pub(super) fn damped_channel(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         .with_output(Output::Particle(j))?;
     let ss = lat.state_space()?;
     let f = crate::analysis::Factored::from_state_space(&ss)?;
-    let ws = fixed_channel_w_zeros(n, i, j);
-    // H's relative degree: the cofactor has degree (i − 1) + (N − j), det(wI + K) degree N
-    // (a cancelled mode lowers both)
-    let rho = j - i + 1;
-    let extra = rho - 1;
-    // G: 2 poles per mode of H, 2 zeros per zero of H and ρ − 1 at −1/η: 2ρ − (ρ − 1)
-    let rd_want = rho + 1;
-    // the closed-form zeros of G
-    let mut want: Vec<Complex64> = Vec::new();
-    for &w in &ws {
-        let (b, c) = (gamma - eta * w, -w);
-        let disc = Complex64::new(b * b - 4.0 * c, 0.0).sqrt();
-        want.push((-b + disc) / 2.0);
-        want.push((-b - disc) / 2.0);
-    }
-    let zeros = f.reduced_zeros();
-    let multiple = zeros
+    // the closed form of the model (its derivation: lti::lattice::closed_form), checked
+    // against this channel's factored form in tests/ss_second_order.rs
+    let cf = lat.channel_zeros_closed_form()?;
+    let (rho, extra) = (cf.w_relative_degree, cf.eta_zero_multiplicity);
+    let multiple = f
+        .reduced_zeros()
         .iter()
         .find(|z| (z.value.re + 1.0 / eta).abs() < 1e-9 / eta)
         .map_or(0, |z| z.multiplicity);
-    let mut left: Vec<Complex64> = zeros
-        .iter()
-        .filter(|z| (z.value.re + 1.0 / eta).abs() >= 1e-9 / eta)
-        .flat_map(|z| std::iter::repeat_n(z.value, z.multiplicity))
-        .collect();
-    let mut zero_err = if left.len() == want.len() {
-        0.0f64
-    } else {
-        f64::INFINITY
-    };
-    for w in &want {
-        if let Some((k, d)) = left
-            .iter()
-            .enumerate()
-            .map(|(k, z)| (k, (z - w).norm()))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-        {
-            zero_err = zero_err.max(d);
-            left.swap_remove(k);
-        }
-    }
-    let what = format!("fixed, N = {n}, γ = {gamma}, η = {eta}, particle {i} → {j}");
-    ctx.checks.add(
-        "lattice damped channel: zeros vs the closed form (two per zero of H(w))",
-        what.clone(),
-        zero_err,
-        1e-12,
-    );
-    ctx.checks.add(
-        "lattice damped channel: multiplicity of the zero at −1/η vs ρ − 1 (difference)",
-        what.clone(),
-        (multiple as f64 - extra as f64).abs(),
-        0.0,
-    );
-    ctx.checks.add(
-        "lattice damped channel: relative degree vs ρ + 1 (difference)",
-        what.clone(),
-        (f.relative_degree().unwrap_or(0) as f64 - rd_want as f64).abs(),
-        0.0,
-    );
-    let gain_want = eta.powi(extra as i32);
-    ctx.checks.add(
-        "lattice damped channel: gain vs η^(ρ−1) (relative)",
-        what.clone(),
-        (f.gain() - gain_want).abs() / gain_want,
-        1e-12,
-    );
     // the same model with its states interleaved: the general path (Schur form, staircases,
     // the pencil of the whole model)
     let m = ss.order();
@@ -274,15 +191,15 @@ pub(super) fn damped_channel(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
          corner at 1/η on.",
         2 * i,
         2 * (n - j + 1),
-        ws.len(),
+        cf.w_zeros.len(),
         fmt_sig(-1.0 / eta, 6),
-        rd_want,
-        fmt_sig(gain_want, 3),
+        cf.relative_degree,
+        fmt_sig(cf.gain, 3),
         f.relative_degree().unwrap_or(0),
         count(f.reduced_zeros()),
         fmt_sig(-1.0 / eta, 6),
         fmt_sig(f.gain(), 6),
-        fmt_sig(gain_want, 3),
+        fmt_sig(cf.gain, 3),
         g.relative_degree().unwrap_or(0),
         count(g.reduced_zeros()),
         fmt_sig(far, 3),
@@ -295,25 +212,6 @@ pub(super) fn damped_channel(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         )),
         ..Default::default()
     };
-    // the factored frequency response against a direct solve of the 128-state model below the
-    // band edge (beyond it the channel is evanescent and a solve keeps ~1e-16 of the largest
-    // modal term, while the factors stay exact: tests/ss_second_order.rs checks them against
-    // 50-digit values up to ω = 300, |G| = 3e-50)
-    let h = crate::numeric::linalg::HessenbergResponse::new(&ss.a, &ss.b, &ss.c, &ss.d)?;
-    let probe = [0.05, 0.3, 1.0, 1.7];
-    let fr = f.freq_response(&probe)?;
-    let mut err = 0.0f64;
-    for (k, &w) in probe.iter().enumerate() {
-        let direct = h.eval_siso(Complex64::new(0.0, w));
-        let from_factors = Complex64::from_polar(fr.magnitude[k], fr.phase_deg[k].to_radians());
-        err = err.max((from_factors - direct).norm() / direct.norm());
-    }
-    ctx.checks.add(
-        "lattice damped channel: frequency response from the factors vs a solve of the 128-state model (relative)",
-        format!("{what}, 4 frequencies below the band edge"),
-        err,
-        1e-10,
-    );
     crate::cli::plots::bode_figure(
         &ctx.figure(name),
         &[("128 states, factored".to_string(), f)],

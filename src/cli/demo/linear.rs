@@ -3,7 +3,7 @@
 use anyhow::Result;
 
 use super::super::plots;
-use super::Ctx;
+use super::context::Ctx;
 use super::md::Md;
 use crate::TransferFunction;
 use crate::analysis::Factored;
@@ -319,7 +319,7 @@ fn step_block(ctx: &mut Ctx, md: &mut Md, name: &str, g: &Factored, a: &Analysis
                     fmt_sig(si.steady_state, 6),
                 ]],
             );
-            super::verify_step_info(ctx, name, g, si)?;
+            ctx.checks.step_metrics(name, g, si)?;
         }
         None => md.p("The step response does not settle: no step metrics."),
     }
@@ -404,7 +404,7 @@ fn frequency_block(
             _ => "no resonant peak".into(),
         },
     ]);
-    super::verify_margins(ctx, name, g, &m)?;
+    ctx.checks.margins(name, g, &m)?;
 
     Ok(())
 }
@@ -422,7 +422,7 @@ fn figures(ctx: &mut Ctx, md: &mut Md, p: &DemoPlant) -> Result<()> {
         None,
         true,
         true,
-        &super::fig(format!("{}: Bode diagram", name)),
+        &super::context::fig(format!("{}: Bode diagram", name)),
     )?;
     let step = format!("{}-step.png", p.slug);
     plots::step_figure(
@@ -430,7 +430,7 @@ fn figures(ctx: &mut Ctx, md: &mut Md, p: &DemoPlant) -> Result<()> {
         &plant,
         &Input::Step,
         None,
-        &super::fig(format!("{}: step response", name)),
+        &super::context::fig(format!("{}: step response", name)),
     )?;
     let pz = format!("{}-pzmap.png", p.slug);
     plots::pzmap_figure(
@@ -438,7 +438,7 @@ fn figures(ctx: &mut Ctx, md: &mut Md, p: &DemoPlant) -> Result<()> {
         &label,
         g,
         true,
-        &super::fig(format!("{}: poles and zeros", name)),
+        &super::context::fig(format!("{}: poles and zeros", name)),
     )?;
     md.image(&format!("Bode diagram of the {}", name), &bode);
     md.image(&format!("Step response of the {}", name), &step);

@@ -1,5 +1,5 @@
 //! The mechanical systems of seed chapters 1–2: the free rigid body, the heavy top, the gimbal
-//! gyroscope and the double pendulum, each with its closed-form checks.
+//! gyroscope and the double pendulum, each compared with its closed forms.
 
 mod double;
 mod gyro;
@@ -9,7 +9,7 @@ mod top;
 use anyhow::Result;
 use num_complex::Complex64;
 
-use super::Ctx;
+use super::context::Ctx;
 use super::md::Md;
 use crate::cli::text::vector_text;
 use crate::nonlinear::{Linearization, LocalStability};
@@ -23,8 +23,8 @@ pub fn sections(ctx: &mut Ctx, md: &mut Md, number: usize) -> Result<()> {
          with exact (AD) linearisations. Where the eigenvalues sit on the imaginary axis the \
          linearisation cannot decide (seed §2.3); the energy–Casimir test does: an \
          equilibrium that is a strict extremum of the energy on the level set of the other \
-         conserved quantities is Lyapunov stable. Simulations at rtol 10⁻¹² are checked \
-         against the closed forms and report the drift of every conserved quantity.",
+         conserved quantities is Lyapunov stable. Simulations at rtol 10⁻¹² are compared \
+         with the closed forms and report the drift of every conserved quantity.",
     );
     ctx.progress("rigid body");
     rigid::section(ctx, md)?;

@@ -6,7 +6,7 @@
 use anyhow::Result;
 use num_complex::Complex64;
 
-use super::Ctx;
+use super::context::Ctx;
 use super::md::Md;
 use crate::analysis::rlocus::{RootLocus, RootLocusOptions};
 use crate::analysis::stable_gains;
@@ -54,7 +54,7 @@ fn proportional(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
             label: Some("K/(250 s² + 1000 s + 16000)"),
             marked: Some((16000.0, &(&d + &n.scale(16000.0)).roots()?)),
         },
-        &super::fig("Suspension with a proportional gain K: root locus"),
+        &super::context::fig("Suspension with a proportional gain K: root locus"),
     )?;
     md.p(
         "Proportional gain: 250 s² + 1000 s + 16000 + K has the roots −2 ± j·√(60 + K/250) — \
@@ -113,7 +113,7 @@ fn pi(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
             label: Some("K·(s + 8)/(s (250 s² + 1000 s + 16000))"),
             marked: Some((k_mark, &marked)),
         },
-        &super::fig("Suspension with PI control K·(s + 8)/s: root locus"),
+        &super::context::fig("Suspension with PI control K·(s + 8)/s: root locus"),
     )?;
     let cross = l.crossings.first();
     let stable = stable_gains(&n, &d)?;

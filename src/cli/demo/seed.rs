@@ -1,27 +1,29 @@
-//! The seed's second-order cases: the four damping cases of figs. 2.3/2.5/2.6 and the
-//! analytic responses of eqs. 3.33–3.35 checked against the computed ones.
+//! The seed's second-order cases: the four damping cases of figs. 2.3/2.5/2.6 (the seed's
+//! analytic responses, eqs. 3.33–3.35, are checked against the computed ones in
+//! tests/response.rs).
 
 use anyhow::Result;
 
 use super::super::plots;
-use super::Ctx;
+use super::context::Ctx;
 use super::linear::roots_text;
 use super::md::Md;
-use crate::TransferFunction;
 use crate::analysis::{Factored, Input};
 use crate::fmt::{fmt_opt, fmt_sig};
+use crate::lti::build_plant;
 use crate::plot::{Curve, Equilibrium, PhasePortrait, phase_portrait_png, series_color};
 
-/// ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1, factored.
-pub fn second_order(zeta: f64) -> Result<Factored> {
-    Ok(TransferFunction::from_descending(&[1.0], &[1.0, 2.0 * zeta, 1.0])?.factored()?)
+/// The `second-order` textbook model ẍ + 2ζωₙẋ + ωₙ²x = u with ωₙ = 1, factored.
+fn second_order(zeta: f64) -> Result<Factored> {
+    let (g, _) = build_plant("second-order", &[("wn".into(), 1.0), ("zeta".into(), zeta)])?;
+    Ok(g.factored()?)
 }
 
 /// The damping cases of the seed's figures.
-pub const CASES: [f64; 4] = [0.0, 0.1, 1.0, 2.0];
+const CASES: [f64; 4] = [0.0, 0.1, 1.0, 2.0];
 
 /// Initial displacement of fig. 2.6.
-pub const X0: f64 = std::f64::consts::PI / 36.0;
+const X0: f64 = std::f64::consts::PI / 36.0;
 
 #[allow(clippy::float_cmp)] // ζ = 0 exactly selects the undamped window
 pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
@@ -83,7 +85,7 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         &plants,
         &Input::Step,
         Some(40.0),
-        &super::fig("Step responses for ζ = 0, 0.1, 1, 2 (ωn = 1; seed figs. 2.3, 2.5)"),
+        &super::context::fig("Step responses for ζ = 0, 0.1, 1, 2 (ωn = 1; seed figs. 2.3, 2.5)"),
     )?;
     let bode = "damping-bode.png";
     plots::bode_figure(
@@ -92,7 +94,7 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
         Some((0.01, 100.0)),
         false,
         false,
-        &super::fig("Bode diagrams for ζ = 0, 0.1, 1, 2 (ωn = 1; exercise 3.2)"),
+        &super::context::fig("Bode diagrams for ζ = 0, 0.1, 1, 2 (ωn = 1; exercise 3.2)"),
     )?;
     // Phase plots ẋ against x from x(0) = π/36 (fig. 2.6), from the exact closed forms.
     let mut curves = Vec::new();
@@ -133,87 +135,10 @@ pub fn damping_cases(ctx: &mut Ctx, md: &mut Md, index: usize) -> Result<()> {
             equal_aspect: true,
             ..Default::default()
         },
-        &super::fig("Phase plot ẋ against x from x(0) = π/36 (seed fig. 2.6)"),
+        &super::context::fig("Phase plot ẋ against x from x(0) = π/36 (seed fig. 2.6)"),
     )?;
     md.image("Step responses of the four damping cases", step);
     md.image("Bode diagrams of the four damping cases", bode);
     md.image("Phase plot of the four damping cases", phase);
-    Ok(())
-}
-
-/// Analytic free response of the seed (eqs. 3.33–3.35 and the overdamped form) for
-/// ẍ + 2ζẋ + x = 0 (ωₙ = 1). Eq. 3.33 prints cos(ω_d t + φ); the mathematics gives −φ.
-#[allow(clippy::float_cmp)] // ζ = 0 and ζ = 1 select the seed's exact special cases
-pub fn free_analytic(zeta: f64, y0: f64, v0: f64, t: f64) -> f64 {
-    if zeta == 0.0 {
-        // eq. 3.34
-        v0 * (t - std::f64::consts::FRAC_PI_2).cos() + y0 * t.cos()
-    } else if zeta < 1.0 {
-        // eq. 3.33
-        let wd = (1.0 - zeta * zeta).sqrt();
-        let r = 1.0 / wd;
-        let phi = (zeta / wd).atan();
-        let e = (-zeta * t).exp();
-        v0 / wd * e * (wd * t - std::f64::consts::FRAC_PI_2).cos()
-            + y0 * r * e * (wd * t - phi).cos()
-    } else if zeta == 1.0 {
-        // eq. 3.35
-        (-t).exp() * (v0 * t + y0 * (1.0 + t))
-    } else {
-        // overdamped form (seed, case I): −p₁, −p₂ = (−ζ ± √(ζ²−1))ωₙ
-        let q = (zeta * zeta - 1.0).sqrt();
-        let (p1, p2) = (zeta - q, zeta + q);
-        v0 * ((-p1 * t).exp() / (p2 - p1) + (-p2 * t).exp() / (p1 - p2))
-            + y0 * ((2.0 * zeta - p1) / (p2 - p1) * (-p1 * t).exp()
-                + (2.0 * zeta - p2) / (p1 - p2) * (-p2 * t).exp())
-    }
-}
-
-/// Analytic unit-step response of 1/(s² + 2ζs + 1).
-#[allow(clippy::float_cmp)] // ζ = 1 selects the critically damped form
-pub fn step_analytic(zeta: f64, t: f64) -> f64 {
-    if zeta < 1.0 {
-        let wd = (1.0 - zeta * zeta).sqrt();
-        1.0 - (-zeta * t).exp() * ((wd * t).cos() + zeta / wd * (wd * t).sin())
-    } else if zeta == 1.0 {
-        1.0 - (1.0 + t) * (-t).exp()
-    } else {
-        let q = (zeta * zeta - 1.0).sqrt();
-        let (p1, p2) = (zeta - q, zeta + q);
-        1.0 - (p2 * (-p1 * t).exp() - p1 * (-p2 * t).exp()) / (p2 - p1)
-    }
-}
-
-/// The seed's analytic damped responses against the closed forms and the exact simulation.
-#[allow(clippy::float_cmp)] // ζ = 0 and ζ = 1 select the seed's exact special cases
-pub fn analytic_checks(ctx: &mut Ctx) -> Result<()> {
-    let t: Vec<f64> = (0..=300).map(|i| 0.1 * i as f64).collect();
-    let (y0, v0) = (1.0, 0.5);
-    for &z in &[0.0, 0.1, 0.5, 1.0, 1.5, 2.0] {
-        let g = second_order(z)?;
-        let free = g.inverse_laplace(&Input::None, &[y0, v0])?;
-        let sim = g.time_response(&Input::None, &[y0, v0], &t)?;
-        let step = g.inverse_laplace(&Input::Step, &[])?;
-        let step_sim = g.step_response(&t)?;
-        let (mut e_cf, mut e_sim, mut s_cf, mut s_sim): (f64, f64, f64, f64) = (0.0, 0.0, 0.0, 0.0);
-        for (i, &ti) in t.iter().enumerate() {
-            let want = free_analytic(z, y0, v0, ti);
-            e_cf = e_cf.max((free.closed_form.eval(ti) - want).abs());
-            e_sim = e_sim.max((sim.y[i] - want).abs());
-            let ws = step_analytic(z, ti);
-            s_cf = s_cf.max((step.closed_form.eval(ti) - ws).abs());
-            s_sim = s_sim.max((step_sim.y[i] - ws).abs());
-        }
-        let g1 = "seed eqs. 3.33–3.35: free response vs analytic (absolute)";
-        ctx.checks
-            .add(g1, format!("ζ = {z}, closed form"), e_cf, 1e-10);
-        ctx.checks
-            .add(g1, format!("ζ = {z}, exact simulation"), e_sim, 1e-10);
-        let g2 = "second-order step response vs analytic (absolute)";
-        ctx.checks
-            .add(g2, format!("ζ = {z}, closed form"), s_cf, 1e-10);
-        ctx.checks
-            .add(g2, format!("ζ = {z}, exact simulation"), s_sim, 1e-10);
-    }
     Ok(())
 }

@@ -18,12 +18,28 @@
 //! k = 1…N: N distinct frequencies, none zero, standing waves of wave number ka = πk/(N + 1).
 //!
 //! **Damping** cₖ = γ + ηωₖ² turns each ±jωₖ into the roots of s² + cₖ s + ωₖ².
+//!
+//! **Zeros of a fixed-end channel** (force on particle j, displacement of particle i; lo, hi
+//! the smaller and the larger of the two). With Ω = −ω0²K, K = tridiag(−1, 2, −1), every
+//! factor of the damped lattice is s²I + s(γI + ηω0²K) + ω0²K = (1 + ηs)(wI + ω0²K) with
+//! w = (s² + γs)/(1 + ηs), so G(s) = H(w)/(m(1 + ηs)) where H(w) = eᵢᵀ(wI + ω0²K)⁻¹eⱼ is the
+//! undamped channel with s² replaced by w. The cofactor of the tridiagonal wI + ω0²K is
+//! det(wI + ω0²K_(lo−1))·det(wI + ω0²K_(N−hi))·(ω0²)^(hi−lo) (the blocks before lo and after
+//! hi; the bonds between contribute the power of ω0²), so H has the zeros
+//! w = −4ω0² sin²(πl/(2 lo)), l = 1…lo−1, and w = −4ω0² sin²(πl/(2(N − hi + 1))),
+//! l = 1…N−hi, over the poles w = −ωₖ², and the gain (ω0²)^(hi−lo). A value of a block is a
+//! mode value exactly when the mode has a node at lo (at hi): sin(πk·lo/(N + 1)) = 0 ⇔
+//! k/(N + 1) = l/lo. Such a mode is not in the channel, and it cancels one copy of its value
+//! from the zeros — a mode with nodes at both particles leaves one copy. H then has
+//! relative degree ρ = hi − lo + 1 in w. In s each factor w − a is
+//! (s² + (γ − ηa)s − a)/(1 + ηs): G has two zeros per zero of H, ρ − 1 zeros at −1/η
+//! (η > 0), relative degree ρ + 1 (2ρ without η) and the gain (ω0²)^(hi−lo)·η^(ρ−1)/m.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
-use super::{Boundary, Lattice};
+use super::{Boundary, Lattice, Output};
 use crate::error::{LtiError, Result};
 
 /// The dispersion law (2.71): ω(k) = 2ω0 |sin(ka/2)| for the wave number times the lattice
@@ -325,5 +341,102 @@ mod tests {
         assert_eq!(lat.modal_sum(1, 1).unwrap().minimal_order(), 130);
         // d = 32 = N/4: cos(2πp/4) vanishes for odd p.
         assert_eq!(lat.modal_sum(1, 33).unwrap().minimal_order(), 2 * 33);
+    }
+}
+
+/// The zeros of a fixed-end lattice channel in closed form ([`Lattice::channel_zeros_closed_form`],
+/// derived in the [module docs](self)).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChannelZeros {
+    /// The zeros of the undamped channel H(w) in w (w = s² without damping), after the
+    /// values shared with a mode not in the channel cancel; increasing.
+    pub w_zeros: Vec<f64>,
+    /// H's relative degree in w, ρ = |i − j| + 1.
+    pub w_relative_degree: usize,
+    /// The zeros of G(s) other than −1/η: the two roots of s² + (γ − ηw)s − w for each zero
+    /// w of H.
+    pub zeros: Vec<Complex64>,
+    /// The multiplicity of the zero at −1/η: ρ − 1 with η > 0, else 0.
+    pub eta_zero_multiplicity: usize,
+    /// G's relative degree: ρ + 1 with η > 0, 2ρ without.
+    pub relative_degree: usize,
+    /// G's gain, the ratio of the leading coefficients: (ω0²)^(ρ−1)·η^(ρ−1)/m with η > 0,
+    /// (ω0²)^(ρ−1)/m without.
+    pub gain: f64,
+}
+
+impl Lattice {
+    /// The zeros, relative degree and gain of the force → displacement channel of a lattice
+    /// with fixed ends in closed form (the cofactor of the tridiagonal stiffness; Rayleigh
+    /// damping maps them through w = (s² + γs)/(1 + ηs); see the [module docs](self)).
+    ///
+    /// Errors: periodic boundaries (the ring has no tridiagonal cofactor), all particles as
+    /// the output, and γη = 1 (then every factor has the root −1/η and the forms degenerate).
+    ///
+    /// ```
+    /// use ltikit::lti::lattice::{Boundary, Lattice, Output};
+    /// // 5 fixed particles, force on 2, displacement of 4: each one-particle block (before 2,
+    /// // after 4) gives the value −4 sin²(π/4) = −2, which is also the mode k = 3 (ω² = 2,
+    /// // nodes at both particles): it cancels one copy, so H(w) = (w + 2)/Π(w + ωₖ²) over
+    /// // the other four modes, ρ = 3.
+    /// let lat = Lattice::new(5, Boundary::Fixed, 1.0).unwrap()
+    ///     .with_input(2).unwrap().with_output(Output::Particle(4)).unwrap();
+    /// let z = lat.channel_zeros_closed_form().unwrap();
+    /// assert_eq!(z.w_relative_degree, 3);
+    /// assert_eq!(z.w_zeros.len(), 1);
+    /// assert!((z.w_zeros[0] + 2.0).abs() < 1e-15);
+    /// assert_eq!((z.relative_degree, z.gain), (6, 1.0)); // undamped: 2ρ, (ω0²)²/m
+    /// assert!(z.zeros.iter().all(|s| s.re == 0.0)); // ±j√2
+    /// ```
+    pub fn channel_zeros_closed_form(&self) -> Result<ChannelZeros> {
+        let bad = |why: &str| Err(LtiError::invalid(format!("lattice channel zeros: {why}")));
+        if self.boundary() != Boundary::Fixed {
+            return bad("closed form for fixed ends only (the ring has no tridiagonal cofactor)");
+        }
+        let Output::Particle(out) = self.output() else {
+            return bad("the output is every particle; choose one");
+        };
+        let (gamma, eta) = (self.gamma(), self.eta());
+        if (1.0 - gamma * eta).abs() <= 1e-12 {
+            return bad("γη = 1: every factor has the root −1/η");
+        }
+        let n = self.n();
+        let (lo, hi) = (self.input().min(out), self.input().max(out));
+        let w0sq = self.w0() * self.w0();
+        // values −4ω0² sin²(πa/b) kept as the fraction a/b (of π/2), compared exactly
+        let value =
+            |a: usize, b: usize| -4.0 * w0sq * (PI * a as f64 / (2.0 * b as f64)).sin().powi(2);
+        let mut blocks: Vec<(usize, usize)> = (1..lo).map(|l| (l, lo)).collect();
+        blocks.extend((1..=n - hi).map(|l| (l, n - hi + 1)));
+        // a mode k (value k/(N + 1)) equal to a block value cancels one copy of it
+        let mut cancelled = vec![false; n + 1];
+        let mut kept: Vec<f64> = Vec::new();
+        for (a, b) in blocks {
+            let mode = ((a * (n + 1)) % b == 0).then(|| a * (n + 1) / b);
+            match mode {
+                Some(k) if k <= n && !cancelled[k] => cancelled[k] = true,
+                _ => kept.push(value(a, b)),
+            }
+        }
+        kept.sort_by(f64::total_cmp);
+        let rho = hi - lo + 1;
+        let zeros = kept
+            .iter()
+            .flat_map(|&w| oscillator_roots(gamma - eta * w, (-w).sqrt()))
+            .collect();
+        let base = w0sq.powi((rho - 1) as i32) / self.mass();
+        let (eta_zero_multiplicity, relative_degree, gain) = if eta > 0.0 {
+            (rho - 1, rho + 1, base * eta.powi((rho - 1) as i32))
+        } else {
+            (0, 2 * rho, base)
+        };
+        Ok(ChannelZeros {
+            w_zeros: kept,
+            w_relative_degree: rho,
+            zeros,
+            eta_zero_multiplicity,
+            relative_degree,
+            gain,
+        })
     }
 }

@@ -107,6 +107,63 @@ impl Gyroscope {
         self.i3 * self.w / self.i1
     }
 
+    /// The linearisation's transfer function from torque `input` to gimbal angle `output`
+    /// (0-based: u₁, u₂, u₃ → θ₁, θ₂) at `s`, in closed form (module docs):
+    /// G₁₁ = G₂₂ = 1/(Il(s² + ν²)), G₂₁ = −G₁₂ = −ν/(Il s(s² + ν²)), and 0 from u₃.
+    ///
+    /// ```
+    /// use ltikit::nonlinear::models::Gyroscope;
+    /// use num_complex::Complex64;
+    /// let g = Gyroscope::default(); // Il = 0.5, ν = 40 rad/s
+    /// let s = Complex64::new(0.0, 10.0);
+    /// let g11 = g.channel_closed_form(0, 0, s); // 1/(0.5·(1600 − 100))
+    /// assert!((g11 - Complex64::new(1.0 / 750.0, 0.0)).norm() < 1e-18);
+    /// assert_eq!(g.channel_closed_form(2, 1, s), Complex64::new(0.0, 0.0));
+    /// ```
+    pub fn channel_closed_form(
+        &self,
+        input: usize,
+        output: usize,
+        s: num_complex::Complex64,
+    ) -> num_complex::Complex64 {
+        let nu = self.nutation_frequency();
+        let d = s * s + nu * nu;
+        match (input, output) {
+            (0, 0) | (1, 1) => 1.0 / (self.i1 * d),
+            (0, 1) => -nu / (self.i1 * s * d),
+            (1, 0) => nu / (self.i1 * s * d),
+            _ => num_complex::Complex64::new(0.0, 0.0),
+        }
+    }
+
+    /// The mean rate −u₁/(Iz ω) at which a constant torque `u1` about the outer gimbal axis
+    /// turns the inner gimbal (precession; module docs).
+    pub fn precession_rate(&self, u1: f64) -> f64 {
+        -u1 / (self.i3 * self.w)
+    }
+
+    /// The linearisation's gimbal angles [δθ₁, δθ₂] at time `t` after a constant torque `u1`
+    /// about the outer gimbal axis is applied from steady spin (the step responses of
+    /// G₁₁ = 1/(Il(s² + ν²)) and G₂₁ = −ν/(Il s(s² + ν²)), module docs):
+    /// δθ₁ = u₁/(Il ν²)·(1 − cos νt), δθ₂ = −u₁/(Il ν)·(t − sin(νt)/ν) — nutation loops of
+    /// size u₁/(Il ν²) riding on the precession.
+    ///
+    /// ```
+    /// use ltikit::nonlinear::models::Gyroscope;
+    /// let g = Gyroscope::default();
+    /// let period = 2.0 * std::f64::consts::PI / g.nutation_frequency();
+    /// let [d1, d2] = g.outer_torque_response(0.2, period);
+    /// assert!(d1.abs() < 1e-15); // back on the axis after a full nutation loop
+    /// assert!((d2 - g.precession_rate(0.2) * period).abs() < 1e-15);
+    /// ```
+    pub fn outer_torque_response(&self, u1: f64, t: f64) -> [f64; 2] {
+        let nu = self.nutation_frequency();
+        [
+            u1 / (self.i1 * nu * nu) * (1.0 - (nu * t).cos()),
+            -u1 / (self.i1 * nu) * (t - (nu * t).sin() / nu),
+        ]
+    }
+
     /// The steady spin [θ₁, θ₂, θ̇₁, θ̇₂, Ω₃] = [0, π/2, 0, 0, ω].
     pub fn steady_spin(&self) -> [f64; 5] {
         [0.0, std::f64::consts::FRAC_PI_2, 0.0, 0.0, self.w]

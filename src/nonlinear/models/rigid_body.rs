@@ -230,6 +230,49 @@ impl RigidBody {
             [Complex64::new(0.0, w), z, Complex64::new(0.0, -w)]
         }
     }
+
+    /// The eigenvalues, ascending, of the Hessian of the energy–Casimir function
+    /// E − |Π|²/(2 Ik) at the relative equilibrium ±p eₖ restricted to the tangent plane of
+    /// the momentum sphere: 1/Ii − 1/Ik over the other two axes i, independent of p (the
+    /// multiplier −1/Ik makes the gradient vanish there; the Hessian of E is diag(1/Iᵢ)). Both
+    /// positive on the largest axis (a strict minimum), both negative on the smallest (a
+    /// maximum), of opposite signs on the intermediate one (a saddle).
+    ///
+    /// ```
+    /// use ltikit::nonlinear::models::RigidBody;
+    /// let b = RigidBody::new(3.0, 2.0, 1.0).unwrap();
+    /// let h = b.energy_casimir_hessian(0); // largest moment: 1/2 − 1/3, 1 − 1/3
+    /// assert!((h[0] - 1.0 / 6.0).abs() < 1e-15 && (h[1] - 2.0 / 3.0).abs() < 1e-15);
+    /// assert!(b.energy_casimir_hessian(1)[0] < 0.0 && b.energy_casimir_hessian(1)[1] > 0.0);
+    /// ```
+    pub fn energy_casimir_hessian(&self, k: usize) -> [f64; 2] {
+        let i = self.inertia;
+        let k = k % 3;
+        let a = 1.0 / i[(k + 1) % 3] - 1.0 / i[k];
+        let b = 1.0 / i[(k + 2) % 3] - 1.0 / i[k];
+        [a.min(b), a.max(b)]
+    }
+
+    /// Where the separatrices cross the plane of the largest and the smallest axis: on them
+    /// E = p²/(2 I_b) (b the intermediate axis), so with Π_b = 0
+    /// Π_a²(1/I_a − 1/I_b) + Π_c²(1/I_c − 1/I_b) = 0, i.e. Π_c/Π_a = ±√((I_a − I_b) I_c /
+    /// ((I_b − I_c) I_a)) for a the largest and c the smallest axis. Returns (a, c, that
+    /// slope); `None` when two moments are equal (no isolated intermediate axis).
+    ///
+    /// ```
+    /// use ltikit::nonlinear::models::RigidBody;
+    /// let (a, c, slope) = RigidBody::new(3.0, 2.0, 1.0).unwrap().separatrix_slope().unwrap();
+    /// assert_eq!((a, c), (0, 2));
+    /// // √((3 − 2)·1/((2 − 1)·3)) = 1/√3: they cross 30° from the Π₁ axis
+    /// assert!((slope - (1.0f64 / 3.0).sqrt()).abs() < 1e-15);
+    /// ```
+    pub fn separatrix_slope(&self) -> Option<(usize, usize, f64)> {
+        let i = self.inertia;
+        let a = (0..3).find(|&k| self.axis_kind(k) == AxisKind::Largest)?;
+        let c = (0..3).find(|&k| self.axis_kind(k) == AxisKind::Smallest)?;
+        let b = 3 - a - c;
+        Some((a, c, ((i[a] - i[b]) * i[c] / ((i[b] - i[c]) * i[a])).sqrt()))
+    }
 }
 
 impl SystemInfo for RigidBody {

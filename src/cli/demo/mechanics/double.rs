@@ -4,9 +4,8 @@
 use anyhow::Result;
 use num_complex::Complex64;
 
+use super::super::context::{Ctx, fig};
 use super::super::md::Md;
-use super::super::nonlinear::check_jacobians;
-use super::super::{Ctx, fig};
 use super::{eig_error, tight, verdict_table};
 use crate::fmt::fmt_sig;
 use crate::nonlinear::models::{DoublePendulum, Lorenz};
@@ -38,7 +37,6 @@ pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
          Δ = θ1 − θ2;  normal modes of down–down: m1L1L2ω⁴ − (m1+m2)g(L1+L2)ω² + (m1+m2)g² = 0",
     );
     let lin = linearize(&p, None, &EquilibriumSearch::default())?;
-    check_jacobians(ctx, "double pendulum", &p, &lin);
     let names: Vec<String> = lin
         .equilibria
         .iter()
@@ -59,12 +57,6 @@ pub fn section(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         .flat_map(|w| [Complex64::new(0.0, *w), Complex64::new(0.0, -*w)])
         .collect();
     let err = eig_error(&down.eigenvalues, &want);
-    ctx.checks.add(
-        "double pendulum: normal modes of down–down vs the closed form (relative)",
-        "m1 = m2 = 1 kg, L1 = L2 = 1 m",
-        err,
-        1e-13,
-    );
     let channels: Vec<String> = down
         .channels
         .iter()
@@ -98,12 +90,6 @@ fn chaos(ctx: &mut Ctx, md: &mut Md, p: &DoublePendulum) -> Result<()> {
             .iter()
             .map(|c| c.relative_drift)
             .fold(0.0, f64::max);
-    ctx.checks.add(
-        "double pendulum: energy drift over 30 s, undamped (relative to the well depth)",
-        "both rods horizontal at rest",
-        drift,
-        1e-10,
-    );
     let part = d.separation_time(0.1);
     let ftle = finite_time_exponent(&d);
     let fast = Rk45Options {

@@ -1,49 +1,15 @@
-//! `ltikit response`: the closed-form y(t) for a standard input and ODE initial conditions,
-//! its transient and steady-state parts, and exact values.
+//! The closed-form report of `response`: y(t) of a SISO plant (a transfer function, one
+//! channel of a state-space model, or a loop) for a standard input and ODE initial conditions
+//! from its factored form, the transient and steady-state parts, and exact values.
 
 use anyhow::{Result, bail};
-use clap::Args;
 use serde::Serialize;
 
-use super::output::{print, print_json};
-use super::{PlantArgs, parse};
+use super::args::ResponseArgs;
 use crate::analysis::{Input, auto_time_span};
+use crate::cli::output::{print, print_json};
+use crate::cli::{Plant, parse, text};
 use crate::fmt::fmt_sig;
-
-#[derive(Args, Debug)]
-pub struct ResponseArgs {
-    #[command(flatten)]
-    pub plant: PlantArgs,
-    /// Input: impulse, step, ramp, exp:A (e^(A t)), sin:W, cos:W, or none (initial conditions
-    /// only).
-    #[arg(long, default_value = "step", allow_hyphen_values = true)]
-    pub input: String,
-    /// ODE initial conditions "y(0) y'(0) …" (input zero for t < 0; missing ones are 0).
-    #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
-    pub ic: Option<String>,
-    /// Times (s, ≥ 0) at which to report values, e.g. --t "0 0.5 1 2". Default: 11 points
-    /// over an automatic window.
-    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
-    pub t: Option<String>,
-    /// Print one JSON document: {"closed_form", "t", "y", "transient", "steady_state"} (a
-    /// state-space response: see docs/ARCHITECTURE.md, "MIMO plants").
-    #[arg(long)]
-    pub json: bool,
-    /// Initial state x(0) of a state-space plant, "x1 x2 …" (added to the response; with
-    /// --input none the free response).
-    #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
-    pub x0: Option<String>,
-    /// Include the state trajectories (state-space plants).
-    #[arg(long)]
-    pub states: bool,
-    /// Simulate an input signal from a CSV file (lsim): columns t, u1 … um, one sample a line
-    /// (an optional header line); values at the file's times. At most 1 000 000 samples.
-    #[arg(long, value_name = "FILE.csv", conflicts_with = "t")]
-    pub input_file: Option<std::path::PathBuf>,
-    /// How the --input-file signal moves between samples: zoh (held) or foh (linear).
-    #[arg(long, default_value = "zoh", value_name = "zoh|foh")]
-    pub hold: String,
-}
 
 /// The `response` JSON contract (DESIGN §1.2).
 #[derive(Serialize)]
@@ -67,20 +33,9 @@ fn input_words(i: &Input) -> String {
     }
 }
 
-pub fn run(a: &ResponseArgs) -> Result<()> {
-    let plant = a.plant.single()?;
-    if super::ss_response::wanted(a, &plant) {
-        return super::ss_response::run(a, &plant);
-    }
-    let f = match a.plant.factored(&plant) {
-        Ok(f) => f,
-        // A state-space plant the factored core cannot take yet (order beyond the coefficient
-        // path): its response by exact discretisation.
-        Err(_) if matches!(plant.model, crate::lti::Model::Ss(_)) && a.ic.is_none() => {
-            return super::ss_response::run(a, &plant);
-        }
-        Err(e) => return Err(e),
-    };
+/// Runs `response` on the factored form of `plant` (its channel or loop when one is chosen).
+pub(super) fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
+    let f = a.plant.factored(plant)?;
     let input: Input = a.input.parse()?;
     let ics = match &a.ic {
         Some(s) => parse::numbers(s, "--ic")?,
@@ -107,7 +62,7 @@ pub fn run(a: &ResponseArgs) -> Result<()> {
             steady_state: samples.steady_state.clone(),
         });
     }
-    let mut s = format!("{}\n", super::text::g_text(&plant, &f));
+    let mut s = format!("{}\n", text::g_text(plant, &f));
     s.push_str(&format!("Input: {}", input_words(&input)));
     if !ics.is_empty() {
         let names: Vec<String> = (0..ics.len())

@@ -1,15 +1,15 @@
 //! Gain and phase margins on a Bode diagram: crossover lines, margin bars with their values,
 //! and the rows listing them.
 
-use super::bode::{Avoid, BodeSeries, Panels, Ranges, interp_log, name_of};
-use super::legend::{LegendEntry, Rect, box_points};
-use super::raster::Canvas;
-use super::style::{LineStyle, MarkerShape, Theme};
-use super::text::{HAlign, VAlign};
+use super::panels::{Panels, Ranges, interp_log};
+use super::series::{BodeSeries, name_of};
 use crate::analysis::FrequencyResponse;
 use crate::error::Result;
 use crate::fmt::fmt_sig;
-use crate::plot::Color;
+use crate::plot::legend::{Avoid, LegendEntry, Rect, box_points};
+use crate::plot::raster::{Canvas, Color};
+use crate::plot::style::{LineStyle, MarkerShape, Theme};
+use crate::plot::text::{HAlign, VAlign};
 
 /// Marks every series' margins in the panels and returns the rows listing them (GM, PM per
 /// series; a prefix names the series when there are several). The value labels are added to

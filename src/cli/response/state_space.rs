@@ -1,24 +1,22 @@
-//! `ltikit response` for a state-space plant by exact discretisation
-//! ([`crate::analysis::ss`]): a step or impulse on each input with every output, the
-//! initial-state response (`--x0`), the states (`--states`), and `lsim` with an input signal
-//! from a CSV file (`--input-file`, `--hold zoh|foh`). Used for a MIMO plant without
-//! `--channel` and whenever one of those options is given; a SISO plant otherwise keeps the
-//! closed-form report.
+//! The state-space report of `response`, by exact discretisation ([`crate::analysis::ss`]): a
+//! step or impulse on each input with every output, the initial-state response (`--x0`), the
+//! states (`--states`), and `lsim` with an input signal from a CSV file (`--input-file`,
+//! `--hold zoh|foh`).
 
 use anyhow::{Result, bail};
 use serde::Serialize;
 
-use super::output::{Stream, json_number, json_value, pretty};
-use super::response::ResponseArgs;
-use super::{Plant, parse};
+use super::args::ResponseArgs;
 use crate::analysis::Input;
 use crate::analysis::ss::{Hold, SsTimeResponse};
+use crate::cli::output::{Stream, json_number, json_value, pretty};
+use crate::cli::{Plant, channels, input_file, parse};
 use crate::fmt::fmt_sig;
 use crate::lti::StateSpace;
 use crate::numeric::tol::AXIS_REL_TOL;
 
 /// Most values (times × (outputs + states) × responses) of one state-space response.
-pub const MAX_RESPONSE_VALUES: usize = 10_000_000;
+pub(crate) const MAX_RESPONSE_VALUES: usize = 10_000_000;
 
 /// The head of the `response` JSON document of a state-space plant (its `responses` are
 /// written by [`stream_json`]).
@@ -33,18 +31,8 @@ struct SsResponseJson {
     x0: Option<Vec<f64>>,
 }
 
-/// True when `response` goes the state-space way for this plant and these options.
-pub fn wanted(a: &ResponseArgs, plant: &Plant) -> bool {
-    let ss = matches!(plant.model, crate::lti::Model::Ss(_));
-    let mimo = !plant.model.is_siso() && a.plant.channel.is_none();
-    a.x0.is_some() || a.states || a.input_file.is_some() || (ss && mimo)
-}
-
-/// Runs `response` for a state-space plant.
-pub fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
-    if a.ic.is_some() {
-        bail!("--ic gives ODE initial conditions of a transfer function; for state space use --x0");
-    }
+/// Runs `response` on the state-space model of `plant` (its chosen channel, if any).
+pub(super) fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
     let ss = channel_model(a, plant)?;
     let (inputs, outputs) = signal_names(a, plant);
     let x0 = match &a.x0 {
@@ -61,7 +49,7 @@ pub fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
     };
     let mut responses = Vec::new();
     if let Some(path) = &a.input_file {
-        let sig = super::input_file::read(path, ss.n_inputs())?;
+        let sig = input_file::read(path, ss.n_inputs())?;
         check_size(&ss, sig.t.len(), 1, a.states)?;
         let r = ss.lsim(&sig, hold, x0.as_deref(), a.states)?;
         let text = format!(
@@ -137,7 +125,7 @@ pub fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
         return stream_json(out, &head, &inputs, &responses);
     }
     // The text report, written table by table and row block by row block.
-    let mut open = out.put(&super::channels::plant_header(plant))?;
+    let mut open = out.put(&channels::plant_header(plant))?;
     for (_, _, head, r) in &responses {
         if !open {
             break;
@@ -309,7 +297,7 @@ fn times(a: &ResponseArgs, ss: &StateSpace) -> Result<Vec<f64>> {
 
 /// A window that shows the response: five time constants of the slowest decaying mode, or
 /// four periods of the slowest oscillation when nothing decays (10 s when neither).
-pub fn auto_span(ss: &StateSpace) -> Result<f64> {
+fn auto_span(ss: &StateSpace) -> Result<f64> {
     let eig = ss.eigenvalues()?;
     let scale = eig.iter().map(|z| z.norm()).fold(0.0, f64::max);
     let small = AXIS_REL_TOL * scale;
