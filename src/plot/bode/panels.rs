@@ -46,6 +46,28 @@ impl Ranges {
     }
 }
 
+/// The largest magnitude span drawn (dB).
+const MAX_DB_SPAN: f64 = 300.0;
+
+/// The window [lo, lo + `span`] over the finite `values` that holds the most of them (the
+/// highest among equals), as (lo, hi) with hi the largest value inside.
+fn densest_window(values: &[f64], span: f64) -> Option<(f64, f64)> {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    v.sort_by(f64::total_cmp);
+    let mut best: Option<(usize, usize)> = None; // (count, start index)
+    let mut j = 0;
+    for i in 0..v.len() {
+        while j < v.len() && v[j] <= v[i] + span {
+            j += 1;
+        }
+        if best.is_none_or(|(c, _)| j - i >= c) {
+            best = Some((j - i, i));
+        }
+    }
+    let (count, i) = best?;
+    Some((v[i], v[i + count - 1]))
+}
+
 /// Data ranges, including the margin bars and the asymptotes inside the ω range.
 pub(super) fn data_ranges(series: &[BodeSeries]) -> Result<Ranges> {
     let finite_w = |s: &BodeSeries| {
@@ -87,8 +109,12 @@ pub(super) fn data_ranges(series: &[BodeSeries]) -> Result<Ranges> {
         }
     }
     let (mut mlo, mut mhi) = bounds(mags.iter().copied()).unwrap_or((-1.0, 1.0));
-    // A notch at a zero on the axis would squash everything else: show at most 300 dB.
-    mlo = mlo.max(mhi - 300.0);
+    // A notch at a zero on the axis, or the 400 dB peak of a pair 1e-20 from it, would squash
+    // everything else: show at most 300 dB, the window that holds the most samples (the
+    // highest such window: peaks matter more than notches).
+    if mhi - mlo > MAX_DB_SPAN {
+        (mlo, mhi) = densest_window(&mags, MAX_DB_SPAN).unwrap_or((mhi - MAX_DB_SPAN, mhi));
+    }
     // A little room so that the curve does not run along the frame.
     let pad = 0.04 * (mhi - mlo).max(1.0);
     mlo -= pad;
