@@ -11,9 +11,10 @@ pub fn roots_text(r: &[Root]) -> String {
     roots_texts(&[r]).remove(0)
 }
 
-/// Several root lists printed together (poles, zeros, cancelled roots): six significant
-/// digits, more when distinct values — within a list or across the lists — would print
-/// alike (a zero at −2.00000000001 beside a pole at −2 must not read as "−2" twice).
+/// Several root lists printed together (poles, zeros, cancelled roots): each value with six
+/// significant digits, more when a distinct value — in the same list or another — would print
+/// alike (a zero at −2.00000000001 beside a pole at −2 must not read as "−2" twice); values
+/// that are not that close keep six digits.
 pub fn roots_texts(lists: &[&[Root]]) -> Vec<String> {
     let items: Vec<Vec<(Complex64, String)>> = lists
         .iter()
@@ -32,39 +33,62 @@ pub fn roots_texts(lists: &[&[Root]]) -> Vec<String> {
         })
         .collect();
     let all: Vec<Complex64> = items.iter().flatten().map(|(v, _)| *v).collect();
-    let sig = distinguishing_digits(&all, 6);
+    let digits = digits_per_value(&all, 6);
+    let mut k = 0;
     items
         .iter()
         .map(|list| {
             if list.is_empty() {
-                "none".into()
-            } else {
-                list.iter()
-                    .map(|(v, label)| format!("{}{label}", fmt_root(*v, sig)))
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                return "none".into();
             }
+            let text = list
+                .iter()
+                .map(|(v, label)| {
+                    let t = format!("{}{label}", fmt_root(*v, digits[k]));
+                    k += 1;
+                    t
+                })
+                .collect::<Vec<_>>();
+            text.join(", ")
+        })
+        .collect()
+}
+
+/// For each value, the fewest significant digits from `min` up to 17 with which it prints
+/// differently from every other distinct value of `values` (printed with the same digits).
+/// Only values within a relative 1e-4 of each other are compared (farther ones differ at six
+/// digits already), and not those within 64 eps of each other: a difference at the level of
+/// double-precision rounding is not known to be real, and printing it would print noise.
+pub fn digits_per_value(values: &[Complex64], min: usize) -> Vec<usize> {
+    let close = |a: Complex64, b: Complex64| {
+        let (d, m) = ((a - b).norm(), a.norm().max(b.norm()));
+        d <= 1e-4 * m && d > 64.0 * f64::EPSILON * m
+    };
+    values
+        .iter()
+        .map(|&v| {
+            let near: Vec<Complex64> = values
+                .iter()
+                .copied()
+                .filter(|&u| u != v && close(u, v))
+                .collect();
+            (min..=17)
+                .find(|&sig| {
+                    let t = fmt_root(v, sig);
+                    near.iter().all(|&u| fmt_root(u, sig) != t)
+                })
+                .unwrap_or(17)
         })
         .collect()
 }
 
 /// The fewest significant digits, from `min` up to 17, with which the distinct values of
-/// `values` all print differently.
+/// `values` all print differently (one precision for all).
 pub fn distinguishing_digits(values: &[Complex64], min: usize) -> usize {
-    let mut distinct: Vec<Complex64> = Vec::new();
-    for v in values {
-        if !distinct.contains(v) {
-            distinct.push(*v);
-        }
-    }
-    (min..=17)
-        .find(|&sig| {
-            let mut t: Vec<String> = distinct.iter().map(|v| fmt_root(*v, sig)).collect();
-            t.sort();
-            t.dedup();
-            t.len() == distinct.len()
-        })
-        .unwrap_or(17)
+    digits_per_value(values, min)
+        .into_iter()
+        .max()
+        .unwrap_or(min)
 }
 
 /// Values (upper members of conjugate pairs) each followed by its label, joined with ", ":
@@ -76,10 +100,11 @@ pub fn labelled_roots_text(items: &[(Complex64, String)]) -> String {
     }
     // (the exact path keeps ±j and ±j(1 + 1e-8) apart: they must not read as "±1j, ±1j")
     let values: Vec<Complex64> = items.iter().map(|(v, _)| *v).collect();
-    let sig = distinguishing_digits(&values, 6);
+    let digits = digits_per_value(&values, 6);
     items
         .iter()
-        .map(|(v, label)| format!("{}{label}", fmt_root(*v, sig)))
+        .zip(digits)
+        .map(|((v, label), sig)| format!("{}{label}", fmt_root(*v, sig)))
         .collect::<Vec<_>>()
         .join(", ")
 }
