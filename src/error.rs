@@ -78,7 +78,7 @@ pub enum LtiError {
         limit: usize,
     },
     /// A parameter is outside its valid range.
-    #[error("parameter {name} = {value} is invalid: {reason}")]
+    #[error("parameter {} = {value} is invalid: {reason}", abbreviate(.name))]
     InvalidParameter {
         /// Parameter name.
         name: String,
@@ -90,8 +90,8 @@ pub enum LtiError {
     /// An argument has the wrong shape or content (dimensions, empty lists, …).
     #[error("{0}")]
     InvalidInput(String),
-    /// A named model does not exist.
-    #[error("unknown model '{name}' (known: {known})")]
+    /// A named model does not exist (the name is shown abbreviated, as every echoed text).
+    #[error("unknown model '{}' (known: {known})", abbreviate(.name))]
     UnknownModel {
         /// The requested name.
         name: String,
@@ -99,7 +99,11 @@ pub enum LtiError {
         known: String,
     },
     /// A model has no parameter of this name.
-    #[error("model '{model}' has no parameter '{name}' (parameters: {known})")]
+    #[error(
+        "model '{}' has no parameter '{}' (parameters: {known})",
+        abbreviate(.model),
+        abbreviate(.name)
+    )]
     UnknownParameter {
         /// Model name.
         model: String,
@@ -149,11 +153,21 @@ pub enum LtiError {
         t: f64,
     },
     /// Reading or writing a file failed.
-    #[error("{path}: {message}")]
+    #[error("{}: {message}", abbreviate(.path))]
     Io {
         /// The file.
         path: String,
         /// The operating system's or parser's message.
+        message: String,
+    },
+    /// A plant file or a batch line does not hold a valid plant record: where (the file, the
+    /// line and column, or a batch line's column) and what, in plain words, naming the key.
+    #[error("{}{message}", if .location.is_empty() { String::new() } else { format!("{location}: ") })]
+    BadRecord {
+        /// "plant.toml, line 3, column 7" (file names abbreviated); empty when unknown.
+        location: String,
+        /// What is wrong ("`den` must be a list of numbers or a string of numbers (found
+        /// true)").
         message: String,
     },
     /// A plot could not be drawn.
@@ -175,6 +189,21 @@ pub enum LtiError {
     BeyondExactBudget {
         /// Which limit was hit, with the numbers.
         reason: String,
+    },
+    /// A size the user controls exceeds its limit ([`crate::limits`]); checked before
+    /// anything is allocated.
+    #[error("{field}: {value} exceeds the limit of {} ({limit})", crate::limits::amount(*.max, .unit))]
+    LimitExceeded {
+        /// The field, in backquotes (`` `points` ``), or the product that is limited.
+        field: String,
+        /// The requested size.
+        value: u128,
+        /// The limit.
+        max: u64,
+        /// What is counted ("sample points", "px a side").
+        unit: String,
+        /// The limit's name in [`crate::limits::LIMITS`] (`MAX_POINTS`).
+        limit: String,
     },
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]

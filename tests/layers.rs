@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 fn layer(module: &str) -> Option<usize> {
     Some(match module {
-        "error" | "fmt" | "numeric" => 0,
+        "error" | "fmt" | "limits" | "numeric" => 0,
         "poly" => 1,
         "lti" => 2,
         "analysis" => 3,

@@ -16,7 +16,7 @@ use crate::plot::{
 #[derive(Args, Debug, Clone)]
 pub struct PlotArgs {
     /// Output PNG file.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.png", value_parser = super::png_path)]
     pub output: PathBuf,
     /// Image size in pixels, WIDTHxHEIGHT.
     #[arg(long, default_value = "1000x700", value_name = "WxH")]

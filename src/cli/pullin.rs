@@ -15,7 +15,7 @@ use crate::plot::{Curve, LineStyle, Marker, MarkerShape, PlotOptions, XyPlot, pa
 #[derive(Args, Debug)]
 pub struct PullinArgs {
     /// Output PNG file.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.png", value_parser = super::png_path)]
     pub output: std::path::PathBuf,
     /// A MEMS parameter, NAME=VALUE (eps, A, m, k, l0, b, R; repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]

@@ -67,10 +67,7 @@ use crate::error::{LtiError, Result};
 
 /// Smallest accepted image side (px).
 pub const MIN_SIDE: u32 = 100;
-/// Largest accepted image side (px).
-pub const MAX_SIDE: u32 = 16_384;
-/// Largest accepted image area (px²).
-pub const MAX_PIXELS: u64 = 36_000_000;
+pub use crate::limits::{MAX_PIXELS, MAX_SIDE};
 /// Longest accepted title, label, legend text or note, in characters (Unicode scalar values,
 /// markup included).
 ///
@@ -87,7 +84,7 @@ pub const MAX_PIXELS: u64 = 36_000_000;
 /// let e = long.validate().unwrap_err();
 /// assert!(e.to_string().contains("MAX_TEXT_CHARS"), "{e}");
 /// ```
-pub const MAX_TEXT_CHARS: usize = 16_384;
+pub const MAX_TEXT_CHARS: usize = crate::limits::MAX_TEXT_CHARS;
 
 /// Checks that `text` (`what`, e.g. "the title") has at most [`MAX_TEXT_CHARS`] characters.
 pub(crate) fn check_text(what: &str, text: &str) -> Result<()> {

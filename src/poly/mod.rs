@@ -18,8 +18,7 @@ use crate::error::{LtiError, Result, check_finite};
 use crate::fmt::fmt_num;
 pub use root::{HalfPlane, Root, half_plane, same_root};
 
-/// Highest polynomial degree (system order) ltikit accepts.
-pub const MAX_ORDER: usize = 200;
+pub use crate::limits::MAX_ORDER;
 
 /// A real polynomial, coefficients stored in descending powers, leading coefficient non-zero
 /// (except for the zero polynomial `[0.0]`).

@@ -64,7 +64,7 @@ use crate::poly::{HalfPlane, Poly, Root};
 /// Highest order (number of poles with multiplicity) of a factored plant. Polynomial
 /// coefficients stop at [`crate::MAX_ORDER`]; a factored plant (a state-space channel) may be
 /// larger.
-pub const MAX_FACTORED_ORDER: usize = 4096;
+pub const MAX_FACTORED_ORDER: usize = crate::limits::MAX_FACTORED_ORDER;
 
 thread_local! {
     static FACTORIZATIONS: Cell<usize> = const { Cell::new(0) };
