@@ -208,7 +208,8 @@ pub enum LtiError {
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]
     BadNumber {
-        /// Where it was read ("--den", "num of line 3", …).
+        /// Where it was read: the field in backquotes (`` `den` ``, `` `param` K ``), or a
+        /// description ("coefficient 2 of the numerator").
         what: String,
         /// The offending text, abbreviated to [`TOKEN_SHOWN`] characters.
         token: String,

@@ -173,7 +173,7 @@ limits! {
     /// Most values a simulation keeps (samples × (1 + states + outputs)) for a JSON document or
     /// a picture; the CSV is streamed and only bounded by [`MAX_POINTS`].
     SIMULATION_VALUES, MAX_SIMULATION_VALUES: usize = 20_000_000, "values", ["points"],
-        "samples × (1 + states + outputs) of `simulate --json` or `-o`";
+        "samples × (1 + states + outputs) kept by `simulate` for JSON or a picture";
     /// Most integration steps (accepted plus rejected) a simulation may be allowed.
     SIMULATION_STEPS, MAX_SIMULATION_STEPS: usize = 10_000_000, "steps", ["max_steps"],
         "integration steps of a simulation";

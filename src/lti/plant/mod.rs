@@ -63,9 +63,9 @@ impl Plant {
     /// Errors: a token that is not a number, an empty list, and those of
     /// [`TransferFunction::from_descending`].
     pub fn from_text(num: Option<&str>, den: &str) -> Result<Plant> {
-        let den = parse_list(den, "--den")?;
+        let den = parse_list(den, "`den`")?;
         let num = match num {
-            Some(n) => parse_list(n, "--num")?,
+            Some(n) => parse_list(n, "`num`")?,
             None => coefficients_of(&[1.0]),
         };
         Self::from_coefficients(num, den, None)
@@ -128,15 +128,15 @@ impl Plant {
     }
 
     /// From the matrices A, B, C (and D, zero when absent) typed as text, rows separated by
-    /// `;`: `--a "0 1; -4 -0.8" --b "0; 1" --c "1 0" --d 0`.
+    /// `;`: `a = "0 1; -4 -0.8"`, `b = "0; 1"`, `c = "1 0"`, `d = "0"`.
     ///
     /// Errors: a bad token, ragged rows, inconsistent dimensions (naming the matrices),
     /// NaN/∞ entries, more than [`crate::lti::MAX_STATES`] states.
     pub fn from_matrices_text(a: &str, b: &str, c: &str, d: Option<&str>) -> Result<Plant> {
-        let a = parse_matrix(a, "--a")?;
-        let b = parse_matrix(b, "--b")?;
-        let c = parse_matrix(c, "--c")?;
-        let d = d.map(|d| parse_matrix(d, "--d")).transpose()?;
+        let a = parse_matrix(a, "`a`")?;
+        let b = parse_matrix(b, "`b`")?;
+        let c = parse_matrix(c, "`c`")?;
+        let d = d.map(|d| parse_matrix(d, "`d`")).transpose()?;
         Self::from_state_space(state_space_of(a, b, c, d)?, None)
     }
 

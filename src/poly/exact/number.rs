@@ -42,7 +42,7 @@ impl Rational {
         Rational::parse_named(text, "number")
     }
 
-    /// As [`Rational::parse`], naming the value in the error (e.g. "coefficient 2 of --den").
+    /// As [`Rational::parse`], naming the value in the error (e.g. "coefficient 2 of `den`").
     ///
     /// ```
     /// use ltikit::poly::exact::Rational;
