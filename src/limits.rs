@@ -18,7 +18,7 @@
 //! let e = POINTS.check("`points`", 1_000_000_000).unwrap_err().to_string();
 //! assert_eq!(
 //!     e,
-//!     "`points`: 1000000000 exceeds the limit of 10 000 000 sample points (MAX_POINTS)"
+//!     "`points`: 1000000000 exceeds the limit of 1 000 000 sample points (MAX_POINTS)"
 //! );
 //! ```
 
@@ -148,8 +148,10 @@ limits! {
     /// Largest number of inputs or outputs of a state-space model.
     SIGNALS, MAX_SIGNALS: usize = 256, "inputs or outputs", ["b", "c", "d"],
         "inputs, outputs of a state-space model";
-    /// The largest lattice (particles; the state has twice as many components).
-    PARTICLES, MAX_PARTICLES: usize = 1024, "particles", ["model"],
+    /// The largest lattice (particles; the state has twice as many components). Every
+    /// command stays within seconds up to it; the Nyquist contour, which indents around each
+    /// of the N undamped modes, took 4.5 s of CPU at N = 512 and 19.6 s at N = 1024.
+    PARTICLES, MAX_PARTICLES: usize = 512, "particles", ["model"],
         "particles `N` of the lattice model";
     /// Largest order for which `ltikit analyze` adds the whole-model analysis of a
     /// state-space plant (beyond it the section says "not computed"; the channels are still
@@ -160,8 +162,10 @@ limits! {
     CHANNELS, MAX_CHANNELS: usize = 64, "channels", ["channel"],
         "channels of a MIMO plant analysed at once";
     /// Most points of a grid or a sampled response: frequency grids, time lists, simulation
-    /// samples (80 MB of times; the outputs are streamed).
-    POINTS, MAX_POINTS: usize = 10_000_000, "sample points", ["points", "t", "w"],
+    /// samples (8 MB of times; the outputs are streamed). A million points is more than any
+    /// picture or table needs, and the slowest output at the limit — `freq`'s text table —
+    /// takes about a second (10⁷ took 10 s of CPU).
+    POINTS, MAX_POINTS: usize = 1_000_000, "sample points", ["points", "t", "w"],
         "points of a frequency grid, time list or simulation";
     /// Most values of a per-channel frequency response (frequencies × channels), computed
     /// whole rather than streamed.
@@ -172,10 +176,11 @@ limits! {
         "samples × signals of a state-space `response`";
     /// Most values a simulation keeps (samples × (1 + states + outputs)) for a JSON document or
     /// a picture; the CSV is streamed and only bounded by [`MAX_POINTS`].
-    SIMULATION_VALUES, MAX_SIMULATION_VALUES: usize = 20_000_000, "values", ["points"],
+    SIMULATION_VALUES, MAX_SIMULATION_VALUES: usize = 10_000_000, "values", ["points"],
         "samples × (1 + states + outputs) kept by `simulate` for JSON or a picture";
-    /// Most integration steps (accepted plus rejected) a simulation may be allowed.
-    SIMULATION_STEPS, MAX_SIMULATION_STEPS: usize = 10_000_000, "steps", ["max_steps"],
+    /// Most integration steps (accepted plus rejected) a simulation may be allowed: 5·10⁶
+    /// steps of the double pendulum, the costliest model, take about 2.5 s.
+    SIMULATION_STEPS, MAX_SIMULATION_STEPS: usize = 5_000_000, "steps", ["max_steps"],
         "integration steps of a simulation";
     /// Largest input file of a simulated response (bytes).
     INPUT_BYTES, MAX_INPUT_BYTES: u64 = 64 << 20, "bytes", ["input_file"],

@@ -89,7 +89,7 @@ mod tests {
             &["--points".to_string(), "--size".to_string()],
         );
         assert!(
-            t.contains("--points: at most 10 000 000 sample points"),
+            t.contains("--points: at most 1 000 000 sample points"),
             "{t}"
         );
         assert!(t.contains("--size: at most 16 384 px a side"), "{t}");

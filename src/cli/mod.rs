@@ -155,7 +155,8 @@ pub fn command() -> clap::Command {
                 help.push('\n');
             }
             help.push_str(&help::limits_text(&name, &others, &flags));
-            sub.after_help(help)
+            // `--gain -1`, `--t-end -5`: a negative number is a value, not an option
+            sub.after_help(help).allow_negative_numbers(true)
         });
     }
     cmd.after_help(help::limits_text("", &[], &[]))
@@ -511,6 +512,8 @@ mod tests {
         );
         let e = parse(["ltikit", "mems-pullin"]).unwrap_err();
         assert!(usage_line(&e).contains("--output <FILE.png>"));
+        // a negative number is a value
+        assert!(parse(["ltikit", "routh", "--den", "1 1", "--gain", "-1"]).is_ok());
         // the text form joins an announced list too
         assert_eq!(
             usage_text_line("error: the following were wrong:\n  --a\n  --b\n\nUsage: x"),

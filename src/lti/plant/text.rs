@@ -129,8 +129,21 @@ pub fn matrix_of_rows(rows: Vec<Vec<f64>>, what: &str) -> Result<nalgebra::DMatr
     Ok(nalgebra::DMatrix::from_row_slice(rows.len(), n, &flat))
 }
 
-/// The values of [`parse_list`].
+/// The values of [`parse_list`], at most [`crate::limits::MAX_POINTS`] of them (counted
+/// before anything is allocated).
+///
+/// ```
+/// use ltikit::lti::plant::parse_values;
+/// assert_eq!(parse_values("0 0.5 1", "`t`").unwrap(), vec![0.0, 0.5, 1.0]);
+/// let many = "0 ".repeat(ltikit::limits::MAX_POINTS + 1);
+/// assert!(parse_values(&many, "`t`").is_err());
+/// ```
 pub fn parse_values(text: &str, what: &str) -> Result<Vec<f64>> {
+    let n = text
+        .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .count();
+    crate::limits::POINTS.check_usize(what, n)?;
     Ok(parse_list(text, what)?
         .into_iter()
         .map(|c| c.value)
