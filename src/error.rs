@@ -78,7 +78,11 @@ pub enum LtiError {
         limit: usize,
     },
     /// A parameter is outside its valid range.
-    #[error("parameter {} = {value} is invalid: {reason}", abbreviate(.name))]
+    #[error(
+        "parameter {} = {} is invalid: {reason}",
+        abbreviate(.name),
+        number(*.value)
+    )]
     InvalidParameter {
         /// Parameter name.
         name: String,
@@ -113,7 +117,7 @@ pub enum LtiError {
         known: String,
     },
     /// A time value is outside the valid range (negative, or not increasing).
-    #[error("time {value} is invalid: {reason}")]
+    #[error("time {} is invalid: {reason}", number(*.value))]
     InvalidTime {
         /// The time.
         value: f64,
@@ -216,6 +220,24 @@ pub enum LtiError {
         /// Why ("is not a number", …).
         reason: String,
     },
+}
+
+/// A number as an error message shows it: as Rust prints it (`0.4`, `-1`, `NaN`), or in
+/// exponent form when that is shorter than 300 digits of `1e300`.
+///
+/// ```
+/// use ltikit::error::number;
+/// assert_eq!(number(0.4), "0.4");
+/// assert_eq!(number(1e300), "1e300");
+/// assert_eq!(number(-2.5e-200), "-2.5e-200");
+/// ```
+pub fn number(x: f64) -> String {
+    let plain = x.to_string();
+    if plain.len() > 24 {
+        format!("{x:e}")
+    } else {
+        plain
+    }
 }
 
 /// The number of characters of an offending input token shown in an error message.

@@ -39,7 +39,11 @@ pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
 
 fn check_range(lo: f64, hi: f64, n: usize) -> Result<()> {
     if !(lo.is_finite() && hi.is_finite()) || lo <= 0.0 || hi <= lo {
-        bail!("--wmin/--wmax: need 0 < wmin < wmax (finite), got {lo} and {hi}");
+        bail!(
+            "--wmin/--wmax: need 0 < wmin < wmax (finite), got {} and {}",
+            crate::error::number(lo),
+            crate::error::number(hi)
+        );
     }
     Ok(check_points(n)?)
 }

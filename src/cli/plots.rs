@@ -155,7 +155,7 @@ pub fn step_figure(
 ) -> Result<StepDrawn> {
     let t_end = match t_end {
         Some(t) if t.is_finite() && t > 0.0 => t,
-        Some(t) => bail!("--t-end must be > 0, got {t}"),
+        Some(t) => bail!("--t-end must be > 0, got {}", crate::error::number(t)),
         None => {
             let mut t: f64 = 0.0;
             for (_, g) in plants {
@@ -357,7 +357,11 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
-                bail!("--wmin/--wmax: need 0 < wmin < wmax, got {lo} and {hi}");
+                bail!(
+                    "--wmin/--wmax: need 0 < wmin < wmax, got {} and {}",
+                    crate::error::number(lo),
+                    crate::error::number(hi)
+                );
             }
             Some((lo, hi))
         }

@@ -64,7 +64,10 @@ pub fn pullin_figure(
     let v_pi = m.pull_in_voltage();
     let vmax = match vmax {
         Some(v) if v.is_finite() && v > 0.0 => v,
-        Some(v) => bail!("--vmax must be a finite number > 0, got {v}"),
+        Some(v) => bail!(
+            "--vmax must be a finite number > 0, got {}",
+            crate::error::number(v)
+        ),
         None if v_pi.is_finite() && v_pi > 0.0 && (1.25 * v_pi).is_finite() => 1.25 * v_pi,
         None => bail!(
             "the pull-in voltage √(8 k l0³/(27 ε A)) = {v_pi:e} is not a usable number for these parameters (it under- or overflows); give --vmax or change the parameters"

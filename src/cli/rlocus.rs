@@ -105,7 +105,7 @@ pub fn run(a: &RlocusArgs) -> Result<()> {
             }
             Some((k, q.roots()?))
         }
-        Some(k) => bail!("--gain must be finite, got {k}"),
+        Some(k) => bail!("--gain must be finite, got {}", crate::error::number(k)),
     };
     // the stable-gain set needs the crossing polynomial (degree ≤ deg N + deg D)
     let gains = (num.degree() + den.degree() <= crate::poly::MAX_ORDER)

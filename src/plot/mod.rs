@@ -163,7 +163,10 @@ impl PlotOptions {
             ("line scale", self.line_scale),
         ] {
             if !v.is_finite() || !(0.25..=8.0).contains(&v) {
-                return Err(LtiError::Plot(format!("{name} {v} is outside 0.25…8")));
+                return Err(LtiError::Plot(format!(
+                    "{name} {} is outside 0.25…8",
+                    crate::error::number(v)
+                )));
             }
         }
         if let Some(t) = &self.title {
