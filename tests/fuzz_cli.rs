@@ -1035,14 +1035,16 @@ fn known(args: &[String], r: &Run, budget: f64, why: &[String]) -> Option<&'stat
     if r.err.contains("bracketing grid") {
         return Some("issue 25: step metrics of lightly damped plants (bracketing grid)");
     }
-    if step_metrics && only_time && r.cpu.unwrap_or(r.secs) > budget {
+    let resonator = args.iter().any(|a| a.contains("2e-6"));
+    if step_metrics && resonator && only_time && r.cpu.unwrap_or(r.secs) > budget {
         return Some("issue 25: step metrics of lightly damped plants (slow)");
     }
     // Found by this fuzzer, in numeric::linalg::structure (not this change's to fix): the
-    // multiplicity analysis of a tight cluster of 256 eigenvalues runs SVD after SVD —
-    // 2.3 s of CPU per channel, 10 s for `analyze` (a spread spectrum: 0.3 s and 2.5 s).
-    if only_time && args.iter().any(|a| a.contains("cluster256.toml")) {
-        return Some("found here: eigenvalue structure of a tight 256-cluster is slow");
+    // multiplicity analysis runs SVD after SVD on dense 256-state plants — 2.2 s of CPU for
+    // some channels of a random one (0.3 s for others), 2.3 s per channel and 10 s for
+    // `analyze` with a tight cluster of 256 eigenvalues.
+    if only_time && args.iter().any(|a| a.contains("256.toml")) {
+        return Some("found here: eigenvalue/zero structure of dense 256-state plants is slow");
     }
     None
 }
@@ -1084,6 +1086,8 @@ fn hostile_options_at_every_command() {
     let mut excused: Vec<String> = Vec::new();
     let mut slowest = (0.0, Vec::new());
     let mut slowest_wall = (0.0, Vec::new());
+    // the slowest run that is not excused
+    let mut slowest_kept = (0.0, Vec::new());
     let mut largest = (0u64, Vec::new());
     let mut unmeasured = 0usize;
     let mut by_code = [0usize; 3];
@@ -1224,11 +1228,17 @@ fn hostile_options_at_every_command() {
             let _ = std::fs::remove_dir_all(files.dir.join(format!("demo{k}")));
         }
         if why.is_empty() {
+            if cpu > slowest_kept.0 {
+                slowest_kept = (cpu, short.clone());
+            }
             continue;
         }
         if let Some(reason) = known(&args, &res, budget, &why) {
             excused.push(format!("{reason}: {short:?}"));
             continue;
+        }
+        if cpu > slowest_kept.0 {
+            slowest_kept = (cpu, short.clone());
         }
         // the whole command line, to reproduce (the report abbreviates it)
         if let Ok(mut f) = std::fs::OpenOptions::new()
@@ -1241,7 +1251,7 @@ fn hostile_options_at_every_command() {
         failures.push(format!("{short:?}: {}", why.join("; ")));
     }
     println!(
-        "{cases} cases (seed {seed}, budget {budget} s of CPU) in {:.1} s, load average {load_before} → {}:\n  exit 0: {}, 1: {}, 2: {}\n  slowest {:.2} s of CPU: {:?}\n  slowest {:.2} s wall-clock: {:?}\n  largest peak memory {:.1} MB: {:?}{}\n  excused (known failures, by name): {}",
+        "{cases} cases (seed {seed}, budget {budget} s of CPU) in {:.1} s, load average {load_before} → {}:\n  exit 0: {}, 1: {}, 2: {}\n  slowest {:.2} s of CPU: {:?}\n  slowest not excused {:.2} s of CPU: {:?}\n  slowest {:.2} s wall-clock: {:?}\n  largest peak memory {:.1} MB: {:?}{}\n  excused (known failures, by name): {}",
         started.elapsed().as_secs_f64(),
         load_average(),
         by_code[0],
@@ -1249,6 +1259,8 @@ fn hostile_options_at_every_command() {
         by_code[2],
         slowest.0,
         slowest.1,
+        slowest_kept.0,
+        slowest_kept.1,
         slowest_wall.0,
         slowest_wall.1,
         largest.0 as f64 / 1024.0,
