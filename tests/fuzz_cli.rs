@@ -1324,11 +1324,15 @@ fn the_fuzzer_knows_every_option() {
             let t = line.trim_start();
             if let Some(rest) = t.strip_prefix("-o, ") {
                 options.push(rest.split_whitespace().next().unwrap_or("").into());
-            } else if t.starts_with("--") && line.starts_with("      ") && line.len() - t.len() <= 8
-            {
-                options.push(t.split_whitespace().next().unwrap_or("").into());
-            } else if t.starts_with('<') && line.starts_with("  ") && line.len() - t.len() == 2 {
-                options.push(t.split_whitespace().next().unwrap_or("").into());
+            } else {
+                // an option ("      --num …") or a positional argument ("  <MODEL>  …"), not a
+                // wrapped line of a description (indented further)
+                let indent = line.len() - t.len();
+                let option = t.starts_with("--") && (6..=8).contains(&indent);
+                let positional = t.starts_with('<') && indent == 2;
+                if option || positional {
+                    options.push(t.split_whitespace().next().unwrap_or("").into());
+                }
             }
         }
         options.retain(|o| o != "--help" && o != "-h,");

@@ -73,7 +73,8 @@ fn state_index(s: &str, names: &[String]) -> Result<usize> {
     }
     names.iter().position(|n| n == s).ok_or_else(|| {
         anyhow::anyhow!(
-            "--phase: no state called '{s}' (states: {})",
+            "--phase: no state called '{}' (states: {})",
+            abbreviate(s),
             names.join(", ")
         )
     })
@@ -156,7 +157,10 @@ fn picture(a: &SimulateArgs, sys: &dyn crate::nonlinear::DynSystem, sim: &Sample
         }
         Some(spec) => {
             let Some((xs, ys)) = spec.split_once(',') else {
-                bail!("--phase '{spec}': expected two states, e.g. 1,2");
+                bail!(
+                    "--phase '{}': expected two states, e.g. 1,2",
+                    abbreviate(spec)
+                );
             };
             let (i, j) = (state_index(xs, names)?, state_index(ys, names)?);
             let traj = Curve::new(sim.x.chunks_exact(sim.nx.max(1)).map(|x| (x[i], x[j])));

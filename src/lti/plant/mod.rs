@@ -222,17 +222,17 @@ impl Plant {
 
     /// From a plant record (see [`PlantFile`]).
     pub fn from_record(f: &PlantFile) -> Result<Plant> {
-        Self::from_record_keyed(f).map_err(|(_, e)| e)
+        Self::from_record_keyed(f).map_err(|k| k.1)
     }
 
     /// [`Plant::from_record`], an error with the key it is about (`den`, `params.M`,
     /// `controller`; `None` for the record as a whole), so that a file can say on which line.
-    fn from_record_keyed(f: &PlantFile) -> std::result::Result<Plant, (Option<String>, LtiError)> {
+    fn from_record_keyed(f: &PlantFile) -> std::result::Result<Plant, KeyedError> {
         let on = |key: &str| {
             let key = key.to_string();
-            move |e: LtiError| (Some(key), e)
+            move |e: LtiError| Box::new((Some(key), e))
         };
-        let whole = |e: LtiError| (None, e);
+        let whole = |e: LtiError| Box::new((None, e));
         let mut plant = match (&f.den, &f.model) {
             (Some(den), _) => {
                 let num = match &f.num {
@@ -252,7 +252,7 @@ impl Plant {
                         LtiError::UnknownModel { .. } => "model".into(),
                         _ => "params".into(),
                     };
-                    (Some(key), e)
+                    Box::new((Some(key), e))
                 })?
             }
             (None, None) => {
@@ -262,10 +262,10 @@ impl Plant {
                         .transpose()
                         .map_err(on(what))?
                         .ok_or_else(|| {
-                            (
+                            Box::new((
                                 None,
                                 LtiError::invalid(format!("a state-space plant needs `{what}`")),
-                            )
+                            ))
                         })
                 };
                 let d = match &f.d {
@@ -294,7 +294,7 @@ impl Plant {
                     f.outputs.clone(),
                     f.states.clone(),
                 )
-                .map_err(|e| (key.map(String::from), e))?;
+                .map_err(|e| Box::new((key.map(String::from), e)))?;
                 p
             }
         };
@@ -332,8 +332,10 @@ impl Plant {
     pub fn from_file(path: &Path) -> Result<Plant> {
         let text = file::read_text(path)?;
         let f = PlantFile::parse(&text).map_err(|e| file::in_file(path, e))?;
-        Self::from_record_keyed(&f)
-            .map_err(|(key, e)| file::at_key_in_file(path, &text, key.as_deref(), e))
+        Self::from_record_keyed(&f).map_err(|k| {
+            let (key, e) = *k;
+            file::at_key_in_file(path, &text, key.as_deref(), e)
+        })
     }
 
     /// A batch line (JSON, the plant-file schema).
@@ -360,10 +362,16 @@ impl Plant {
             }
             other => other,
         })?;
-        Self::from_record_keyed(&f)
-            .map_err(|(key, e)| file::at_key_in_line(text, line, key.as_deref(), e))
+        Self::from_record_keyed(&f).map_err(|k| {
+            let (key, e) = *k;
+            file::at_key_in_line(text, line, key.as_deref(), e)
+        })
     }
 }
+
+/// A record error with the key it is about (`None`: the record as a whole), boxed (small
+/// results).
+type KeyedError = Box<(Option<String>, LtiError)>;
 
 /// A state-space model from its matrices, D zero (p × m) when absent.
 fn state_space_of(
