@@ -255,11 +255,16 @@ fn list(r: &mut Rng) -> String {
             .join(" "),
         4 => "3 2 1 0 -1".into(),
         5 => long_text(r),
-        _ => (0..1 + r.below(6))
-            .map(|_| coefficient(r))
-            .collect::<Vec<_>>()
-            .join(" "),
+        _ => {
+            let n = 1 + r.below(6);
+            coefficients(r, n)
+        }
     }
+}
+
+/// `n` coefficients separated by spaces.
+fn coefficients(r: &mut Rng, n: u64) -> String {
+    (0..n).map(|_| coefficient(r)).collect::<Vec<_>>().join(" ")
 }
 
 /// An image size.
@@ -623,10 +628,10 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
             0 => "1 2; 3".into(),
             1 => "nan".into(),
             2 => long_text(r),
-            _ => (0..1 + r.below(3))
-                .map(|_| coefficient(r))
-                .collect::<Vec<_>>()
-                .join(" "),
+            _ => {
+                let n = 1 + r.below(3);
+                coefficients(r, n)
+            }
         }),
         "--controller" => v(controller(r)),
         "--channel" => v(r

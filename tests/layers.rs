@@ -200,18 +200,25 @@ fn dependencies_flow_one_way() {
     );
 }
 
-#[test]
-fn only_the_cli_prints() {
+/// Every source file below `cli` (lib.rs and main.rs excluded) with its text.
+fn below_the_cli() -> Vec<(PathBuf, String)> {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
+    files
+        .into_iter()
+        .filter(|f| module_of(f, &src).is_some_and(|m| m != "cli"))
+        .map(|f| {
+            let text = fs::read_to_string(&f).unwrap();
+            (f, text)
+        })
+        .collect()
+}
+
+#[test]
+fn only_the_cli_prints() {
     let mut offenders = Vec::new();
-    for f in &files {
-        let m = module_of(f, &src);
-        if m.as_deref() == Some("cli") || m.is_none() {
-            continue;
-        }
-        let text = fs::read_to_string(f).unwrap();
+    for (f, text) in below_the_cli() {
         // Only non-test code: every `#[cfg(test)]` item cut out.
         let code = without_test_items(&text);
         for needle in ["println!", "eprintln!", "print!(", "eprint!(", "dbg!("] {
@@ -335,16 +342,8 @@ fn string_literals_are_found() {
 /// may show command lines.
 #[test]
 fn no_cli_flags_below_the_cli() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
     let mut offenders = Vec::new();
-    for f in &files {
-        let m = module_of(f, &src);
-        if m.as_deref() == Some("cli") || m.is_none() {
-            continue;
-        }
-        let text = fs::read_to_string(f).unwrap();
+    for (f, text) in below_the_cli() {
         for (line, lit) in string_literals(&text) {
             if has_flag(&lit) {
                 offenders.push(format!("{}:{line}: \"{lit}\"", f.display()));

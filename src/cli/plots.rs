@@ -407,19 +407,9 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
     if !a.plot.json {
         return Ok(());
     }
-    let list = plants
-        .iter()
-        .zip(&drawn.margins)
-        .map(|((label, _), m)| {
-            Ok(json!({
-                "label": label,
-                "margins": match m {
-                    Some(m) => json_value(m)?,
-                    None => Value::Null,
-                },
-            }))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let list = labelled_json(&plants, &drawn.margins, |m| {
+        Ok(json!({ "margins": optional_json(m.as_ref())? }))
+    })?;
     print_json(&json!({
         "file": a.plot.output.display().to_string(),
         "w_range": [drawn.range.0, drawn.range.1],
@@ -453,20 +443,12 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if !a.plot.json {
         return Ok(());
     }
-    let list = plants
-        .iter()
-        .zip(&drawn.plants)
-        .map(|((label, _), (info, diverges))| {
-            Ok(json!({
-                "label": label,
-                "step_info": match info {
-                    Some(i) => json_value(i)?,
-                    None => Value::Null,
-                },
-                "diverges": diverges,
-            }))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let list = labelled_json(&plants, &drawn.plants, |(info, diverges)| {
+        Ok(json!({
+            "step_info": optional_json(info.as_ref())?,
+            "diverges": diverges,
+        }))
+    })?;
     print_json(&json!({
         "file": a.plot.output.display().to_string(),
         "input": a.input,
@@ -537,6 +519,34 @@ pub fn pzmap(a: &PzmapArgs) -> Result<()> {
     super::output::print(&written)
 }
 
+/// One JSON object per plant: `"label"` first, then the fields `fields` gives for its item.
+fn labelled_json<T>(
+    plants: &[(String, Factored)],
+    items: &[T],
+    fields: impl Fn(&T) -> Result<Value>,
+) -> Result<Vec<Value>> {
+    plants
+        .iter()
+        .zip(items)
+        .map(|((label, _), item)| {
+            let mut doc = serde_json::Map::new();
+            doc.insert("label".into(), json!(label));
+            if let Value::Object(m) = fields(item)? {
+                doc.extend(m);
+            }
+            Ok(Value::Object(doc))
+        })
+        .collect()
+}
+
+/// A library struct as JSON, `null` when absent.
+fn optional_json<T: serde::Serialize>(x: Option<&T>) -> Result<Value> {
+    Ok(match x {
+        Some(x) => json_value(x)?,
+        None => Value::Null,
+    })
+}
+
 /// The roots a pole-zero map marks, as the JSON contract lists them: `[re, im]` with
 /// repetition.
 fn roots_json(g: &Factored) -> Value {
@@ -587,20 +597,15 @@ pub fn nyquist(a: &NyquistArgs) -> Result<()> {
     if !a.plot.json {
         return Ok(());
     }
-    let list: Vec<Value> = plants
-        .iter()
-        .zip(&contours)
-        .map(|((label, _), c)| {
-            json!({
-                "label": label,
-                "open_loop_rhp_poles": c.open_loop_rhp_poles,
-                "encirclements": c.encirclements,
-                "closed_loop_rhp_poles": c.closed_loop_rhp_poles,
-                "g_at_infinity": c.g_at_infinity,
-                "axis_poles": c.axis_poles,
-            })
-        })
-        .collect();
+    let list = labelled_json(&plants, &contours, |c| {
+        Ok(json!({
+            "open_loop_rhp_poles": c.open_loop_rhp_poles,
+            "encirclements": c.encirclements,
+            "closed_loop_rhp_poles": c.closed_loop_rhp_poles,
+            "g_at_infinity": c.g_at_infinity,
+            "axis_poles": c.axis_poles,
+        }))
+    })?;
     print_json(&json!({
         "file": a.plot.output.display().to_string(),
         "plants": list,
