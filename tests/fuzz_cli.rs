@@ -1271,7 +1271,7 @@ fn hostile_options_at_every_command() {
         largest.0 as f64 / 1024.0,
         largest.1,
         if unmeasured > 0 {
-            format!(" ({unmeasured} runs not measured)")
+            format!(" ({unmeasured} runs ended before the first reading, within milliseconds)")
         } else {
             String::new()
         },
