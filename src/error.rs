@@ -78,7 +78,11 @@ pub enum LtiError {
         limit: usize,
     },
     /// A parameter is outside its valid range.
-    #[error("parameter {name} = {value} is invalid: {reason}")]
+    #[error(
+        "parameter {} = {} is invalid: {reason}",
+        abbreviate(.name),
+        number(*.value)
+    )]
     InvalidParameter {
         /// Parameter name.
         name: String,
@@ -90,8 +94,8 @@ pub enum LtiError {
     /// An argument has the wrong shape or content (dimensions, empty lists, …).
     #[error("{0}")]
     InvalidInput(String),
-    /// A named model does not exist.
-    #[error("unknown model '{name}' (known: {known})")]
+    /// A named model does not exist (the name is shown abbreviated, as every echoed text).
+    #[error("unknown model '{}' (known: {known})", abbreviate(.name))]
     UnknownModel {
         /// The requested name.
         name: String,
@@ -99,7 +103,11 @@ pub enum LtiError {
         known: String,
     },
     /// A model has no parameter of this name.
-    #[error("model '{model}' has no parameter '{name}' (parameters: {known})")]
+    #[error(
+        "model '{}' has no parameter '{}' (parameters: {known})",
+        abbreviate(.model),
+        abbreviate(.name)
+    )]
     UnknownParameter {
         /// Model name.
         model: String,
@@ -109,7 +117,7 @@ pub enum LtiError {
         known: String,
     },
     /// A time value is outside the valid range (negative, or not increasing).
-    #[error("time {value} is invalid: {reason}")]
+    #[error("time {} is invalid: {reason}", number(*.value))]
     InvalidTime {
         /// The time.
         value: f64,
@@ -149,11 +157,21 @@ pub enum LtiError {
         t: f64,
     },
     /// Reading or writing a file failed.
-    #[error("{path}: {message}")]
+    #[error("{}: {message}", abbreviate(.path))]
     Io {
         /// The file.
         path: String,
         /// The operating system's or parser's message.
+        message: String,
+    },
+    /// A plant file or a batch line does not hold a valid plant record: where (the file, the
+    /// line and column, or a batch line's column) and what, in plain words, naming the key.
+    #[error("{}{message}", if .location.is_empty() { String::new() } else { format!("{location}: ") })]
+    BadRecord {
+        /// "plant.toml, line 3, column 7" (file names abbreviated); empty when unknown.
+        location: String,
+        /// What is wrong ("`den` must be a list of numbers or a string of numbers (found
+        /// true)").
         message: String,
     },
     /// A plot could not be drawn.
@@ -176,16 +194,50 @@ pub enum LtiError {
         /// Which limit was hit, with the numbers.
         reason: String,
     },
+    /// A size the user controls exceeds its limit ([`crate::limits`]); checked before
+    /// anything is allocated.
+    #[error("{field}: {value} exceeds the limit of {} ({limit})", crate::limits::amount(*.max, .unit))]
+    LimitExceeded {
+        /// The field, in backquotes (`` `points` ``), or the product that is limited.
+        field: String,
+        /// The requested size.
+        value: u128,
+        /// The limit.
+        max: u64,
+        /// What is counted ("sample points", "px a side").
+        unit: String,
+        /// The limit's name in [`crate::limits::LIMITS`] (`MAX_POINTS`).
+        limit: String,
+    },
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]
     BadNumber {
-        /// Where it was read ("--den", "num of line 3", …).
+        /// Where it was read: the field in backquotes (`` `den` ``, `` `param` K ``), or a
+        /// description ("coefficient 2 of the numerator").
         what: String,
         /// The offending text, abbreviated to [`TOKEN_SHOWN`] characters.
         token: String,
         /// Why ("is not a number", …).
         reason: String,
     },
+}
+
+/// A number as an error message shows it: as Rust prints it (`0.4`, `-1`, `NaN`), or in
+/// exponent form when that is shorter than 300 digits of `1e300`.
+///
+/// ```
+/// use ltikit::error::number;
+/// assert_eq!(number(0.4), "0.4");
+/// assert_eq!(number(1e300), "1e300");
+/// assert_eq!(number(-2.5e-200), "-2.5e-200");
+/// ```
+pub fn number(x: f64) -> String {
+    let plain = x.to_string();
+    if plain.len() > 24 {
+        format!("{x:e}")
+    } else {
+        plain
+    }
 }
 
 /// The number of characters of an offending input token shown in an error message.

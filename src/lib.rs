@@ -79,6 +79,7 @@ pub mod analysis;
 pub mod cli;
 pub mod error;
 pub mod fmt;
+pub mod limits;
 pub mod lti;
 pub mod nonlinear;
 pub mod numeric;

@@ -699,7 +699,7 @@ mod through_the_plant {
             let e = Plant::from_text(None, &format!("1 {tok}"))
                 .unwrap_err()
                 .to_string();
-            assert!(e.contains(shown) && e.contains("--den"), "{tok}: {e}");
+            assert!(e.contains(shown) && e.contains("`den`"), "{tok}: {e}");
             assert!(e.len() < 300, "{e}");
         }
     }

@@ -465,7 +465,7 @@ fn bad_parameters_are_one_line_errors() {
     let p = |k: &str, v: f64| (k.to_string(), v);
     let cases: [(Vec<(String, f64)>, &str); 9] = [
         (vec![p("N", 1.0)], "parameter N = 1 is invalid"),
-        (vec![p("N", 2000.0)], "integer 2…1024"),
+        (vec![p("N", 2000.0)], "integer 2…512"),
         (
             vec![p("w0", 0.0)],
             "parameter w0 = 0 is invalid: the natural frequency",

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 fn layer(module: &str) -> Option<usize> {
     Some(match module {
-        "error" | "fmt" | "numeric" => 0,
+        "error" | "fmt" | "limits" | "numeric" => 0,
         "poly" => 1,
         "lti" => 2,
         "analysis" => 3,
@@ -200,18 +200,25 @@ fn dependencies_flow_one_way() {
     );
 }
 
-#[test]
-fn only_the_cli_prints() {
+/// Every source file below `cli` (lib.rs and main.rs excluded) with its text.
+fn below_the_cli() -> Vec<(PathBuf, String)> {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
+    files
+        .into_iter()
+        .filter(|f| module_of(f, &src).is_some_and(|m| m != "cli"))
+        .map(|f| {
+            let text = fs::read_to_string(&f).unwrap();
+            (f, text)
+        })
+        .collect()
+}
+
+#[test]
+fn only_the_cli_prints() {
     let mut offenders = Vec::new();
-    for f in &files {
-        let m = module_of(f, &src);
-        if m.as_deref() == Some("cli") || m.is_none() {
-            continue;
-        }
-        let text = fs::read_to_string(f).unwrap();
+    for (f, text) in below_the_cli() {
         // Only non-test code: every `#[cfg(test)]` item cut out.
         let code = without_test_items(&text);
         for needle in ["println!", "eprintln!", "print!(", "eprint!(", "dbg!("] {
@@ -221,4 +228,131 @@ fn only_the_cli_prints() {
         }
     }
     assert!(offenders.is_empty(), "{}", offenders.join("\n"));
+}
+
+/// The string literals of Rust source `text` (comments skipped; escapes left as written;
+/// raw strings included), each with its line number.
+fn string_literals(text: &str) -> Vec<(usize, String)> {
+    let b: Vec<char> = text.chars().collect();
+    let mut out = Vec::new();
+    let (mut i, mut line) = (0, 1);
+    while i < b.len() {
+        let c = b[i];
+        let next = b.get(i + 1).copied();
+        if c == '\n' {
+            line += 1;
+            i += 1;
+        } else if c == '/' && next == Some('/') {
+            while i < b.len() && b[i] != '\n' {
+                i += 1;
+            }
+        } else if c == '/' && next == Some('*') {
+            let mut depth = 0;
+            while i < b.len() {
+                if b[i] == '/' && b.get(i + 1) == Some(&'*') {
+                    depth += 1;
+                    i += 2;
+                } else if b[i] == '*' && b.get(i + 1) == Some(&'/') {
+                    depth -= 1;
+                    i += 2;
+                    if depth == 0 {
+                        break;
+                    }
+                } else {
+                    if b[i] == '\n' {
+                        line += 1;
+                    }
+                    i += 1;
+                }
+            }
+        } else if c == '\'' {
+            // a char literal ('"', '\'') or a lifetime ('a): skip the char literal whole
+            if next == Some('\\') {
+                let end = (i + 2..b.len()).find(|&k| b[k] == '\'').unwrap_or(b.len());
+                i = end + 1;
+            } else if b.get(i + 2) == Some(&'\'') {
+                i += 3;
+            } else {
+                i += 1;
+            }
+        } else if c == 'r'
+            && (next == Some('"') || next == Some('#'))
+            && (i == 0 || !(b[i - 1].is_alphanumeric() || b[i - 1] == '_'))
+        {
+            let hashes = b[i + 1..].iter().take_while(|&&h| h == '#').count();
+            let open = i + 1 + hashes;
+            if b.get(open) != Some(&'"') {
+                i += 1;
+                continue;
+            }
+            let close: String = std::iter::once('"')
+                .chain(std::iter::repeat_n('#', hashes))
+                .collect();
+            let rest: String = b[open + 1..].iter().collect();
+            let end = rest.find(&close).unwrap_or(rest.len());
+            let lit: String = rest[..end].to_string();
+            out.push((line, lit.clone()));
+            line += lit.matches('\n').count();
+            i = open + 1 + lit.chars().count() + close.chars().count();
+        } else if c == '"' {
+            let start_line = line;
+            let mut lit = String::new();
+            i += 1;
+            while i < b.len() && b[i] != '"' {
+                if b[i] == '\\' && i + 1 < b.len() {
+                    lit.push(b[i]);
+                    lit.push(b[i + 1]);
+                    if b[i + 1] == '\n' {
+                        line += 1;
+                    }
+                    i += 2;
+                    continue;
+                }
+                if b[i] == '\n' {
+                    line += 1;
+                }
+                lit.push(b[i]);
+                i += 1;
+            }
+            i += 1;
+            out.push((start_line, lit));
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// True when `lit` holds a command-line flag: `--` followed by a letter.
+fn has_flag(lit: &str) -> bool {
+    lit.match_indices("--")
+        .any(|(k, _)| lit[k + 2..].starts_with(|c: char| c.is_ascii_lowercase()))
+}
+
+#[test]
+fn string_literals_are_found() {
+    let src = "let a = \"--den\"; // \"--x\"\n/* \"--y\" */ let c = '\"'; let r = r#\"--raw \"q\"\"#;\nfn f<'a>() { \"b\\\"--c\" }";
+    let lits: Vec<String> = string_literals(src).into_iter().map(|(_, l)| l).collect();
+    assert_eq!(lits, vec!["--den", "--raw \"q\"", "b\\\"--c"]);
+    assert!(has_flag("choose (--channel 1,2)") && !has_flag("a -- b") && !has_flag("x--1"));
+}
+
+/// Issue 25: library errors name fields (`den`, `channel`, `size`), the CLI maps them to its
+/// flags in one table; no string literal below `cli` holds a flag (`"--den"`). Doc comments
+/// may show command lines.
+#[test]
+fn no_cli_flags_below_the_cli() {
+    let mut offenders = Vec::new();
+    for (f, text) in below_the_cli() {
+        for (line, lit) in string_literals(&text) {
+            if has_flag(&lit) {
+                offenders.push(format!("{}:{line}: \"{lit}\"", f.display()));
+            }
+        }
+    }
+    assert!(
+        offenders.is_empty(),
+        "CLI flags below cli (name the field instead, e.g. `den`):\n{}",
+        offenders.join("\n")
+    );
 }

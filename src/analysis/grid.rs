@@ -24,25 +24,23 @@ pub struct TimeSpan {
     pub reason: String,
 }
 
-/// Most points an automatic grid (or any sampled response) may have: 10⁷ (80 MB of
-/// frequencies; the outputs are streamed).
-pub const MAX_POINTS: usize = 10_000_000;
+pub use crate::limits::MAX_POINTS;
 
 /// Checks 2 ≤ `points` ≤ [`MAX_POINTS`] before anything is allocated.
 ///
 /// ```
 /// use ltikit::analysis::grid::check_points;
 /// assert!(check_points(2).is_ok() && check_points(1).is_err());
-/// assert!(check_points(usize::MAX).is_err());
+/// let e = check_points(usize::MAX).unwrap_err().to_string();
+/// assert!(e.starts_with("`points`: 18446744073709551615 exceeds the limit"), "{e}");
 /// ```
 pub fn check_points(points: usize) -> Result<()> {
-    if !(2..=MAX_POINTS).contains(&points) {
-        return Err(LtiError::InvalidParameter {
-            name: "points".into(),
-            value: points as f64,
-            reason: format!("need 2 ≤ points ≤ {MAX_POINTS}"),
-        });
+    if points < 2 {
+        return Err(LtiError::invalid(format!(
+            "`points`: at least 2 are needed, got {points}"
+        )));
     }
+    crate::limits::POINTS.check_usize("`points`", points)?;
     Ok(())
 }
 

@@ -170,6 +170,9 @@ impl FromStr for Input {
     /// ```
     fn from_str(text: &str) -> Result<Input> {
         let t = text.trim().to_ascii_lowercase();
+        // echoed text is abbreviated (an input of 100 000 characters is not repeated)
+        let shown = crate::error::abbreviate(text);
+        let text = shown.as_str();
         let (name, arg) = match t.split_once(':') {
             Some((n, a)) => (n.trim(), Some(a.trim())),
             None => (t.as_str(), None),
@@ -177,17 +180,24 @@ impl FromStr for Input {
         let parse_arg = |what: &str| -> Result<f64> {
             let a = arg.ok_or_else(|| {
                 LtiError::invalid(format!(
-                    "input '{text}' needs a value: {name}:{what} (e.g. {name}:2)"
+                    "input '{text}' needs a value: {}:{what} (e.g. {}:2)",
+                    crate::error::abbreviate(name),
+                    crate::error::abbreviate(name)
                 ))
             })?;
-            a.parse::<f64>()
-                .map_err(|_| LtiError::invalid(format!("input '{text}': '{a}' is not a number")))
+            a.parse::<f64>().map_err(|_| {
+                LtiError::invalid(format!(
+                    "input '{text}': '{}' is not a number",
+                    crate::error::abbreviate(a)
+                ))
+            })
         };
         let no_arg = |i: Input| -> Result<Input> {
             match arg {
                 None => Ok(i),
                 Some(_) => Err(LtiError::invalid(format!(
-                    "input '{text}': {name} takes no value"
+                    "input '{text}': {} takes no value",
+                    crate::error::abbreviate(name)
                 ))),
             }
         };

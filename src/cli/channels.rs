@@ -11,9 +11,7 @@ use super::PlantArgs;
 use crate::analysis::Factored;
 use crate::lti::{Model, Plant};
 
-/// Most channels analysed at once without `--channel` (a MIMO plant with more must choose
-/// one: each channel is factored on its own).
-pub const MAX_CHANNELS: usize = 64;
+pub use crate::limits::MAX_CHANNELS;
 
 /// One SISO channel of a plant, factored.
 pub struct Channel {

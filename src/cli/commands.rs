@@ -5,7 +5,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, demo, freq, linearize, margins, plots, pullin, residue, response, rlocus, routh,
+    analyze, demo, freq, help, linearize, margins, plots, pullin, residue, response, rlocus, routh,
     simulate,
 };
 
@@ -64,6 +64,66 @@ pub(crate) enum Command {
     MemsPullin(pullin::PullinArgs),
 }
 
+/// The command line's definition: the derived one, with each command's help ending in the
+/// limits of its options and, for `linearize` and `simulate`, the models with their
+/// parameters (both generated: from [`crate::limits::LIMITS`] and the model registry).
+pub fn command() -> clap::Command {
+    use clap::CommandFactory;
+    let mut cmd = Cli::command();
+    let names: Vec<String> = cmd
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    for name in names.clone() {
+        let others: Vec<&String> = names.iter().filter(|n| **n != name).collect();
+        cmd = cmd.mut_subcommand(&name, |sub| {
+            let flags: Vec<String> = sub
+                .get_arguments()
+                .filter_map(|a| a.get_long().map(|l| format!("--{l}")))
+                .collect();
+            let mut help = String::new();
+            if matches!(name.as_str(), "linearize" | "simulate") {
+                help.push_str(&help::models_text());
+                help.push('\n');
+            }
+            help.push_str(&help::limits_text(&name, &others, &flags));
+            // `--gain -1`, `--t-end -5`: a negative number is a value, not an option
+            sub.after_help(help).allow_negative_numbers(true)
+        });
+    }
+    cmd.after_help(help::limits_text("", &[], &[]))
+}
+
+/// The value of `-o`: a file name ending in `.png` (any case). ltikit writes PNG pictures
+/// only; a picture under another name (`x.jpg`) would be a PNG in disguise, so it is refused
+/// (a usage error, exit 2).
+pub(crate) fn png_path(text: &str) -> std::result::Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(text);
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("png") => Ok(path),
+        Some(other) => Err(format!(
+            "ltikit writes PNG pictures only, not .{}: name the file FILE.png",
+            crate::error::abbreviate(other)
+        )),
+        None => Err("ltikit writes PNG pictures: name the file FILE.png".into()),
+    }
+}
+
+/// Parses a command line (program name first) with [`command`].
+pub(crate) fn parse<I, T>(args: I) -> std::result::Result<Cli, clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    use clap::FromArgMatches;
+    let mut cmd = command();
+    let matches = cmd.try_get_matches_from_mut(args)?;
+    Cli::from_arg_matches(&matches).map_err(|e| e.format(&mut cmd))
+}
+
 /// Runs a command line in this process — `args` as `main` would see them, the program name
 /// first — and returns its error instead of printing it (for tests and embedding; the output
 /// goes to stdout as usual).
@@ -76,7 +136,7 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    run(Cli::try_parse_from(args)?)
+    run(parse(args)?)
 }
 
 pub(crate) fn run(cli: Cli) -> Result<()> {

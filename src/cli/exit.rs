@@ -1,9 +1,7 @@
 //! How the program ends: the exit code (0, 1, or 2 for usage errors), one error line on
 //! stderr, the warnings of a command that succeeded, and one line instead of a panic trace.
 
-use clap::Parser;
-
-use super::commands::{Cli, run};
+use super::commands::{parse, run};
 
 /// A usage error (exit code 2): a missing or inconsistent option, as opposed to bad values.
 #[derive(Debug)]
@@ -20,10 +18,10 @@ impl std::error::Error for UsageError {}
 /// Entry point of the binary: parses the arguments, runs the command, returns the exit code.
 pub fn main() -> i32 {
     install_panic_hook();
-    let cli = match Cli::try_parse() {
+    let cli = match parse(std::env::args_os()) {
         Ok(c) => c,
         Err(e) if e.use_stderr() => {
-            eprintln!("error: {}", usage_line(&e.to_string()));
+            eprintln!("error: {}", usage_line(&e));
             return 2;
         }
         Err(e) => {
@@ -43,7 +41,7 @@ pub fn main() -> i32 {
         }
         Err(e) => {
             // a failing command says one line: the error (its warnings are dropped)
-            eprintln!("error: {}", one_line(&e));
+            eprintln!("error: {}", error_line(&e));
             if e.downcast_ref::<UsageError>().is_some() {
                 2
             } else {
@@ -72,21 +70,58 @@ fn take_warnings() -> Vec<String> {
         .unwrap_or_default()
 }
 
-/// A usage error of the argument parser on one line: its first line, its tip if it has one,
-/// and where to look, with offending text abbreviated.
-fn usage_line(text: &str) -> String {
-    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
-    let first = lines
-        .next()
-        .unwrap_or("invalid arguments")
+/// A usage error of the argument parser on one line: its first line (with the arguments it
+/// lists, such as the missing ones), its tip if it has one, and where to look, with offending
+/// text abbreviated.
+fn usage_line(e: &clap::Error) -> String {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if e.kind() == ErrorKind::MissingRequiredArgument {
+        if let Some(ContextValue::Strings(args)) = e.get(ContextKind::InvalidArg) {
+            let (n, list) = (args.len(), args.join(", "));
+            let what = if n == 1 {
+                "a required argument was not given"
+            } else {
+                "required arguments were not given"
+            };
+            return one_line_net(&format!("{what}: {list}; see --help"));
+        }
+    }
+    usage_text_line(&e.to_string())
+}
+
+/// [`usage_line`] from the parser's rendered text: a first line ending in ':' takes the
+/// indented lines that follow (the list it announces).
+fn usage_text_line(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().map(str::trim_end).collect();
+    let Some(first_at) = lines.iter().position(|l| !l.trim().is_empty()) else {
+        return "invalid arguments; see --help".into();
+    };
+    let mut first = lines[first_at]
+        .trim()
         .trim_start_matches("error:")
-        .trim();
-    let mut out = abbreviate_quoted(first);
-    if let Some(tip) = lines.find(|l| l.starts_with("tip:")) {
+        .trim()
+        .to_string();
+    if first.ends_with(':') {
+        let listed: Vec<&str> = lines[first_at + 1..]
+            .iter()
+            .take_while(|l| l.starts_with(' ') && !l.trim().is_empty())
+            .map(|l| l.trim())
+            .collect();
+        if !listed.is_empty() {
+            first.push(' ');
+            first.push_str(&listed.join(", "));
+        }
+    }
+    let mut out = abbreviate_quoted(&first);
+    if let Some(tip) = lines
+        .iter()
+        .map(|l| l.trim())
+        .find(|l| l.starts_with("tip:"))
+    {
         out.push_str(&format!(" ({})", abbreviate_quoted(tip)));
     }
     out.push_str("; see --help");
-    out
+    one_line_net(&out)
 }
 
 /// `text` with every quoted part cut to [`crate::error::TOKEN_SHOWN`] characters.
@@ -105,16 +140,137 @@ fn abbreviate_quoted(text: &str) -> String {
     out
 }
 
-/// The error and its causes on one line.
-pub(crate) fn one_line(e: &anyhow::Error) -> String {
+/// The error and its causes on one line, as the command line prints it: the library's field
+/// names as flags ([`FIELD_FLAGS`]; not inside a plant file's or batch line's error, whose
+/// keys are the file's), every long run of characters abbreviated.
+pub fn error_line(e: &anyhow::Error) -> String {
     let mut parts: Vec<String> = Vec::new();
     for cause in e.chain() {
-        let s = cause.to_string();
+        let mut s = cause.to_string();
+        let record = matches!(
+            cause.downcast_ref::<crate::LtiError>(),
+            Some(crate::LtiError::BadRecord { .. } | crate::LtiError::Io { .. })
+        );
+        if !record {
+            s = flags_for_fields(&s);
+        }
         if !parts.iter().any(|p| p.contains(&s)) {
             parts.push(s);
         }
+        if record {
+            break;
+        }
     }
-    parts.join(": ").replace('\n', " ")
+    one_line_net(&parts.join(": "))
+}
+
+/// The error and its causes on one line (as [`error_line`]).
+pub(crate) fn one_line(e: &anyhow::Error) -> String {
+    error_line(e)
+}
+
+/// The library names the fields of its input (`` `den` ``, `` `points` ``, `` `size` ``); the
+/// command line names them by its flags. One table, used wherever an error is printed.
+pub const FIELD_FLAGS: &[(&str, &str)] = &[
+    ("num", "--num"),
+    ("den", "--den"),
+    ("a", "--a"),
+    ("b", "--b"),
+    ("c", "--c"),
+    ("d", "--d"),
+    ("param", "--param"),
+    ("model", "--model"),
+    ("controller", "--controller"),
+    ("channel", "--channel"),
+    ("points", "--points"),
+    ("t", "--t"),
+    ("w", "--w"),
+    ("size", "--size"),
+    ("title", "--title"),
+    ("font_scale", "--font-scale"),
+    ("max_gains", "--max-gains"),
+    ("max_steps", "--max-steps"),
+    ("input_file", "--input-file"),
+    ("plant", "--plant"),
+    ("batch", "--batch"),
+    ("x0", "--x0"),
+    ("ic", "--ic"),
+    ("u", "--u"),
+    ("input", "--input"),
+    ("t_end", "--t-end"),
+    ("wmin", "--wmin"),
+    ("wmax", "--wmax"),
+    ("vmax", "--vmax"),
+    ("gain", "--gain"),
+    ("rtol", "--rtol"),
+    ("atol", "--atol"),
+    ("phase", "--phase"),
+];
+
+/// The flag of a library field name, if the command line has one.
+pub fn flag_of(field: &str) -> Option<&'static str> {
+    FIELD_FLAGS
+        .iter()
+        .find(|(f, _)| *f == field)
+        .map(|(_, flag)| *flag)
+}
+
+/// `text` with every `` `field` `` of [`FIELD_FLAGS`] written as its flag.
+///
+/// ```
+/// use ltikit::cli::flags_for_fields;
+/// assert_eq!(flags_for_fields("`den`: 'x' is not a number"), "--den: 'x' is not a number");
+/// assert_eq!(flags_for_fields("`other` stays"), "`other` stays");
+/// ```
+pub fn flags_for_fields(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find('`') {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + 1..];
+        match after.find('`').map(|j| (&after[..j], j)) {
+            Some((name, j)) => match flag_of(name) {
+                Some(flag) => {
+                    out.push_str(flag);
+                    rest = &after[j + 1..];
+                }
+                None => {
+                    out.push('`');
+                    rest = after;
+                }
+            },
+            None => {
+                out.push('`');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The last guard of every printed error: one line, every run of more than 120 characters
+/// without a space abbreviated (an echoed input the message did not cut), and the whole line
+/// at most 2000 characters.
+fn one_line_net(text: &str) -> String {
+    let flat = text.replace(['\n', '\r'], " ");
+    let words: Vec<String> = flat
+        .split(' ')
+        .map(|w| {
+            if w.chars().count() > 120 {
+                crate::error::abbreviate(w)
+            } else {
+                w.to_string()
+            }
+        })
+        .collect();
+    let line = words.join(" ");
+    let n = line.chars().count();
+    if n <= 2000 {
+        return line;
+    }
+    let head: String = line.chars().take(1900).collect();
+    format!("{head}… ({n} characters)")
 }
 
 /// A panic is a bug; print one line instead of a trace.
@@ -137,20 +293,108 @@ fn install_panic_hook() {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cli::commands::parse;
 
     #[test]
     fn usage_errors_fit_on_one_line() {
-        let e = Cli::try_parse_from(["ltikit", "analyze", "--bogus"]).unwrap_err();
-        let l = usage_line(&e.to_string());
+        let e = parse(["ltikit", "analyze", "--bogus"]).unwrap_err();
+        let l = usage_line(&e);
         assert!(
             !l.contains('\n') && l.contains("--bogus") && l.ends_with("see --help"),
             "{l}"
         );
         let long = format!("--{}", "x".repeat(10_000));
-        let e = Cli::try_parse_from(["ltikit", "analyze", &long]).unwrap_err();
-        let l = usage_line(&e.to_string());
+        let e = parse(["ltikit", "analyze", &long]).unwrap_err();
+        let l = usage_line(&e);
         assert!(l.len() < 300, "{l}");
-        let e = Cli::try_parse_from(["ltikit", "analyze", "--den"]).unwrap_err();
-        assert!(usage_line(&e.to_string()).contains("--den"));
+        let e = parse(["ltikit", "analyze", "--den"]).unwrap_err();
+        assert!(usage_line(&e).contains("--den"));
+    }
+
+    /// Issue 25: "the following required arguments were not provided:; see --help" dropped
+    /// the names.
+    #[test]
+    fn a_missing_argument_is_named() {
+        let e = parse(["ltikit", "bode", "--den", "1 1"]).unwrap_err();
+        assert_eq!(
+            usage_line(&e),
+            "a required argument was not given: --output <FILE.png>; see --help"
+        );
+        let e = parse(["ltikit", "linearize"]).unwrap_err();
+        assert_eq!(
+            usage_line(&e),
+            "a required argument was not given: <MODEL>; see --help"
+        );
+        let e = parse(["ltikit", "mems-pullin"]).unwrap_err();
+        assert!(usage_line(&e).contains("--output <FILE.png>"));
+        // a negative number is a value
+        assert!(parse(["ltikit", "routh", "--den", "1 1", "--gain", "-1"]).is_ok());
+        // the text form joins an announced list too
+        assert_eq!(
+            usage_text_line("error: the following were wrong:\n  --a\n  --b\n\nUsage: x"),
+            "the following were wrong: --a, --b; see --help"
+        );
+    }
+
+    /// Issue 25: `-o x.jpg` wrote a PNG under a .jpg name.
+    #[test]
+    fn pictures_are_png_files() {
+        for cmd in [
+            vec!["bode", "--den", "1 1"],
+            vec!["step", "--den", "1 1"],
+            vec!["pzmap", "--den", "1 1"],
+            vec!["nyquist", "--den", "1 1"],
+            vec!["rlocus", "--den", "1 1"],
+            vec!["simulate", "pendulum"],
+            vec!["mems-pullin"],
+        ] {
+            for bad in ["x.jpg", "x.PNG.txt", "x", "dir/"] {
+                let mut args = vec!["ltikit"];
+                args.extend(&cmd);
+                args.extend(["-o", bad]);
+                let e = parse(args).unwrap_err();
+                let l = usage_line(&e);
+                assert!(
+                    e.kind() == clap::error::ErrorKind::ValueValidation
+                        && l.contains("PNG")
+                        && !l.contains('\n'),
+                    "{cmd:?} {bad}: {l}"
+                );
+            }
+            let mut args = vec!["ltikit"];
+            args.extend(&cmd);
+            args.extend(["-o", "x.PNG"]);
+            assert!(parse(args).is_ok(), "{cmd:?}");
+        }
+    }
+
+    #[test]
+    fn fields_become_flags_but_not_in_records() {
+        let e: anyhow::Error = crate::LtiError::bad_number("`den`", "x", "is not a number").into();
+        assert_eq!(error_line(&e), "--den: 'x' is not a number");
+        let e: anyhow::Error = crate::LtiError::BadRecord {
+            location: "p.toml, line 2, column 1".into(),
+            message: "`den` must be a list of numbers".into(),
+        }
+        .into();
+        assert_eq!(
+            error_line(&e),
+            "p.toml, line 2, column 1: `den` must be a list of numbers"
+        );
+        // every field the library names has a flag
+        for l in crate::limits::LIMITS {
+            for f in l.fields {
+                assert!(flag_of(f).is_some(), "{} names {f}", l.name);
+            }
+        }
+    }
+
+    #[test]
+    fn long_runs_are_cut_and_lines_bounded() {
+        let e = anyhow::anyhow!("unknown thing {}", "y".repeat(5000));
+        let l = error_line(&e);
+        assert!(l.contains("… (5000 characters)") && l.len() < 300, "{l}");
+        let e = anyhow::anyhow!("{}", "word ".repeat(2000));
+        assert!(error_line(&e).chars().count() < 2000);
     }
 }

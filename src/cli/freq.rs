@@ -6,7 +6,7 @@ use clap::Args;
 use super::channels::{self, Channels};
 use super::output::Stream;
 use super::{Plant, PlantArgs, parse};
-use crate::analysis::grid::{MAX_POINTS, check_points};
+use crate::analysis::grid::check_points;
 use crate::analysis::{FrequencyResponse, auto_frequency_grid};
 use crate::fmt::fmt_sig;
 
@@ -39,9 +39,13 @@ pub fn logspace(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>> {
 
 fn check_range(lo: f64, hi: f64, n: usize) -> Result<()> {
     if !(lo.is_finite() && hi.is_finite()) || lo <= 0.0 || hi <= lo {
-        bail!("--wmin/--wmax: need 0 < wmin < wmax (finite), got {lo} and {hi}");
+        bail!(
+            "--wmin/--wmax: need 0 < wmin < wmax (finite), got {} and {}",
+            crate::error::number(lo),
+            crate::error::number(hi)
+        );
     }
-    check_points(n).map_err(|_| anyhow::anyhow!("--points must lie in 2…{MAX_POINTS}, got {n}"))
+    Ok(check_points(n)?)
 }
 
 /// The i-th of n log-spaced points from lo to hi (the last exactly hi).
@@ -129,9 +133,7 @@ pub fn run(a: &FreqArgs) -> Result<()> {
     out.finish()
 }
 
-/// Most values (frequencies × channels) of a per-channel `freq` result, which is computed
-/// whole rather than streamed.
-pub const MAX_CHANNEL_VALUES: usize = 1_000_000;
+pub use crate::limits::MAX_CHANNEL_VALUES;
 
 /// The frequencies of a per-channel result: the given list, the log grid, or a log grid over
 /// the union of the channels' automatic ranges.

@@ -8,11 +8,7 @@ use std::path::Path;
 
 use crate::analysis::ss::InputSignal;
 
-/// Largest input file read (bytes).
-pub const MAX_INPUT_BYTES: u64 = 64 << 20;
-
-/// Most samples (lines) of an input file.
-pub const MAX_INPUT_SAMPLES: usize = 1_000_000;
+pub use crate::limits::{MAX_INPUT_BYTES, MAX_INPUT_SAMPLES};
 
 /// Reads `path` as the input signal of a model with `m` inputs.
 pub fn read(path: &Path, m: usize) -> Result<InputSignal> {

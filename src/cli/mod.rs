@@ -8,6 +8,7 @@ mod commands;
 mod demo;
 mod exit;
 mod freq;
+mod help;
 mod input_file;
 mod linearize;
 mod margins;
@@ -24,7 +25,8 @@ mod simulate;
 mod text;
 
 pub use crate::lti::Plant;
-pub use commands::{Cli, run_from};
-pub use exit::{UsageError, main};
+pub(crate) use commands::png_path;
+pub use commands::{Cli, command, run_from};
+pub use exit::{FIELD_FLAGS, UsageError, error_line, flag_of, flags_for_fields, main};
 pub(crate) use exit::{one_line, warn};
 pub use plant::PlantArgs;

@@ -1,8 +1,17 @@
 //! `ltikit bode|step|pzmap|nyquist -o FILE.png` and the figure helpers shared with the demo.
+//!
+//! With `--json` each command prints one JSON document describing what it drew: the file
+//! written and the figures the picture marks (margins, step metrics, poles and zeros, the
+//! Nyquist encirclement count), and nothing else on stdout.
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
+
+use super::output::{json_value, pair, print_json};
+use crate::analysis::{Margins, StepInfo};
+use crate::poly::roots::flatten;
 
 use super::PlantArgs;
 use crate::analysis::{Factored, Input, TimeResponse, auto_frequency_grid, auto_time_span};
@@ -16,7 +25,7 @@ use crate::plot::{
 #[derive(Args, Debug, Clone)]
 pub struct PlotArgs {
     /// Output PNG file.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.png", value_parser = super::png_path)]
     pub output: PathBuf,
     /// Image size in pixels, WIDTHxHEIGHT.
     #[arg(long, default_value = "1000x700", value_name = "WxH")]
@@ -27,6 +36,10 @@ pub struct PlotArgs {
     /// Font scale, like a dpi setting (1 = default; 0.25 … 8).
     #[arg(long, default_value_t = 1.0, value_name = "SCALE")]
     pub font_scale: f64,
+    /// Print one JSON document describing what was drawn: the file written and the figures
+    /// the picture marks (margins, step metrics, poles and zeros, encirclements).
+    #[arg(long)]
+    pub json: bool,
 }
 
 impl PlotArgs {
@@ -56,6 +69,14 @@ fn merged_grid(tf: &Factored, w_min: f64, w_max: f64) -> Result<Vec<f64>> {
     Ok(w)
 }
 
+/// What a Bode diagram shows: its frequency range and each plant's margins (when drawn).
+pub struct BodeDrawn {
+    /// The frequency range (rad/s).
+    pub range: (f64, f64),
+    /// The margins of each plant, `None` when not drawn or not computable.
+    pub margins: Vec<Option<Margins>>,
+}
+
 /// Writes a Bode diagram of `plants` (labels, factored plants), with their margins when
 /// `margins`; the frequency range covers every plant's automatic range unless given.
 pub fn bode_figure(
@@ -65,7 +86,7 @@ pub fn bode_figure(
     asymptotes: bool,
     margins: bool,
     opts: &PlotOptions,
-) -> Result<()> {
+) -> Result<BodeDrawn> {
     let (lo, hi) = match range {
         Some(r) => r,
         None => {
@@ -115,7 +136,19 @@ pub fn bode_figure(
         })
         .collect();
     bode_png(path, &series, opts)?;
-    Ok(())
+    Ok(BodeDrawn {
+        range: (lo, hi),
+        margins: data.into_iter().map(|(_, _, m, _)| m).collect(),
+    })
+}
+
+/// What a response plot shows: its end time and, per plant, the step metrics (steps only)
+/// and whether the response grows without bound.
+pub struct StepDrawn {
+    /// End of the time axis (s).
+    pub t_end: f64,
+    /// Per plant: step metrics, divergence.
+    pub plants: Vec<(Option<StepInfo>, bool)>,
 }
 
 /// Step, impulse or ramp responses of `plants` on one plot, with step metrics for steps.
@@ -125,10 +158,10 @@ pub fn step_figure(
     input: &Input,
     t_end: Option<f64>,
     opts: &PlotOptions,
-) -> Result<()> {
+) -> Result<StepDrawn> {
     let t_end = match t_end {
         Some(t) if t.is_finite() && t > 0.0 => t,
-        Some(t) => bail!("--t-end must be > 0, got {t}"),
+        Some(t) => bail!("--t-end must be > 0, got {}", crate::error::number(t)),
         None => {
             let mut t: f64 = 0.0;
             for (_, g) in plants {
@@ -174,7 +207,10 @@ pub fn step_figure(
         })
         .collect();
     step_png(path, &series, opts)?;
-    Ok(())
+    Ok(StepDrawn {
+        t_end,
+        plants: data.into_iter().map(|(_, _, i, u)| (i, u)).collect(),
+    })
 }
 
 /// True when the response of G to `input` grows without bound: a pole of G in lowest terms or
@@ -270,7 +306,7 @@ fn bode_grid_figure(
     chans: &super::channels::Channels,
     range: Option<(f64, f64)>,
     opts: &PlotOptions,
-) -> Result<()> {
+) -> Result<(f64, f64)> {
     let labelled: Vec<(String, Factored)> = chans
         .list
         .iter()
@@ -303,7 +339,7 @@ fn bode_grid_figure(
         opts.title = Some(format!("Bode diagram of {}", plant.name));
     }
     bode_grid_png(path, &grid, &opts)?;
-    Ok(())
+    Ok((lo, hi))
 }
 
 #[derive(Args, Debug)]
@@ -328,7 +364,11 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
     let range = match (a.wmin, a.wmax) {
         (Some(lo), Some(hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
-                bail!("--wmin/--wmax: need 0 < wmin < wmax, got {lo} and {hi}");
+                bail!(
+                    "--wmin/--wmax: need 0 < wmin < wmax, got {} and {}",
+                    crate::error::number(lo),
+                    crate::error::number(hi)
+                );
             }
             Some((lo, hi))
         }
@@ -342,15 +382,46 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
     {
         let plant = list.remove(0);
         let chans = a.plant.channels(&plant)?;
-        return bode_grid_figure(&a.plot.output, &plant, &chans, range, &opts)
-            .with_context(|| format!("Bode plot {}", a.plot.output.display()));
+        let drawn = bode_grid_figure(&a.plot.output, &plant, &chans, range, &opts)
+            .with_context(|| format!("Bode plot {}", a.plot.output.display()))?;
+        if a.plot.json {
+            let channels: Vec<Value> = chans
+                .list
+                .iter()
+                .map(|c| {
+                    json!({
+                        "input": c.input + 1,
+                        "output": c.output + 1,
+                        "label": channel_label(&plant, c.input, c.output),
+                    })
+                })
+                .collect();
+            return print_json(&json!({
+                "file": a.plot.output.display().to_string(),
+                "plant": plant.name,
+                "w_range": [drawn.0, drawn.1],
+                "channels": channels,
+            }));
+        }
+        return Ok(());
     }
     let plants = labelled(&a.plant, LoopSystem::Loop)?;
     // stability margins belong to a loop: not drawn for T, S or C·S
     let p = &a.plant;
     let margins = !(p.closed_loop || p.sensitivity || p.control_sensitivity);
-    bode_figure(&a.plot.output, &plants, range, a.asymptotes, margins, &opts)
-        .with_context(|| format!("Bode plot {}", a.plot.output.display()))
+    let drawn = bode_figure(&a.plot.output, &plants, range, a.asymptotes, margins, &opts)
+        .with_context(|| format!("Bode plot {}", a.plot.output.display()))?;
+    if !a.plot.json {
+        return Ok(());
+    }
+    let list = labelled_json(&plants, &drawn.margins, |m| {
+        Ok(json!({ "margins": optional_json(m.as_ref())? }))
+    })?;
+    print_json(&json!({
+        "file": a.plot.output.display().to_string(),
+        "w_range": [drawn.range.0, drawn.range.1],
+        "plants": list,
+    }))
 }
 
 #[derive(Args, Debug)]
@@ -374,8 +445,23 @@ pub fn step(a: &StepArgs) -> Result<()> {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
     let plants = labelled(&a.plant, LoopSystem::ClosedLoop)?;
-    step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
-        .with_context(|| format!("response plot {}", a.plot.output.display()))
+    let drawn = step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
+        .with_context(|| format!("response plot {}", a.plot.output.display()))?;
+    if !a.plot.json {
+        return Ok(());
+    }
+    let list = labelled_json(&plants, &drawn.plants, |(info, diverges)| {
+        Ok(json!({
+            "step_info": optional_json(info.as_ref())?,
+            "diverges": diverges,
+        }))
+    })?;
+    print_json(&json!({
+        "file": a.plot.output.display().to_string(),
+        "input": a.input,
+        "t_end": drawn.t_end,
+        "plants": list,
+    }))
 }
 
 #[derive(Args, Debug)]
@@ -397,12 +483,22 @@ pub fn pzmap(a: &PzmapArgs) -> Result<()> {
         let Some(ch) = chans.list.first() else {
             bail!("no channel to draw");
         };
-        return pzmap_figure(&a.plot.output, &p.name, &ch.factored, a.guides, &opts)
-            .with_context(|| format!("pole-zero map {}", a.plot.output.display()));
+        pzmap_figure(&a.plot.output, &p.name, &ch.factored, a.guides, &opts)
+            .with_context(|| format!("pole-zero map {}", a.plot.output.display()))?;
+        if a.plot.json {
+            let mut doc = json!({"file": a.plot.output.display().to_string(), "label": p.name});
+            if let (Some(m), Value::Object(roots)) = (doc.as_object_mut(), roots_json(&ch.factored))
+            {
+                m.extend(roots);
+            }
+            return print_json(&doc);
+        }
+        return Ok(());
     }
     // A MIMO plant: one map per channel (the poles of A, the channel's transmission zeros),
     // FILE-i-j.png for input i → output j.
     let mut written = String::new();
+    let mut docs = Vec::new();
     for ch in &chans.list {
         let path = channel_path(&a.plot.output, ch.input, ch.output);
         let label = format!("{}, {}", p.name, channel_label(&p, ch.input, ch.output));
@@ -413,8 +509,61 @@ pub fn pzmap(a: &PzmapArgs) -> Result<()> {
             path.display(),
             super::channels::heading(&p, ch.input, ch.output)
         ));
+        let mut doc = json!({
+            "file": path.display().to_string(),
+            "input": ch.input + 1,
+            "output": ch.output + 1,
+            "label": label,
+        });
+        if let (Some(m), Value::Object(roots)) = (doc.as_object_mut(), roots_json(&ch.factored)) {
+            m.extend(roots);
+        }
+        docs.push(doc);
+    }
+    if a.plot.json {
+        return print_json(&json!({ "channels": docs }));
     }
     super::output::print(&written)
+}
+
+/// One JSON object per plant: `"label"` first, then the fields `fields` gives for its item.
+fn labelled_json<T>(
+    plants: &[(String, Factored)],
+    items: &[T],
+    fields: impl Fn(&T) -> Result<Value>,
+) -> Result<Vec<Value>> {
+    plants
+        .iter()
+        .zip(items)
+        .map(|((label, _), item)| {
+            let mut doc = serde_json::Map::new();
+            doc.insert("label".into(), json!(label));
+            if let Value::Object(m) = fields(item)? {
+                doc.extend(m);
+            }
+            Ok(Value::Object(doc))
+        })
+        .collect()
+}
+
+/// A library struct as JSON, `null` when absent.
+fn optional_json<T: serde::Serialize>(x: Option<&T>) -> Result<Value> {
+    Ok(match x {
+        Some(x) => json_value(x)?,
+        None => Value::Null,
+    })
+}
+
+/// The roots a pole-zero map marks, as the JSON contract lists them: `[re, im]` with
+/// repetition.
+fn roots_json(g: &Factored) -> Value {
+    let list = |r: &[crate::Root]| -> Vec<[f64; 2]> { flatten(r).into_iter().map(pair).collect() };
+    let pz = g.pole_zero();
+    json!({
+        "poles": list(&pz.poles),
+        "zeros": list(&pz.zeros),
+        "cancelled": list(&pz.cancelled),
+    })
 }
 
 /// `FILE.png` → `FILE-i-j.png` (1-based input i, output j).
@@ -451,5 +600,21 @@ pub fn nyquist(a: &NyquistArgs) -> Result<()> {
         .map(|((label, _), c)| NyquistSeries::new(c).label(label))
         .collect();
     nyquist_png(&a.plot.output, &series, &opts)
-        .with_context(|| format!("Nyquist plot {}", a.plot.output.display()))
+        .with_context(|| format!("Nyquist plot {}", a.plot.output.display()))?;
+    if !a.plot.json {
+        return Ok(());
+    }
+    let list = labelled_json(&plants, &contours, |c| {
+        Ok(json!({
+            "open_loop_rhp_poles": c.open_loop_rhp_poles,
+            "encirclements": c.encirclements,
+            "closed_loop_rhp_poles": c.closed_loop_rhp_poles,
+            "g_at_infinity": c.g_at_infinity,
+            "axis_poles": c.axis_poles,
+        }))
+    })?;
+    print_json(&json!({
+        "file": a.plot.output.display().to_string(),
+        "plants": list,
+    }))
 }

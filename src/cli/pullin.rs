@@ -15,7 +15,7 @@ use crate::plot::{Curve, LineStyle, Marker, MarkerShape, PlotOptions, XyPlot, pa
 #[derive(Args, Debug)]
 pub struct PullinArgs {
     /// Output PNG file.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.png", value_parser = super::png_path)]
     pub output: std::path::PathBuf,
     /// A MEMS parameter, NAME=VALUE (eps, A, m, k, l0, b, R; repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
@@ -26,6 +26,23 @@ pub struct PullinArgs {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1000x700", value_name = "WxH")]
     pub size: String,
+    /// Print one JSON document describing what was drawn (the file, the pull-in voltage by
+    /// the formula and where the stable branch ends, the pull-in gap, the voltage range)
+    /// instead of the summary line.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// What the pull-in diagram shows.
+pub struct PullinDrawn {
+    /// √(8 k l0³/(27 εA)) (V).
+    pub formula_voltage: f64,
+    /// Where the computed stable branch ends (V).
+    pub found_voltage: f64,
+    /// The gap at pull-in (m).
+    pub gap: f64,
+    /// The highest voltage drawn (V).
+    pub vmax: f64,
 }
 
 /// The MEMS model with parameter overrides.
@@ -37,17 +54,20 @@ pub fn mems_with(params: &[(String, f64)]) -> Result<Mems> {
     )?)?)
 }
 
-/// Draws the pull-in diagram; returns the formula and the found pull-in voltage.
+/// Draws the pull-in diagram; returns what it marks.
 pub fn pullin_figure(
     path: &std::path::Path,
     m: &Mems,
     vmax: Option<f64>,
     opts: &PlotOptions,
-) -> Result<(f64, f64)> {
+) -> Result<PullinDrawn> {
     let v_pi = m.pull_in_voltage();
     let vmax = match vmax {
         Some(v) if v.is_finite() && v > 0.0 => v,
-        Some(v) => bail!("--vmax must be a finite number > 0, got {v}"),
+        Some(v) => bail!(
+            "--vmax must be a finite number > 0, got {}",
+            crate::error::number(v)
+        ),
         None if v_pi.is_finite() && v_pi > 0.0 && (1.25 * v_pi).is_finite() => 1.25 * v_pi,
         None => bail!(
             "the pull-in voltage √(8 k l0³/(27 ε A)) = {v_pi:e} is not a usable number for these parameters (it under- or overflows); give --vmax or change the parameters"
@@ -79,7 +99,12 @@ pub fn pullin_figure(
         ..Default::default()
     };
     xy_png(path, &plot, opts)?;
-    Ok((v_pi, d.pull_in_voltage_found))
+    Ok(PullinDrawn {
+        formula_voltage: v_pi,
+        found_voltage: d.pull_in_voltage_found,
+        gap: d.pull_in_gap,
+        vmax,
+    })
 }
 
 pub fn run(a: &PullinArgs) -> Result<()> {
@@ -89,7 +114,17 @@ pub fn run(a: &PullinArgs) -> Result<()> {
         size: parse_size(&a.size)?,
         ..Default::default()
     };
-    let (v_pi, found) = pullin_figure(&a.output, &m, a.vmax, &opts)?;
+    let d = pullin_figure(&a.output, &m, a.vmax, &opts)?;
+    let (v_pi, found) = (d.formula_voltage, d.found_voltage);
+    if a.json {
+        return super::output::print_json(&serde_json::json!({
+            "file": a.output.display().to_string(),
+            "pull_in_voltage": v_pi,
+            "pull_in_voltage_found": found,
+            "pull_in_gap": d.gap,
+            "vmax": d.vmax,
+        }));
+    }
     print(&format!(
         "pull-in voltage {} V (formula √(8 k l0³/(27 εA))), {} V where the stable branch ends; \
          wrote {}\n",

@@ -32,7 +32,7 @@ pub struct RlocusArgs {
     #[arg(long, default_value_t = crate::analysis::rlocus::DEFAULT_MAX_GAINS, value_name = "N")]
     pub max_gains: usize,
     /// Write the root locus PNG here.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.png", value_parser = super::png_path)]
     pub output: Option<PathBuf>,
     /// Image size in pixels, WIDTHxHEIGHT.
     #[arg(long, default_value = "900x800", value_name = "WxH")]
@@ -48,9 +48,6 @@ pub struct RlocusArgs {
     #[arg(long)]
     pub json: bool,
 }
-
-/// Largest accepted --max-gains.
-const MAX_GAINS_LIMIT: usize = 100_000;
 
 #[derive(Serialize)]
 struct AtGain<'a> {
@@ -69,12 +66,10 @@ struct Doc<'a> {
 }
 
 pub fn run(a: &RlocusArgs) -> Result<()> {
-    if !(16..=MAX_GAINS_LIMIT).contains(&a.max_gains) {
-        bail!(
-            "--max-gains {} is outside 16 … {MAX_GAINS_LIMIT}",
-            a.max_gains
-        );
+    if a.max_gains < 16 {
+        bail!("--max-gains {} is below 16", a.max_gains);
     }
+    crate::limits::GAINS.check_usize("`max_gains`", a.max_gains)?;
     let opts = if a.output.is_some() {
         let o = PlotOptions {
             size: parse_size(&a.size)?,
@@ -110,7 +105,7 @@ pub fn run(a: &RlocusArgs) -> Result<()> {
             }
             Some((k, q.roots()?))
         }
-        Some(k) => bail!("--gain must be finite, got {k}"),
+        Some(k) => bail!("--gain must be finite, got {}", crate::error::number(k)),
     };
     // the stable-gain set needs the crossing polynomial (degree ≤ deg N + deg D)
     let gains = (num.degree() + den.degree() <= crate::poly::MAX_ORDER)

@@ -61,7 +61,7 @@ pub fn run(a: &RouthArgs) -> Result<()> {
     let p = match a.gain {
         None => g.den().clone(),
         Some(k) if k.is_finite() => &g.den().clone() + &g.num().scale(k),
-        Some(k) => bail!("--gain must be finite, got {k}"),
+        Some(k) => bail!("--gain must be finite, got {}", crate::error::number(k)),
     };
     let t = routh(&p)?;
     let exact = exact_counts(&plant, g, a.gain);

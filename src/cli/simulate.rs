@@ -2,14 +2,14 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use serde::Serialize;
 
-use super::output::{Stream, json_number, print, print_json};
+use super::output::{Stream, json_number, print};
 use super::parse;
 use crate::analysis::Input;
 use crate::error::abbreviate;
 use crate::nonlinear::{
-    ConservedDrift, InputSignal, Simulation, build_model, sample_times, simulate, simulate_each,
+    ConservedDrift, InputSignal, SimulationSummary, build_model, check_kept_values, sample_times,
+    simulate_each,
 };
 use crate::numeric::rk45::Rk45Options;
 
@@ -49,7 +49,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub json: bool,
     /// Also draw a PNG: the states against time, or with --phase a phase portrait.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    #[arg(short = 'o', long = "output", value_name = "FILE.png", value_parser = super::png_path)]
     pub output: Option<std::path::PathBuf>,
     /// Phase portrait axes: two state numbers (1-based) or names, e.g. --phase 1,2.
     #[arg(long, value_name = "X,Y", requires = "output")]
@@ -73,47 +73,97 @@ fn state_index(s: &str, names: &[String]) -> Result<usize> {
     }
     names.iter().position(|n| n == s).ok_or_else(|| {
         anyhow::anyhow!(
-            "--phase: no state called '{s}' (states: {})",
+            "--phase: no state called '{}' (states: {})",
+            abbreviate(s),
             names.join(", ")
         )
     })
 }
 
-fn picture(
-    a: &SimulateArgs,
-    sys: &dyn crate::nonlinear::DynSystem,
-    sim: &Simulation,
-) -> Result<()> {
+/// The samples of a simulation kept whole (for a JSON document or a picture): flat arrays of
+/// numbers, 8 bytes each, no allocation per sample.
+struct Samples {
+    t: Vec<f64>,
+    /// States, `nx` per sample.
+    x: Vec<f64>,
+    /// Outputs, `ny` per sample.
+    y: Vec<f64>,
+    nx: usize,
+    ny: usize,
+    summary: SimulationSummary,
+}
+
+impl Samples {
+    /// Simulates and keeps every sample (the number of kept values checked first against
+    /// `limits::MAX_SIMULATION_VALUES`).
+    fn collect(
+        sys: &dyn crate::nonlinear::DynSystem,
+        x0: &[f64],
+        input: &InputSignal,
+        times: &[f64],
+        opts: &Rk45Options,
+    ) -> Result<Samples> {
+        check_kept_values(sys, times.len())?;
+        let (nx, ny) = (sys.nx(), sys.ny());
+        let mut t = Vec::with_capacity(times.len());
+        let mut x = Vec::with_capacity(times.len().saturating_mul(nx));
+        let mut y = Vec::with_capacity(times.len().saturating_mul(ny));
+        let summary = simulate_each(sys, x0, input, times, opts, &mut |ti, xi, yi| {
+            t.push(ti);
+            x.extend_from_slice(xi);
+            y.extend_from_slice(yi);
+            Ok(true)
+        })?;
+        Ok(Samples {
+            t,
+            x,
+            y,
+            nx,
+            ny,
+            summary,
+        })
+    }
+
+    /// The time series of state `k`.
+    fn state(&self, k: usize) -> Vec<f64> {
+        self.x
+            .iter()
+            .skip(k)
+            .step_by(self.nx.max(1))
+            .copied()
+            .collect()
+    }
+}
+
+fn picture(a: &SimulateArgs, sys: &dyn crate::nonlinear::DynSystem, sim: &Samples) -> Result<()> {
     use crate::plot::{
         Curve, Equilibrium, PhasePortrait, PlotOptions, phase_portrait_png, time_plot_png,
     };
     let Some(path) = &a.output else {
         return Ok(());
     };
+    let names = &sim.summary.state_names;
     let opts = PlotOptions {
         size: crate::plot::parse_size(&a.size)?,
-        title: Some(format!("{} simulation", sim.model)),
+        title: Some(format!("{} simulation", sim.summary.model)),
         ..Default::default()
     };
     match &a.phase {
         None => {
-            let curves = (0..sim.state_names.len())
-                .map(|k| {
-                    let y: Vec<f64> = sim.states.iter().map(|x| x[k]).collect();
-                    Ok(Curve::from_xy(&sim.t, &y)?.label(sim.state_names[k].clone()))
-                })
+            let curves = (0..names.len())
+                .map(|k| Ok(Curve::from_xy(&sim.t, &sim.state(k))?.label(names[k].clone())))
                 .collect::<Result<Vec<_>>>()?;
             time_plot_png(path, &curves, "states", &opts)?;
         }
         Some(spec) => {
             let Some((xs, ys)) = spec.split_once(',') else {
-                bail!("--phase '{spec}': expected two states, e.g. 1,2");
+                bail!(
+                    "--phase '{}': expected two states, e.g. 1,2",
+                    abbreviate(spec)
+                );
             };
-            let (i, j) = (
-                state_index(xs, &sim.state_names)?,
-                state_index(ys, &sim.state_names)?,
-            );
-            let traj = Curve::new(sim.states.iter().map(|x| (x[i], x[j])));
+            let (i, j) = (state_index(xs, names)?, state_index(ys, names)?);
+            let traj = Curve::new(sim.x.chunks_exact(sim.nx.max(1)).map(|x| (x[i], x[j])));
             let lin = crate::nonlinear::linearize(
                 sys,
                 Some(&sys.operating_input()),
@@ -131,8 +181,8 @@ fn picture(
             let p = PhasePortrait {
                 trajectories: vec![traj],
                 equilibria,
-                x_label: sim.state_names[i].clone(),
-                y_label: sim.state_names[j].clone(),
+                x_label: names[i].clone(),
+                y_label: names[j].clone(),
                 ..Default::default()
             };
             phase_portrait_png(path, &p, &opts)?;
@@ -210,9 +260,6 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
     };
     let t_end = a.t_end.unwrap_or_else(|| sys.default_horizon());
     let input = parse_input(a.input.as_deref(), &sys.operating_input())?;
-    if a.points < 2 {
-        bail!("--points must be at least 2");
-    }
     let times = sample_times(t_end, a.points)?;
     let opts = Rk45Options {
         rtol: a.rtol,
@@ -221,29 +268,30 @@ pub fn run(a: &SimulateArgs) -> Result<()> {
         ..Default::default()
     };
     let defaults = defaults_note(a, &x0, t_end);
-    if let Some(path) = &a.output {
-        // The picture needs every sample: simulate whole, draw, then report.
-        let sim = simulate(sys.as_ref(), &x0, &input, &times, &opts)?;
-        picture(a, sys.as_ref(), &sim)?;
-        if a.json {
-            let mut j = SimulationJson::from(&sim);
-            j.x0 = &x0;
-            return print_json(&j);
+    if a.output.is_some() || a.json {
+        // A picture or a JSON document needs every sample: simulate whole, then draw and
+        // report.
+        let sim = Samples::collect(sys.as_ref(), &x0, &input, &times, &opts)?;
+        if let Some(path) = &a.output {
+            picture(a, sys.as_ref(), &sim)?;
+            if !a.json {
+                let s = &sim.summary;
+                let mut text = format!(
+                    "Figure: {} ({} samples, {} steps)\n",
+                    path.display(),
+                    sim.t.len(),
+                    s.stats.steps
+                );
+                text.push_str(&csv_footer(s.stop.as_ref(), &s.conserved));
+                text.push_str(&defaults);
+                return print(&text);
+            }
         }
-        let mut text = format!(
-            "Figure: {} ({} samples, {} steps)\n",
-            path.display(),
-            sim.t.len(),
-            sim.stats.steps
-        );
-        text.push_str(&csv_footer(sim.stop.as_ref(), &sim.conserved));
-        text.push_str(&defaults);
-        return print(&text);
+        let mut out = Stream::stdout();
+        write_json(&mut |text| out.put(text), &sim, &x0)?;
+        return out.finish();
     }
     let mut out = Stream::stdout();
-    if a.json {
-        return stream_json(out, sys.as_ref(), &x0, &input, &times, &opts);
-    }
     // CSV, written as it is computed: memory does not grow with --points. The first
     // HOLD_BYTES are held back, so a simulation that fails early (a step limit, a NaN) prints
     // nothing but the error; one that fails after that ends its CSV with a `# error:` line.
@@ -301,27 +349,12 @@ fn defaults_note(a: &SimulateArgs, x0: &[f64], t_end: f64) -> String {
     )
 }
 
-/// The JSON document, with the samples kept as flat arrays of numbers (8 bytes each, no
-/// per-sample allocation) and written as it is formatted; the same document as
-/// [`SimulationJson`] through `print_json`.
-fn stream_json(
-    mut out: Stream,
-    sys: &dyn crate::nonlinear::DynSystem,
-    x0: &[f64],
-    input: &crate::nonlinear::InputSignal,
-    times: &[f64],
-    opts: &Rk45Options,
-) -> Result<()> {
-    let (nx, ny) = (sys.nx(), sys.ny());
-    let mut t = Vec::with_capacity(times.len());
-    let mut xs = Vec::with_capacity(times.len().saturating_mul(nx));
-    let mut ys = Vec::with_capacity(times.len().saturating_mul(ny));
-    let s = simulate_each(sys, x0, input, times, opts, &mut |ti, x, y| {
-        t.push(ti);
-        xs.extend_from_slice(x);
-        ys.extend_from_slice(y);
-        Ok(true)
-    })?;
+/// The JSON document of kept samples, written as it is formatted (the same document as
+/// `SimulationJson` through `print_json`, without its tree of values); `put` takes each block
+/// and says whether the reader is still there.
+fn write_json(put: &mut dyn FnMut(&str) -> Result<bool>, sim: &Samples, x0: &[f64]) -> Result<()> {
+    let (s, t) = (&sim.summary, &sim.t);
+    let (xs, ys, nx, ny) = (&sim.x, &sim.y, sim.nx, sim.ny);
     let head = serde_json::json!({
         "model": s.model,
         "state_names": s.state_names,
@@ -334,18 +367,18 @@ fn stream_json(
         text.push_str(",\n");
     }
     text.push_str("  \"t\": [");
-    let mut open = out.put(&text)?;
+    let mut open = put(&text)?;
     text.clear();
     for (i, v) in t.iter().enumerate() {
         if !open {
-            return out.finish();
+            return Ok(());
         }
         if i > 0 {
             text.push_str(", ");
         }
         text.push_str(&json_number(*v));
         if text.len() >= 1 << 16 {
-            open = out.put(&text)?;
+            open = put(&text)?;
             text.clear();
         }
     }
@@ -363,8 +396,8 @@ fn stream_json(
             }
             text.push(']');
             if text.len() >= 1 << 16 {
-                if !out.put(&text)? {
-                    return out.finish();
+                if !put(&text)? {
+                    return Ok(());
                 }
                 text.clear();
             }
@@ -390,51 +423,8 @@ fn stream_json(
         text.push_str(if i + 1 < entries.len() { ",\n" } else { "\n" });
     }
     text.push_str("}\n");
-    out.put(&text)?;
-    out.finish()
-}
-
-#[derive(Serialize)]
-struct SimulationJson<'a> {
-    model: &'a str,
-    state_names: &'a [String],
-    output_names: &'a [String],
-    t: &'a [f64],
-    x: &'a [Vec<f64>],
-    y: &'a [Vec<f64>],
-    x0: &'a [f64],
-    steps: usize,
-    rejected_steps: usize,
-    stopped: Option<StopJson<'a>>,
-    #[serde(skip_serializing_if = "<[_]>::is_empty")]
-    conserved: &'a [ConservedDrift],
-}
-
-#[derive(Serialize)]
-struct StopJson<'a> {
-    t: f64,
-    reason: &'a str,
-}
-
-impl<'a> From<&'a Simulation> for SimulationJson<'a> {
-    fn from(s: &'a Simulation) -> Self {
-        SimulationJson {
-            model: &s.model,
-            state_names: &s.state_names,
-            output_names: &s.output_names,
-            t: &s.t,
-            x: &s.states,
-            y: &s.outputs,
-            x0: &[],
-            steps: s.stats.steps,
-            rejected_steps: s.stats.rejections,
-            stopped: s.stop.as_ref().map(|st| StopJson {
-                t: st.t,
-                reason: &st.reason,
-            }),
-            conserved: &s.conserved,
-        }
-    }
+    put(&text)?;
+    Ok(())
 }
 
 /// The CSV header line: t, the states, the outputs (prefixed y: when a name repeats).
@@ -482,4 +472,99 @@ fn csv_footer(
         ));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nonlinear::Simulation;
+    use serde::Serialize;
+
+    /// The document as a tree of values (what `print_json` would write).
+    #[derive(serde::Serialize)]
+    struct SimulationJson<'a> {
+        model: &'a str,
+        state_names: &'a [String],
+        output_names: &'a [String],
+        t: &'a [f64],
+        x: &'a [Vec<f64>],
+        y: &'a [Vec<f64>],
+        x0: &'a [f64],
+        steps: usize,
+        rejected_steps: usize,
+        stopped: Option<StopJson<'a>>,
+        #[serde(skip_serializing_if = "<[_]>::is_empty")]
+        conserved: &'a [ConservedDrift],
+    }
+
+    #[derive(Serialize)]
+    struct StopJson<'a> {
+        t: f64,
+        reason: &'a str,
+    }
+
+    impl<'a> From<&'a Simulation> for SimulationJson<'a> {
+        fn from(s: &'a Simulation) -> Self {
+            SimulationJson {
+                model: &s.model,
+                state_names: &s.state_names,
+                output_names: &s.output_names,
+                t: &s.t,
+                x: &s.states,
+                y: &s.outputs,
+                x0: &[],
+                steps: s.stats.steps,
+                rejected_steps: s.stats.rejections,
+                stopped: s.stop.as_ref().map(|st| StopJson {
+                    t: st.t,
+                    reason: &st.reason,
+                }),
+                conserved: &s.conserved,
+            }
+        }
+    }
+
+    /// The streamed document is byte for byte the tree's: a model with conserved quantities
+    /// (the rigid body), one with an input (the MEMS mirror), two samples only (Lorenz).
+    #[test]
+    fn the_streamed_json_is_the_tree_s() {
+        let opts = Rk45Options::default();
+        for (model, x0, t_end, points) in [
+            ("rigid-body", vec![0.6, -1.0, 2.0], 3.0, 31),
+            ("mems", vec![], 1e-3, 11),
+            ("lorenz", vec![1.0, 0.0, 0.0], 1.0, 2),
+        ] {
+            let sys = build_model(model, &[]).unwrap();
+            let x0 = if x0.is_empty() {
+                sys.default_initial_state()
+            } else {
+                x0
+            };
+            let input = InputSignal::constant(sys.operating_input());
+            let times = sample_times(t_end, points).unwrap();
+            let kept =
+                crate::nonlinear::simulate(sys.as_ref(), &x0, &input, &times, &opts).unwrap();
+            let mut tree = String::new();
+            let mut j = SimulationJson::from(&kept);
+            j.x0 = &x0;
+            super::super::output::pretty(
+                &super::super::output::json_value(&j).unwrap(),
+                0,
+                &mut tree,
+            );
+            tree.push('\n');
+            let flat = Samples::collect(sys.as_ref(), &x0, &input, &times, &opts).unwrap();
+            let mut streamed = String::new();
+            write_json(
+                &mut |t| {
+                    streamed.push_str(t);
+                    Ok(true)
+                },
+                &flat,
+                &x0,
+            )
+            .unwrap();
+            assert_eq!(streamed, tree, "{model}");
+        }
+    }
 }

@@ -90,7 +90,7 @@ impl Controller {
         for item in rest.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             let Some((k, v)) = item.split_once('=') else {
                 return Err(LtiError::bad_number(
-                    "--controller",
+                    "`controller`",
                     item,
                     "is not NAME=VALUE",
                 ));
@@ -98,7 +98,7 @@ impl Controller {
             let v = v.trim();
             let value = v
                 .parse::<f64>()
-                .map_err(|_| LtiError::bad_number("--controller", v, "is not a number"))?;
+                .map_err(|_| LtiError::bad_number("`controller`", v, "is not a number"))?;
             params.push((k.trim().to_string(), value));
         }
         Self::new(kind.trim(), &params)

@@ -53,8 +53,7 @@ pub use motion::{Trajectory, modal_free_response};
 pub use packet::{Envelope, Packet};
 pub use params::LATTICE_PARAMS;
 
-/// The largest lattice accepted (particles; the state has twice as many components).
-pub const MAX_PARTICLES: usize = 1024;
+pub use crate::limits::MAX_PARTICLES;
 
 /// Boundary condition of the lattice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

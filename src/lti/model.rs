@@ -6,12 +6,7 @@ use nalgebra::DMatrix;
 use crate::error::{LtiError, Result};
 use crate::lti::{StateSpace, TransferFunction};
 
-/// Largest number of states of a state-space model (the seed's 128-particle lattice has 256;
-/// dense O(n³) kernels stay well under a second up to this size).
-pub const MAX_STATES: usize = 2048;
-
-/// Largest number of inputs or outputs of a state-space model.
-pub const MAX_SIGNALS: usize = 256;
+pub use crate::limits::{MAX_SIGNALS, MAX_STATES};
 
 /// A plant's model.
 #[derive(Debug, Clone, PartialEq)]

@@ -67,8 +67,8 @@ pub use registry::{ModelInfo, ModelKind, build_model, model_info, model_names, m
 pub use rigid_motion::FreeRigidMotion;
 pub use signal::InputSignal;
 pub use simulate::{
-    ConservedDrift, SampleSink, Simulation, SimulationStop, SimulationSummary, sample_times,
-    simulate, simulate_each,
+    ConservedDrift, SampleSink, Simulation, SimulationStop, SimulationSummary, check_kept_values,
+    sample_times, simulate, simulate_each,
 };
 pub use system::{
     BoxedSystem, Derivatives2, DynSystem, Jacobians, NonlinearSystem, Scalar, SystemInfo,

@@ -92,12 +92,13 @@ impl Simulation {
 }
 
 /// `points` equally spaced times from 0 to `t_end` (both included); `t_end` must be > 0 and
-/// `points` ≥ 2.
+/// 2 ≤ `points` ≤ [`crate::limits::MAX_POINTS`] (checked before anything is allocated).
 ///
 /// ```
 /// let t = ltikit::nonlinear::sample_times(2.0, 5).unwrap();
 /// assert_eq!(t, vec![0.0, 0.5, 1.0, 1.5, 2.0]);
 /// assert!(ltikit::nonlinear::sample_times(0.0, 5).is_err());
+/// assert!(ltikit::nonlinear::sample_times(1.0, usize::MAX).is_err());
 /// ```
 pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
     check_finite(|| "the end time".into(), t_end)?;
@@ -109,9 +110,10 @@ pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
     }
     if points < 2 {
         return Err(LtiError::invalid(format!(
-            "at least 2 sample points are needed, got {points}"
+            "`points`: at least 2 sample points are needed, got {points}"
         )));
     }
+    crate::limits::POINTS.check_usize("`points`", points)?;
     let last = (points - 1) as f64;
     let mut t: Vec<f64> = (0..points).map(|k| t_end * k as f64 / last).collect();
     t[points - 1] = t_end;
@@ -125,6 +127,9 @@ pub fn sample_times(t_end: f64, points: usize) -> Result<Vec<f64>> {
 /// the simulation stops there: the samples end with the last state inside the domain (located
 /// by bisection on the dense output to ~1e-14 s) and [`Simulation::stop`] says when and why.
 /// [`simulate_each`] hands the samples over one by one instead of keeping them.
+///
+/// Errors besides the integrator's: more kept values (samples × (1 + states + outputs)) than
+/// [`crate::limits::MAX_SIMULATION_VALUES`], checked before anything is allocated.
 ///
 /// ```
 /// use ltikit::nonlinear::{simulate, sample_times, InputSignal, models::VanDerPol};
@@ -141,6 +146,7 @@ pub fn simulate(
     times: &[f64],
     opts: &Rk45Options,
 ) -> Result<Simulation> {
+    check_kept_values(sys, times.len())?;
     let mut t_out: Vec<f64> = Vec::with_capacity(times.len());
     let mut states: Vec<Vec<f64>> = Vec::with_capacity(times.len());
     let mut outputs: Vec<Vec<f64>> = Vec::with_capacity(times.len());
@@ -161,6 +167,24 @@ pub fn simulate(
         stop: s.stop,
         conserved: s.conserved,
     })
+}
+
+/// Checks that keeping `samples` samples of `sys` (time, state and output: 1 + nx + ny values
+/// each) stays within [`crate::limits::MAX_SIMULATION_VALUES`].
+///
+/// ```
+/// use ltikit::nonlinear::{check_kept_values, models::VanDerPol};
+/// assert!(check_kept_values(&VanDerPol, 1000).is_ok());
+/// let e = check_kept_values(&VanDerPol, 10_000_000).unwrap_err().to_string();
+/// assert!(e.starts_with("`points` × 5 values per sample: 50000000 exceeds"), "{e}");
+/// ```
+pub fn check_kept_values(sys: &dyn DynSystem, samples: usize) -> Result<()> {
+    let per_sample = 1 + sys.nx() + sys.ny();
+    crate::limits::SIMULATION_VALUES.check(
+        &format!("`points` × {per_sample} values per sample"),
+        samples as u128 * per_sample as u128,
+    )?;
+    Ok(())
 }
 
 /// What a simulation reports besides its samples ([`simulate_each`]).
@@ -210,6 +234,7 @@ pub fn simulate_each(
     opts: &Rk45Options,
     sink: &mut SampleSink<'_>,
 ) -> Result<SimulationSummary> {
+    crate::limits::SIMULATION_STEPS.check_usize("`max_steps`", opts.max_steps)?;
     let check_domain = check_start(sys, x0, input, times)?;
     let Some(&t_end) = times.last() else {
         return Err(LtiError::invalid("no sample times given"));

@@ -174,8 +174,8 @@ fn geometry(
     let panel_h = (cell_h - caption - inner_gap) / 2.0;
     if cell_w < 60.0 || panel_h < 24.0 {
         return Err(LtiError::Plot(format!(
-            "Bode grid: {p} × {m} cells do not fit in {}x{} px; give a larger --size or choose \
-             a channel",
+            "Bode grid: {p} × {m} cells do not fit in {}x{} px; give a larger `size` or \
+             choose a `channel`",
             c.w, c.h
         )));
     }

@@ -5,10 +5,7 @@ use crate::error::{LtiError, Result};
 
 /// Smallest accepted image side (px).
 pub const MIN_SIDE: u32 = 100;
-/// Largest accepted image side (px).
-pub const MAX_SIDE: u32 = 16_384;
-/// Largest accepted image area (px²).
-pub const MAX_PIXELS: u64 = 36_000_000;
+pub use crate::limits::{MAX_PIXELS, MAX_SIDE};
 /// Longest accepted title, label, legend text or note, in characters (Unicode scalar values,
 /// markup included).
 ///
@@ -25,7 +22,7 @@ pub const MAX_PIXELS: u64 = 36_000_000;
 /// let e = long.validate().unwrap_err();
 /// assert!(e.to_string().contains("MAX_TEXT_CHARS"), "{e}");
 /// ```
-pub const MAX_TEXT_CHARS: usize = 16_384;
+pub const MAX_TEXT_CHARS: usize = crate::limits::MAX_TEXT_CHARS;
 
 /// Checks that `text` (`what`, e.g. "the title") has at most [`MAX_TEXT_CHARS`] characters.
 pub(crate) fn check_text(what: &str, text: &str) -> Result<()> {
@@ -84,28 +81,34 @@ impl PlotOptions {
     pub fn validate(&self) -> Result<()> {
         let (w, h) = self.size;
         if w == 0 || h == 0 {
-            return Err(LtiError::Plot(format!("image size {w}x{h} is empty")));
+            return Err(LtiError::Plot(format!("`size` {w}x{h} is empty")));
         }
         if w < MIN_SIDE || h < MIN_SIDE {
             return Err(LtiError::Plot(format!(
-                "image size {w}x{h} is too small (each side at least {MIN_SIDE} px)"
+                "`size` {w}x{h} is too small (each side at least {MIN_SIDE} px)"
             )));
         }
-        if w > MAX_SIDE || h > MAX_SIDE || u64::from(w) * u64::from(h) > MAX_PIXELS {
-            return Err(LtiError::Plot(format!(
-                "image size {w}x{h} is too large (at most {MAX_SIDE} px a side and {MAX_PIXELS} pixels)"
-            )));
-        }
+        // a plot error like the others, with the limit's words
+        let plot = |e: LtiError| LtiError::Plot(e.to_string());
+        crate::limits::SIDE
+            .check("`size`", u128::from(w.max(h)))
+            .map_err(plot)?;
+        crate::limits::PIXELS
+            .check("`size` (width × height)", u128::from(w) * u128::from(h))
+            .map_err(plot)?;
         for (name, v) in [
-            ("font scale", self.font_scale),
+            ("`font_scale`", self.font_scale),
             ("line scale", self.line_scale),
         ] {
             if !v.is_finite() || !(0.25..=8.0).contains(&v) {
-                return Err(LtiError::Plot(format!("{name} {v} is outside 0.25…8")));
+                return Err(LtiError::Plot(format!(
+                    "{name} {} is outside 0.25…8",
+                    crate::error::number(v)
+                )));
             }
         }
         if let Some(t) = &self.title {
-            check_text("the title", t)?;
+            check_text("`title`", t)?;
         }
         Ok(())
     }
@@ -120,7 +123,7 @@ impl PlotOptions {
     }
 }
 
-/// Parses an image size written `WxH` (also `W×H` or `W,H`), e.g. for a `--size` option.
+/// Parses an image size written `WxH` (also `W×H` or `W,H`), e.g. for a `size` option.
 ///
 /// ```
 /// assert_eq!(ltikit::plot::parse_size("1200x800").unwrap(), (1200, 800));
@@ -129,13 +132,34 @@ impl PlotOptions {
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     let bad = || {
         LtiError::Plot(format!(
-            "image size '{s}' is not WIDTHxHEIGHT (e.g. 1000x700)"
+            "`size` '{}' is not WIDTHxHEIGHT (e.g. 1000x700)",
+            crate::error::abbreviate(s)
         ))
     };
     let t = s.trim().to_ascii_lowercase().replace(['×', ','], "x");
     let (a, b) = t.split_once('x').ok_or_else(bad)?;
-    let w: u32 = a.trim().parse().map_err(|_| bad())?;
-    let h: u32 = b.trim().parse().map_err(|_| bad())?;
+    let side = |x: &str| -> Result<u32> {
+        let x = x.trim();
+        if x.is_empty() || !x.bytes().all(|c| c.is_ascii_digit()) {
+            return Err(bad());
+        }
+        let too_large = || {
+            let l = crate::limits::SIDE;
+            LtiError::Plot(format!(
+                "`size`: {} exceeds the limit of {} ({})",
+                crate::error::abbreviate(x),
+                crate::limits::amount(l.max, l.unit),
+                l.name
+            ))
+        };
+        // more digits than any side could have: too large, not malformed
+        let v = x.parse::<u128>().map_err(|_| too_large())?;
+        crate::limits::SIDE
+            .check("`size`", v)
+            .map_err(|_| too_large())?;
+        u32::try_from(v).map_err(|_| bad())
+    };
+    let (w, h) = (side(a)?, side(b)?);
     let o = PlotOptions {
         size: (w, h),
         ..Default::default()

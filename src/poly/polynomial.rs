@@ -8,8 +8,8 @@ use super::root::Root;
 use crate::error::{LtiError, Result, check_finite};
 use crate::fmt::fmt_num;
 
-/// Highest polynomial degree (system order) ltikit accepts.
-pub const MAX_ORDER: usize = 200;
+// the highest polynomial degree (system order) ltikit accepts, in the table of limits
+pub use crate::limits::MAX_ORDER;
 
 /// A real polynomial, coefficients stored in descending powers, leading coefficient non-zero
 /// (except for the zero polynomial `[0.0]`).

@@ -32,7 +32,7 @@ impl Plant {
             Model::Ss(ss) => {
                 if ss.n_inputs() != 1 || ss.n_outputs() != 1 {
                     return Err(LtiError::invalid(format!(
-                        "this analysis takes one input and one output; the plant has {} inputs and {} outputs: choose a channel (--channel INPUT,OUTPUT)",
+                        "this analysis takes one input and one output; the plant has {} inputs and {} outputs: choose a channel (`channel` INPUT,OUTPUT)",
                         ss.n_inputs(),
                         ss.n_outputs()
                     )));

@@ -8,7 +8,7 @@ use crate::poly::Root;
 /// Highest order (number of poles with multiplicity) of a factored plant. Polynomial
 /// coefficients stop at [`crate::MAX_ORDER`]; a factored plant (a state-space channel) may be
 /// larger.
-pub const MAX_FACTORED_ORDER: usize = 4096;
+pub const MAX_FACTORED_ORDER: usize = crate::limits::MAX_FACTORED_ORDER;
 
 /// Everything about the roots of a SISO plant.
 ///

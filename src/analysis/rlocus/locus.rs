@@ -141,7 +141,9 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
             scale_points: &scale_points,
             poles: &poles,
             zeros: &zeros,
-            max_gains: opts.max_gains.max(16),
+            max_gains: crate::limits::GAINS
+                .check_usize("`max_gains`", opts.max_gains)?
+                .max(16),
         },
     )?;
     Ok(RootLocus {

@@ -33,7 +33,7 @@ use crate::poly::{HalfPlane, half_plane};
 /// minimal realisation with its eigenvalues per channel: measured (release build) 0.17 s for
 /// the 256-state lattice, up to 2.3 s for random dense 256-state 2×2 plants (the invariant
 /// zeros dominate), 1.1 s for the 512-state lattice and 35 s for a random 512-state 2×2 plant.
-pub const MAX_ANALYSIS_STATES: usize = 256;
+pub const MAX_ANALYSIS_STATES: usize = crate::limits::MAX_ANALYSIS_STATES;
 
 /// One distinct eigenvalue of A.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -15,8 +15,8 @@ use crate::fmt::fmt_sig;
 use crate::lti::StateSpace;
 use crate::numeric::tol::AXIS_REL_TOL;
 
-/// Most values (times × (outputs + states) × responses) of one state-space response.
-pub(crate) const MAX_RESPONSE_VALUES: usize = 10_000_000;
+// Most values (times × (outputs + states) × responses) of one state-space response.
+use crate::limits::MAX_RESPONSE_VALUES;
 
 /// The head of the `response` JSON document of a state-space plant (its `responses` are
 /// written by [`stream_json`]).

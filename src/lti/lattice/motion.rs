@@ -7,8 +7,7 @@ use super::Lattice;
 use super::modes::Modes;
 use crate::error::{LtiError, Result};
 
-/// The largest trajectory stored: N × (number of samples) values per matrix.
-pub const MAX_TRAJECTORY_VALUES: usize = 4_000_000;
+pub use crate::limits::MAX_TRAJECTORY_VALUES;
 
 /// The exact free response (z(t), ż(t)) of z̈ + c ż + ω² z = 0 from (z0, ż0), for c, ω ≥ 0
 /// and t ≥ 0, in every regime (undamped, under-, critically and overdamped, ω = 0):

@@ -15,7 +15,7 @@ pub const LATTICE_PARAMS: &[ModelParam] = &[
         "N",
         128.0,
         "1",
-        "number of moving particles (integer 2…1024)",
+        "number of moving particles (integer 2…512)",
         Constraint::Positive,
     ),
     param(
@@ -182,7 +182,7 @@ mod tests {
     fn errors_name_the_parameter() {
         let msg = |o: &[(String, f64)]| Lattice::from_params(o).unwrap_err().to_string();
         assert!(msg(&[p("N", 1.0)]).starts_with("parameter N = 1 is invalid"));
-        assert!(msg(&[p("N", 4.5)]).contains("integer 2…1024"));
+        assert!(msg(&[p("N", 4.5)]).contains("integer 2…512"));
         assert!(msg(&[p("w0", 0.0)]).starts_with("parameter w0 = 0 is invalid"));
         assert!(msg(&[p("w0", -1.0)]).starts_with("parameter w0 = -1 is invalid"));
         assert!(msg(&[p("periodic", 2.0)]).contains("1 (periodic) or 0 (fixed)"));

@@ -22,20 +22,66 @@
 //! A batch line is the same record in JSON: `{"name": "p1", "num": [1], "den": [1, 2, 1]}`.
 
 use serde::Deserialize;
+use serde::de::{self, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use super::located;
 use super::text::{Coefficient, coefficients_of, parse_list};
 use crate::error::{LtiError, Result};
 
-/// Coefficients as a list of numbers or as one string "1 0.8 4" (exact decimal text).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(untagged)]
+/// Coefficients as a list of numbers or as one string "1 0.8 4" (exact decimal text); a
+/// single number is a list of one.
+#[derive(Debug, Clone, PartialEq)]
 pub enum CoeffList {
     /// `[1.0, 0.8, 4.0]`
     List(Vec<f64>),
     /// `"1 0.8 4"`
     Text(String),
+}
+
+/// What `num` and `den` must hold, in words.
+const COEFF_MUST: &str = "a list of numbers or a string of numbers";
+
+impl<'de> Deserialize<'de> for CoeffList {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = CoeffList;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(COEFF_MUST)
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> std::result::Result<CoeffList, E> {
+                Ok(CoeffList::List(vec![v as f64]))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> std::result::Result<CoeffList, E> {
+                Ok(CoeffList::List(vec![v as f64]))
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> std::result::Result<CoeffList, E> {
+                Ok(CoeffList::List(vec![v]))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> std::result::Result<CoeffList, E> {
+                Ok(CoeffList::Text(v.to_string()))
+            }
+            fn visit_bool<E: de::Error>(self, v: bool) -> std::result::Result<CoeffList, E> {
+                Err(located::wrong(COEFF_MUST, &v.to_string()))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> std::result::Result<CoeffList, A::Error> {
+                located::numbers(seq, COEFF_MUST).map(CoeffList::List)
+            }
+            fn visit_map<A: MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> std::result::Result<CoeffList, A::Error> {
+                while map.next_entry::<IgnoredAny, IgnoredAny>()?.is_some() {}
+                Err(located::wrong(COEFF_MUST, "a table"))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 impl CoeffList {
@@ -52,13 +98,50 @@ impl CoeffList {
 }
 
 /// A matrix as rows of numbers or as one string "0 1; -4 -0.8".
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(untagged)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum MatrixSpec {
     /// `[[0, 1], [-4, -0.8]]`
     Rows(Vec<Vec<f64>>),
     /// `"0 1; -4 -0.8"`
     Text(String),
+}
+
+/// What a matrix key must hold, in words.
+const MATRIX_MUST: &str =
+    "a list of rows (lists of numbers) or a string of rows such as \"0 1; -4 -0.8\"";
+
+impl<'de> Deserialize<'de> for MatrixSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = MatrixSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(MATRIX_MUST)
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> std::result::Result<MatrixSpec, E> {
+                Ok(MatrixSpec::Text(v.to_string()))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> std::result::Result<MatrixSpec, A::Error> {
+                let mut rows = Vec::new();
+                while let Some(item) = seq.next_element::<located::Row>()? {
+                    match item {
+                        located::Row::Numbers(r) => rows.push(r),
+                        located::Row::Bad(what) => {
+                            return Err(de::Error::custom(format!(
+                                "must be {MATRIX_MUST} (row {} {what})",
+                                rows.len() + 1
+                            )));
+                        }
+                    }
+                }
+                Ok(MatrixSpec::Rows(rows))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 impl MatrixSpec {
@@ -131,13 +214,56 @@ pub struct PlantFile {
 
 /// A plant file's `[controller]` section: the kind and its parameters
 /// (`kind = "pid"`, `kp = 2`, `ki = 1`, `kd = 0.5`, `tf = 0.01`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ControllerSection {
     /// `p`, `pi`, `pd`, `pid`, `lead` or `lag`.
     pub kind: String,
     /// The parameters by name.
-    #[serde(flatten)]
     pub params: BTreeMap<String, f64>,
+}
+
+impl<'de> Deserialize<'de> for ControllerSection {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = ControllerSection;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a table with `kind` and the controller's parameters")
+            }
+            fn visit_map<A: MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> std::result::Result<ControllerSection, A::Error> {
+                let mut kind = None;
+                let mut params = BTreeMap::new();
+                while let Some(key) = map.next_key::<String>()? {
+                    let item = map.next_value::<located::Item>()?;
+                    let shown = crate::error::abbreviate(&key);
+                    match (key.as_str(), item) {
+                        ("kind", located::Item::Text(s)) => kind = Some(s),
+                        ("kind", other) => {
+                            return Err(de::Error::custom(format!(
+                                "`controller.kind` must be a string such as \"pid\" (found {})",
+                                other.describe()
+                            )));
+                        }
+                        (_, located::Item::Number(x)) => {
+                            params.insert(key, x);
+                        }
+                        (_, other) => {
+                            return Err(de::Error::custom(format!(
+                                "`controller.{shown}` must be a number (found {})",
+                                other.describe()
+                            )));
+                        }
+                    }
+                }
+                let kind = kind.ok_or_else(|| de::Error::custom("missing field `kind`"))?;
+                Ok(ControllerSection { kind, params })
+            }
+        }
+        d.deserialize_map(V)
+    }
 }
 
 /// The coefficient lists of a batch line as raw JSON text.
@@ -162,50 +288,105 @@ fn raw_tokens(raw: &serde_json::value::RawValue) -> Option<String> {
     tokens.iter().all(numeric).then(|| tokens.join(" "))
 }
 
-/// Largest plant file or batch line accepted (bytes).
-pub const MAX_RECORD_BYTES: u64 = 1 << 20;
+pub use crate::limits::MAX_RECORD_BYTES;
 
 impl PlantFile {
-    /// Reads and parses a plant file (at most [`MAX_RECORD_BYTES`]).
+    /// Reads and parses a plant file (at most [`MAX_RECORD_BYTES`]). Errors name the file
+    /// and, for a bad record, the line, the column and the key
+    /// ([`LtiError::BadRecord`]).
     pub fn load(path: &Path) -> Result<PlantFile> {
-        let io = |message: String| LtiError::Io {
-            path: path.display().to_string(),
-            message,
-        };
-        let text = read_bounded(path).map_err(|e| io(e.to_string()))?;
-        Self::parse(&text).map_err(|e| match e {
-            LtiError::Io { message, .. } => io(message),
-            other => other,
-        })
+        let text = read_text(path)?;
+        Self::parse(&text).map_err(|e| in_file(path, e))
     }
 
-    /// Parses plant-file text (TOML).
+    /// Parses plant-file text (TOML). Errors say where (line and column) and what, naming
+    /// the key: a wrong type, an unknown key, a bad number, a missing key, no plant at all.
     ///
     /// ```
     /// use ltikit::lti::PlantFile;
     /// let f = PlantFile::parse("name = \"tank\"\nmodel = \"tank\"\n[params]\nA = 4.0\n").unwrap();
     /// assert_eq!(f.model.as_deref(), Some("tank"));
     /// assert!(PlantFile::parse("name = \"x\"\nnum = [1.0]").is_err()); // no den
+    /// let e = PlantFile::parse("den = [1, \"a\"]").unwrap_err().to_string();
+    /// assert_eq!(e, "line 1, column 7: `den` must be a list of numbers or a string of numbers \
+    ///                (entry 2 is the string \"a\")");
     /// ```
     pub fn parse(text: &str) -> Result<PlantFile> {
-        let f: PlantFile = toml::from_str(text).map_err(|e| LtiError::Io {
-            path: "plant file".into(),
-            message: format!("invalid plant file: {}", e.message()),
+        let f: PlantFile = toml::from_str(text).map_err(|e| {
+            let (at, message) = located::toml_error(text, &e);
+            located::bad_record(at.unwrap_or_default(), message)
         })?;
         f.validated()
     }
 
-    /// Parses a batch line (JSON).
+    /// Parses a batch line (JSON). Errors name the column and the key.
     ///
     /// ```
     /// use ltikit::lti::PlantFile;
     /// let f = PlantFile::parse_json(r#"{"name": "p", "den": "1 2 1"}"#).unwrap();
     /// assert_eq!(f.name.as_deref(), Some("p"));
-    /// assert!(PlantFile::parse_json(r#"{"den": [1], "typo": 2}"#).is_err());
+    /// let e = PlantFile::parse_json(r#"{"den": [1], "typo": 2}"#).unwrap_err().to_string();
+    /// assert!(e.starts_with("column 14: unknown key `typo` (known keys: name, "), "{e}");
     /// ```
     pub fn parse_json(text: &str) -> Result<PlantFile> {
-        let mut f: PlantFile = serde_json::from_str(text)
-            .map_err(|e| LtiError::invalid(format!("not a plant record: {e}")))?;
+        Self::parse_json_at(text, None)
+    }
+
+    /// [`PlantFile::parse_json`] for line `line` (1-based) of a batch file: errors say
+    /// "line 3, column 9: …".
+    pub fn parse_json_at(text: &str, line: Option<usize>) -> Result<PlantFile> {
+        let at = |offset: usize| json_position(text, offset, line);
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+            let msg = e.to_string();
+            let msg = msg
+                .rsplit_once(" at line ")
+                .map_or(msg.as_str(), |(m, _)| m);
+            let column = e.column().saturating_sub(1);
+            let offset = text
+                .lines()
+                .take(e.line().saturating_sub(1))
+                .map(|l| l.len() + 1)
+                .sum::<usize>()
+                + column;
+            located::bad_record(at(offset), located::plain(msg))
+        })?;
+        let Some(object) = value.as_object() else {
+            return Err(located::bad_record(
+                at(0),
+                "a plant record is a JSON object, e.g. {\"den\": [1, 2, 1]}".into(),
+            ));
+        };
+        let mut f: PlantFile = match serde_json::from_value(value.clone()) {
+            Ok(f) => f,
+            Err(e) => {
+                // Which key: the first one that fails on its own.
+                for (k, v) in object {
+                    let one =
+                        serde_json::Value::Object([(k.clone(), v.clone())].into_iter().collect());
+                    if let Err(e) = serde_json::from_value::<PlantFile>(one) {
+                        let msg = located::plain(&e.to_string());
+                        // a table of numbers (`params`): the entry that is not one
+                        let key = match v.as_object() {
+                            Some(inner) if msg.starts_with("must be a number") => inner
+                                .iter()
+                                .find(|(_, x)| !x.is_number())
+                                .map_or(k.clone(), |(k2, _)| format!("{k}.{k2}")),
+                            _ => k.clone(),
+                        };
+                        let offset = located::json_key_offset(text, &key).unwrap_or(0);
+                        let msg = if msg.starts_with("unknown key") || msg.starts_with('`') {
+                            msg
+                        } else if msg.starts_with("the key ") {
+                            format!("[{}]: {msg}", crate::error::abbreviate(k))
+                        } else {
+                            format!("`{}` {msg}", crate::error::abbreviate(&key))
+                        };
+                        return Err(located::bad_record(at(offset), msg));
+                    }
+                }
+                return Err(located::bad_record(at(0), located::plain(&e.to_string())));
+            }
+        };
         // Keep the numbers of `num`/`den` as typed (an f64 would lose 17-digit decimals).
         if let Ok(raw) = serde_json::from_str::<RawCoeffs>(text) {
             for (list, raw) in [(&mut f.num, raw.num), (&mut f.den, raw.den)] {
@@ -229,11 +410,70 @@ impl PlantFile {
         if kinds == 1 && complete {
             Ok(self)
         } else {
-            Err(LtiError::invalid(
-                "a plant needs exactly one of: `den` (with an optional `num`), `model` (with optional [params]), or `a`, `b`, `c` (with an optional `d`)",
+            Err(located::bad_record(
+                String::new(),
+                "a plant needs exactly one of: `den` (with an optional `num`), `model` (with optional [params]), or `a`, `b`, `c` (with an optional `d`)".into(),
             ))
         }
     }
+}
+
+/// "line 3, column 9" of byte `offset` of batch line `line` ("column 9" when the line number
+/// is not known).
+fn json_position(text: &str, offset: usize, line: Option<usize>) -> String {
+    let (_, column) = located::line_column(text, offset);
+    match line {
+        Some(l) => format!("line {l}, column {column}"),
+        None => format!("column {column}"),
+    }
+}
+
+/// The location of a record error (a key's line and column, or none) in a plant file, from
+/// the key's position in `text`.
+pub(super) fn at_key_in_file(path: &Path, text: &str, key: Option<&str>, e: LtiError) -> LtiError {
+    let at = key
+        .and_then(|k| located::toml_key_offset(text, k))
+        .map(|o| located::position(text, o))
+        .unwrap_or_default();
+    in_file(path, located::bad_record(at, e.to_string()))
+}
+
+/// The same for batch line `line` (JSON).
+pub(super) fn at_key_in_line(
+    text: &str,
+    line: Option<usize>,
+    key: Option<&str>,
+    e: LtiError,
+) -> LtiError {
+    let at = match key.and_then(|k| located::json_key_offset(text, k)) {
+        Some(o) => json_position(text, o, line),
+        None => line.map(|l| format!("line {l}")).unwrap_or_default(),
+    };
+    located::bad_record(at, e.to_string())
+}
+
+/// A record error with the file's name in front of its location (the name abbreviated).
+pub(super) fn in_file(path: &Path, e: LtiError) -> LtiError {
+    let name = crate::error::abbreviate(&path.display().to_string());
+    match e {
+        LtiError::BadRecord { location, message } => LtiError::BadRecord {
+            location: if location.is_empty() {
+                name
+            } else {
+                format!("{name}, {location}")
+            },
+            message,
+        },
+        other => other,
+    }
+}
+
+/// A plant file's text (at most [`MAX_RECORD_BYTES`]); errors name the file.
+pub(super) fn read_text(path: &Path) -> Result<String> {
+    read_bounded(path).map_err(|e| LtiError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })
 }
 
 /// Reads a file of at most [`MAX_RECORD_BYTES`] (a larger one, or a device that never ends,

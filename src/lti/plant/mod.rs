@@ -16,11 +16,13 @@
 //! ```
 
 mod file;
+mod located;
 mod text;
 
 use std::path::Path;
 
 pub use file::{CoeffList, ControllerSection, MAX_RECORD_BYTES, MatrixSpec, PlantFile};
+pub use located::plain;
 pub use text::{
     Coefficient, coefficients_of, matrix_of_rows, parse_list, parse_matrix, parse_number,
     parse_param, parse_params, parse_values,
@@ -61,9 +63,9 @@ impl Plant {
     /// Errors: a token that is not a number, an empty list, and those of
     /// [`TransferFunction::from_descending`].
     pub fn from_text(num: Option<&str>, den: &str) -> Result<Plant> {
-        let den = parse_list(den, "--den")?;
+        let den = parse_list(den, "`den`")?;
         let num = match num {
-            Some(n) => parse_list(n, "--num")?,
+            Some(n) => parse_list(n, "`num`")?,
             None => coefficients_of(&[1.0]),
         };
         Self::from_coefficients(num, den, None)
@@ -126,15 +128,15 @@ impl Plant {
     }
 
     /// From the matrices A, B, C (and D, zero when absent) typed as text, rows separated by
-    /// `;`: `--a "0 1; -4 -0.8" --b "0; 1" --c "1 0" --d 0`.
+    /// `;`: `a = "0 1; -4 -0.8"`, `b = "0; 1"`, `c = "1 0"`, `d = "0"`.
     ///
     /// Errors: a bad token, ragged rows, inconsistent dimensions (naming the matrices),
     /// NaN/∞ entries, more than [`crate::lti::MAX_STATES`] states.
     pub fn from_matrices_text(a: &str, b: &str, c: &str, d: Option<&str>) -> Result<Plant> {
-        let a = parse_matrix(a, "--a")?;
-        let b = parse_matrix(b, "--b")?;
-        let c = parse_matrix(c, "--c")?;
-        let d = d.map(|d| parse_matrix(d, "--d")).transpose()?;
+        let a = parse_matrix(a, "`a`")?;
+        let b = parse_matrix(b, "`b`")?;
+        let c = parse_matrix(c, "`c`")?;
+        let d = d.map(|d| parse_matrix(d, "`d`")).transpose()?;
         Self::from_state_space(state_space_of(a, b, c, d)?, None)
     }
 
@@ -220,41 +222,79 @@ impl Plant {
 
     /// From a plant record (see [`PlantFile`]).
     pub fn from_record(f: &PlantFile) -> Result<Plant> {
+        Self::from_record_keyed(f).map_err(|k| k.1)
+    }
+
+    /// [`Plant::from_record`], an error with the key it is about (`den`, `params.M`,
+    /// `controller`; `None` for the record as a whole), so that a file can say on which line.
+    fn from_record_keyed(f: &PlantFile) -> std::result::Result<Plant, KeyedError> {
+        let on = |key: &str| {
+            let key = key.to_string();
+            move |e: LtiError| Box::new((Some(key), e))
+        };
+        let whole = |e: LtiError| Box::new((None, e));
         let mut plant = match (&f.den, &f.model) {
             (Some(den), _) => {
                 let num = match &f.num {
-                    Some(n) => n.coefficients("num")?,
+                    Some(n) => n.coefficients("`num`").map_err(on("num"))?,
                     None => coefficients_of(&[1.0]),
                 };
-                Self::from_coefficients(num, den.coefficients("den")?, None)?
+                let den = den.coefficients("`den`").map_err(on("den"))?;
+                Self::from_coefficients(num, den, None).map_err(whole)?
             }
             (None, Some(m)) => {
                 let params: Vec<(String, f64)> =
                     f.params.iter().map(|(k, v)| (k.clone(), *v)).collect();
-                Self::from_model(m, &params)?
+                Self::from_model(m, &params).map_err(|e| {
+                    let key = match &e {
+                        LtiError::UnknownParameter { name, .. }
+                        | LtiError::InvalidParameter { name, .. } => format!("params.{name}"),
+                        LtiError::UnknownModel { .. } => "model".into(),
+                        _ => "params".into(),
+                    };
+                    Box::new((Some(key), e))
+                })?
             }
             (None, None) => {
                 let matrix = |m: &Option<MatrixSpec>, what: &str| {
                     m.as_ref()
-                        .map(|x| x.matrix(what))
-                        .transpose()?
+                        .map(|x| x.matrix(&format!("`{what}`")))
+                        .transpose()
+                        .map_err(on(what))?
                         .ok_or_else(|| {
-                            LtiError::invalid(format!("a state-space plant needs `{what}`"))
+                            Box::new((
+                                None,
+                                LtiError::invalid(format!("a state-space plant needs `{what}`")),
+                            ))
                         })
+                };
+                let d = match &f.d {
+                    Some(d) => Some(d.matrix("`d`").map_err(on("d"))?),
+                    None => None,
                 };
                 let ss = state_space_of(
                     matrix(&f.a, "a")?,
                     matrix(&f.b, "b")?,
                     matrix(&f.c, "c")?,
-                    f.d.as_ref().map(|x| x.matrix("d")).transpose()?,
-                )?;
-                let mut p = Self::from_state_space(ss, None)?;
+                    d,
+                )
+                .map_err(whole)?;
+                let mut p = Self::from_state_space(ss, None).map_err(whole)?;
+                let key = [
+                    ("inputs", &f.inputs),
+                    ("outputs", &f.outputs),
+                    ("states", &f.states),
+                ]
+                .iter()
+                .find(|(_, v)| !v.is_empty())
+                .map(|(k, _)| *k);
                 p.signals = Signals::for_model(
                     &p.model,
                     f.inputs.clone(),
                     f.outputs.clone(),
                     f.states.clone(),
-                )?;
+                )
+                .map_err(|e| Box::new((key.map(String::from), e)))?;
                 p
             }
         };
@@ -272,25 +312,66 @@ impl Plant {
         if let Some(c) = &f.controller {
             let params: Vec<(String, f64)> =
                 c.params.iter().map(|(k, v)| (k.clone(), *v)).collect();
-            plant.controller = Some(Controller::new(&c.kind, &params)?);
+            plant.controller = Some(Controller::new(&c.kind, &params).map_err(on("controller"))?);
         }
         Ok(plant)
     }
 
-    /// A plant file (TOML, see [`PlantFile`]); errors name the file.
+    /// A plant file (TOML, see [`PlantFile`]); errors name the file, and for a bad record the
+    /// line, the column and the key ([`LtiError::BadRecord`]).
+    ///
+    /// ```
+    /// use ltikit::lti::Plant;
+    /// let dir = std::env::temp_dir().join(format!("ltikit-doc-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// let path = dir.join("bad.toml");
+    /// std::fs::write(&path, "name = \"x\"\nden = \"1 2 x\"\n").unwrap();
+    /// let e = Plant::from_file(&path).unwrap_err().to_string();
+    /// assert!(e.ends_with("bad.toml, line 2, column 1: `den`: 'x' is not a number"), "{e}");
+    /// ```
     pub fn from_file(path: &Path) -> Result<Plant> {
-        let f = PlantFile::load(path)?;
-        Self::from_record(&f).map_err(|e| crate::LtiError::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
+        let text = file::read_text(path)?;
+        let f = PlantFile::parse(&text).map_err(|e| file::in_file(path, e))?;
+        Self::from_record_keyed(&f).map_err(|k| {
+            let (key, e) = *k;
+            file::at_key_in_file(path, &text, key.as_deref(), e)
         })
     }
 
     /// A batch line (JSON, the plant-file schema).
     pub fn from_json_line(text: &str) -> Result<Plant> {
-        Self::from_record(&PlantFile::parse_json(text)?)
+        Self::from_json_line_at(text, None)
+    }
+
+    /// Line `line` (1-based) of a batch file: errors say "line 3, column 9: …" and name the
+    /// key.
+    ///
+    /// ```
+    /// use ltikit::lti::Plant;
+    /// let e = Plant::from_json_line_at(r#"{"den": [1, 2], "model": "tank"}"#, Some(4))
+    ///     .unwrap_err()
+    ///     .to_string();
+    /// assert!(e.starts_with("line 4: a plant needs exactly one of"), "{e}");
+    /// let e = Plant::from_json_line_at(r#"{"den": "1 x"}"#, Some(2)).unwrap_err().to_string();
+    /// assert_eq!(e, "line 2, column 2: `den`: 'x' is not a number");
+    /// ```
+    pub fn from_json_line_at(text: &str, line: Option<usize>) -> Result<Plant> {
+        let f = PlantFile::parse_json_at(text, line).map_err(|e| match e {
+            LtiError::BadRecord { location, message } if location.is_empty() => {
+                file::at_key_in_line(text, line, None, LtiError::invalid(message))
+            }
+            other => other,
+        })?;
+        Self::from_record_keyed(&f).map_err(|k| {
+            let (key, e) = *k;
+            file::at_key_in_line(text, line, key.as_deref(), e)
+        })
     }
 }
+
+/// A record error with the key it is about (`None`: the record as a whole), boxed (small
+/// results).
+type KeyedError = Box<(Option<String>, LtiError)>;
 
 /// A state-space model from its matrices, D zero (p × m) when absent.
 fn state_space_of(

@@ -18,9 +18,9 @@ pub struct Coefficient {
 ///
 /// ```
 /// use ltikit::lti::plant::parse_number;
-/// assert_eq!(parse_number("-1.5e-3", "--den").unwrap(), -1.5e-3);
-/// let e = parse_number("x1", "--den").unwrap_err().to_string();
-/// assert_eq!(e, "--den: 'x1' is not a number");
+/// assert_eq!(parse_number("-1.5e-3", "`den`").unwrap(), -1.5e-3);
+/// let e = parse_number("x1", "`den`").unwrap_err().to_string();
+/// assert_eq!(e, "`den`: 'x1' is not a number");
 /// ```
 pub fn parse_number(token: &str, what: &str) -> Result<f64> {
     token
@@ -60,12 +60,12 @@ fn coefficient_value(tok: &str, what: &str) -> Result<f64> {
 ///
 /// ```
 /// use ltikit::lti::plant::parse_list;
-/// let c = parse_list(" 1, 0.8 ;4 ", "--den").unwrap();
+/// let c = parse_list(" 1, 0.8 ;4 ", "`den`").unwrap();
 /// assert_eq!(c.iter().map(|c| c.value).collect::<Vec<_>>(), vec![1.0, 0.8, 4.0]);
 /// assert_eq!(c[1].text, "0.8");
-/// assert!(parse_list("  ", "--den").is_err());
-/// assert_eq!(parse_list("1/4", "--num").unwrap()[0].value, 0.25);
-/// let e = parse_list("1 1/0", "--den").unwrap_err().to_string();
+/// assert!(parse_list("  ", "`den`").is_err());
+/// assert_eq!(parse_list("1/4", "`num`").unwrap()[0].value, 0.25);
+/// let e = parse_list("1 1/0", "`den`").unwrap_err().to_string();
 /// assert!(e.contains("'1/0'"), "{e}");
 /// ```
 pub fn parse_list(text: &str, what: &str) -> Result<Vec<Coefficient>> {
@@ -93,9 +93,9 @@ pub fn parse_list(text: &str, what: &str) -> Result<Vec<Coefficient>> {
 ///
 /// ```
 /// use ltikit::lti::plant::parse_matrix;
-/// let a = parse_matrix("0 1; -4 -0.8", "--a").unwrap();
+/// let a = parse_matrix("0 1; -4 -0.8", "`a`").unwrap();
 /// assert_eq!((a.nrows(), a.ncols(), a[(1, 1)]), (2, 2, -0.8));
-/// let e = parse_matrix("1 2; 3", "--a").unwrap_err().to_string();
+/// let e = parse_matrix("1 2; 3", "`a`").unwrap_err().to_string();
 /// assert!(e.contains("row 2 has 1 entries"), "{e}");
 /// ```
 pub fn parse_matrix(text: &str, what: &str) -> Result<nalgebra::DMatrix<f64>> {
@@ -129,8 +129,21 @@ pub fn matrix_of_rows(rows: Vec<Vec<f64>>, what: &str) -> Result<nalgebra::DMatr
     Ok(nalgebra::DMatrix::from_row_slice(rows.len(), n, &flat))
 }
 
-/// The values of [`parse_list`].
+/// The values of [`parse_list`], at most [`crate::limits::MAX_POINTS`] of them (counted
+/// before anything is allocated).
+///
+/// ```
+/// use ltikit::lti::plant::parse_values;
+/// assert_eq!(parse_values("0 0.5 1", "`t`").unwrap(), vec![0.0, 0.5, 1.0]);
+/// let many = "0 ".repeat(ltikit::limits::MAX_POINTS + 1);
+/// assert!(parse_values(&many, "`t`").is_err());
+/// ```
 pub fn parse_values(text: &str, what: &str) -> Result<Vec<f64>> {
+    let n = text
+        .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .count();
+    crate::limits::POINTS.check_usize(what, n)?;
     Ok(parse_list(text, what)?
         .into_iter()
         .map(|c| c.value)
@@ -146,12 +159,12 @@ pub fn parse_values(text: &str, what: &str) -> Result<Vec<f64>> {
 /// ```
 pub fn parse_param(text: &str) -> Result<(String, f64)> {
     let Some((k, v)) = text.split_once('=') else {
-        return Err(LtiError::bad_number("--param", text, "is not NAME=VALUE"));
+        return Err(LtiError::bad_number("`param`", text, "is not NAME=VALUE"));
     };
     let k = k.trim();
     if k.is_empty() {
         return Err(LtiError::bad_number(
-            "--param",
+            "`param`",
             text,
             "has no parameter name",
         ));
@@ -159,12 +172,15 @@ pub fn parse_param(text: &str) -> Result<(String, f64)> {
     let v = v.trim();
     if v.is_empty() {
         return Err(LtiError::bad_number(
-            "--param",
+            "`param`",
             text,
-            format!("has no value for {k}"),
+            format!("has no value for {}", crate::error::abbreviate(k)),
         ));
     }
-    Ok((k.to_string(), parse_number(v, &format!("--param {k}"))?))
+    Ok((
+        k.to_string(),
+        parse_number(v, &format!("`param` {}", crate::error::abbreviate(k)))?,
+    ))
 }
 
 /// Parses every `NAME=VALUE` of a list.
@@ -190,13 +206,13 @@ mod tests {
 
     #[test]
     fn lists_and_errors() {
-        let v = parse_values("-3,-12", "--num").unwrap();
+        let v = parse_values("-3,-12", "`num`").unwrap();
         assert_eq!(v, vec![-3.0, -12.0]);
-        assert!(parse_values("nan", "--num").unwrap()[0].is_nan());
-        let e = parse_values("1 x", "--num").unwrap_err().to_string();
+        assert!(parse_values("nan", "`num`").unwrap()[0].is_nan());
+        let e = parse_values("1 x", "`num`").unwrap_err().to_string();
         assert!(e.contains("'x'"), "{e}");
         let long = format!("1 {}", "y".repeat(100_000));
-        let e = parse_values(&long, "--num").unwrap_err().to_string();
+        let e = parse_values(&long, "`num`").unwrap_err().to_string();
         assert!(e.len() < 200, "{e}");
     }
 }

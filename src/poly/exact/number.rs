@@ -17,12 +17,7 @@ use dashu_int::{IBig, UBig};
 
 use crate::error::{LtiError, Result};
 
-/// Most digits one decimal number may have (digits of the mantissa, leading zeros included).
-pub const MAX_DIGITS: usize = 1000;
-
-/// Largest |exponent| accepted in `1.5e±E`. Together with [`MAX_DIGITS`] this bounds every
-/// number read from text to about 2000 decimal digits (≈ 6700 bits) of numerator and denominator.
-pub const MAX_EXPONENT: i64 = 1000;
+pub use crate::limits::{MAX_DIGITS, MAX_EXPONENT};
 
 /// An exact rational number n/d in lowest terms (d > 0).
 ///
@@ -47,7 +42,7 @@ impl Rational {
         Rational::parse_named(text, "number")
     }
 
-    /// As [`Rational::parse`], naming the value in the error (e.g. "coefficient 2 of --den").
+    /// As [`Rational::parse`], naming the value in the error (e.g. "coefficient 2 of `den`").
     ///
     /// ```
     /// use ltikit::poly::exact::Rational;
