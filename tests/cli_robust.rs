@@ -3,15 +3,13 @@
 //! command (one document describing what was drawn), the models' parameters in `--help`.
 
 use serde_json::Value;
-use std::process::Command;
 use std::time::Instant;
 
-/// Runs the binary: (exit code, stdout, stderr).
+mod common;
+
+/// Runs the binary (the shared runner): (exit code, stdout, stderr).
 fn ltikit(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ltikit"))
-        .args(args)
-        .output()
-        .expect("the ltikit binary runs");
+    let out = common::ltikit(args);
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into_owned(),

@@ -16,7 +16,7 @@ use crate::lti::plant::MAX_RECORD_BYTES;
 
 /// The record for one input line (1-based `line`).
 fn record(line: usize, text: &str) -> Value {
-    let plant = match Plant::from_json_line(text) {
+    let plant = match Plant::from_json_line_at(text, Some(line)) {
         Ok(p) => p,
         Err(e) => return json!({"line": line, "error": super::one_line(&e.into())}),
     };
@@ -59,8 +59,11 @@ fn record(line: usize, text: &str) -> Value {
     Value::Object(out)
 }
 
-/// Lines computed in parallel at a time (memory stays that of one chunk).
+/// Lines computed in parallel at a time, and the bytes of text they may hold: memory stays
+/// that of one chunk (at most 64 MiB of input lines, not 1024 lines of 1 MiB each).
 const CHUNK: usize = 1024;
+/// Bytes of input text held by one chunk (a chunk ends early when its lines reach this).
+const CHUNK_BYTES: usize = 64 << 20;
 
 /// Reads one line of at most [`MAX_RECORD_BYTES`] into `buf` (without the newline); `false`
 /// at the end of the input. A longer line or a NUL byte (not text: `/dev/zero`) stops the
@@ -113,7 +116,8 @@ pub fn run(source: &str) -> Result<()> {
     let mut done = false;
     while !done {
         let mut work: Vec<(usize, String)> = Vec::with_capacity(CHUNK);
-        while work.len() < CHUNK {
+        let mut bytes = 0usize;
+        while work.len() < CHUNK && bytes < CHUNK_BYTES {
             line += 1;
             if !read_line(&mut reader, &mut buf, line)? {
                 done = true;
@@ -121,6 +125,7 @@ pub fn run(source: &str) -> Result<()> {
             }
             let text = String::from_utf8_lossy(&buf);
             if !text.trim().is_empty() {
+                bytes += text.len();
                 work.push((line, text.into_owned()));
             }
         }
