@@ -452,7 +452,12 @@ pub fn step(a: &StepArgs) -> Result<()> {
     }
     let list = labelled_json(&plants, &drawn.plants, |(info, diverges)| {
         Ok(json!({
-            "step_info": optional_json(info.as_ref())?,
+            // the analyze contract's step metrics (null with a `…_note` where not computed)
+            "step_info": optional_json(
+                info.as_ref()
+                    .map(super::analyze::json::StepInfoJson::from)
+                    .as_ref()
+            )?,
             "diverges": diverges,
         }))
     })?;
