@@ -10,24 +10,9 @@
 
 mod common;
 
-use common::ltikit;
+use common::{json, ltikit, stdout};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-
-fn stdout(args: &[&str]) -> String {
-    let out = ltikit(args);
-    assert!(
-        out.status.success(),
-        "ltikit {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let text = stdout(args);
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("invalid JSON ({e}): {text}"))
-}
 
 /// The error line of a failing command and its exit code.
 fn error(args: &[&str]) -> (String, i32) {

@@ -6,22 +6,7 @@
 use serde_json::Value;
 
 mod common;
-use common::ltikit;
-
-fn stdout(args: &[&str]) -> String {
-    let out = ltikit(args);
-    assert!(
-        out.status.success(),
-        "ltikit {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let text = stdout(args);
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("invalid JSON ({e}): {text}"))
-}
+use common::{json, ltikit, stdout};
 
 /// Plants that each break one quantity: (numerator, denominator, what breaks).
 const BREAKERS: [(&str, &str, &str); 7] = [

@@ -117,3 +117,20 @@ pub fn ltikit_with_stdin(args: &[&str], stdin: &[u8]) -> std::process::Output {
     let _ = writer.join().expect("the stdin writer does not panic");
     out
 }
+
+/// The standard output of a successful run of the binary (the test fails otherwise).
+pub fn stdout(args: &[&str]) -> String {
+    let out = ltikit(args);
+    assert!(
+        out.status.success(),
+        "ltikit {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// The JSON document a successful run prints (the test fails on invalid JSON).
+pub fn json(args: &[&str]) -> serde_json::Value {
+    let text = stdout(args);
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("invalid JSON ({e}): {text}"))
+}

@@ -160,25 +160,13 @@ pub(crate) fn structure_of(
         // large group of distinct eigenvalues (a random matrix's tight spectrum) is split one
         // member at a time, so this keeps the whole pass at O(n³) instead of O(n⁴).
         if g.len() > 1 && inverse_norm_estimate(&cs.s, value, scale) * rank_tol < REJECT_MARGIN {
-            let (left, right) = if g.len() > BALANCED_SPLIT_ABOVE {
-                split_in_halves(&g, &ev)
-            } else {
-                split_longest_link(&g, &ev)
-            };
-            groups.push(left);
-            groups.push(right);
+            groups.extend(split(&g, &ev));
             continue;
         }
         let reduced = reduced_problem(&cs.s, &g, value, scale);
         let g_mult = reduced.sigma.iter().filter(|&&s| s <= rank_tol).count();
         if g_mult == 0 && g.len() > 1 {
-            let (left, right) = if g.len() > BALANCED_SPLIT_ABOVE {
-                split_in_halves(&g, &ev)
-            } else {
-                split_longest_link(&g, &ev)
-            };
-            groups.push(left);
-            groups.push(right);
+            groups.extend(split(&g, &ev));
             continue;
         }
         let mut c = provisional(&g, &ev, value);
@@ -404,6 +392,16 @@ impl Reduced {
 /// A multiple eigenvalue cut by such a split is missed (examined as smaller parts), never
 /// invented; groups this large are far beyond the defective sizes the radii allow.
 const BALANCED_SPLIT_ABOVE: usize = 32;
+
+/// A group that is not one eigenvalue, in two: at its longest link, or in halves when large.
+fn split(g: &[usize], ev: &[Complex64]) -> [Vec<usize>; 2] {
+    let (left, right) = if g.len() > BALANCED_SPLIT_ABOVE {
+        split_in_halves(g, ev)
+    } else {
+        split_longest_link(g, ev)
+    };
+    [left, right]
+}
 
 /// `g` cut at the median of its members' real or imaginary parts, whichever spread more.
 fn split_in_halves(g: &[usize], ev: &[Complex64]) -> (Vec<usize>, Vec<usize>) {
