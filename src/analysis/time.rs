@@ -58,18 +58,17 @@ pub(crate) fn check_times(t: &[f64]) -> Result<()> {
 
 /// Exact y at the (checked) times `t` for a decomposed Y(s).
 pub(crate) fn simulate(dec: &Decomposition, t: &[f64]) -> Result<Vec<f64>> {
-    let mut order: Vec<usize> = (0..t.len()).collect();
-    order.sort_by(|&i, &j| t[i].total_cmp(&t[j]));
     let mut y = vec![0.0; t.len()];
-    impulse_samples(&dec.forced, t, &order, &mut y)?;
+    impulse_samples(&dec.forced, t, &mut y)?;
     if let Some(ic) = &dec.ic {
-        impulse_samples(ic, t, &order, &mut y)?;
+        impulse_samples(ic, t, &mut y)?;
     }
     Ok(y)
 }
 
-/// Adds the impulse response of the strictly proper part of `part` at `t[order[k]]` to `out`.
-fn impulse_samples(part: &Part, t: &[f64], order: &[usize], out: &mut [f64]) -> Result<()> {
+/// Adds the impulse response of the strictly proper part of `part` at the times `t` to `out`:
+/// x ← e^(Ah)·x from x(0) = B, y = C·x ([`crate::numeric::march::march`]).
+fn impulse_samples(part: &Part, t: &[f64], out: &mut [f64]) -> Result<()> {
     if t.is_empty() {
         return Ok(());
     }
@@ -81,43 +80,32 @@ fn impulse_samples(part: &Part, t: &[f64], order: &[usize], out: &mut [f64]) -> 
     let c: Vec<f64> = (0..n).map(|j| ss.c[(0, j)]).collect();
     let mut x: Vec<f64> = (0..n).map(|i| ss.b[(i, 0)]).collect();
     let mut xn = vec![0.0; n];
-    let mut phi = vec![0.0; n * n]; // row-major e^(A h)
-    let mut h = 0.0; // step of the current Φ (0: none yet)
-    let mut base = 0.0; // time at which Φ was last recomputed
-    let mut steps = 0.0; // steps taken with it since then
-    let mut now = 0.0; // time the state x stands for
-    for &i in order {
-        let ti = t[i];
-        let dt = ti - now;
-        if dt > 0.0 {
-            let tol = 8.0 * f64::EPSILON * ti.max(dt);
-            if h == 0.0 || (dt - h).abs() > tol {
-                let e = expm(&(&ss.a * dt)).map_err(|e| overflow_reason(e, part, ti))?;
-                for r in 0..n {
-                    for k in 0..n {
-                        phi[r * n + k] = e[(r, k)];
-                    }
-                }
-                h = dt;
-                base = now;
-                steps = 0.0;
-            }
+    crate::numeric::march::march(
+        t,
+        &mut x,
+        |h, ti| {
+            // row-major e^(A h)
+            let e = expm(&(&ss.a * h)).map_err(|e| overflow_reason(e, part, ti))?;
+            Ok((0..n * n).map(|k| e[(k / n, k % n)]).collect::<Vec<f64>>())
+        },
+        |phi, x, _, _| {
             for (r, v) in xn.iter_mut().enumerate() {
                 let row = &phi[r * n..(r + 1) * n];
-                *v = row.iter().zip(&x).map(|(a, b)| a * b).sum();
+                *v = row.iter().zip(x.iter()).map(|(a, b)| a * b).sum();
             }
-            std::mem::swap(&mut x, &mut xn);
-            steps += 1.0;
-            now = base + steps * h;
-        }
-        let yi: f64 = c.iter().zip(&x).map(|(a, b)| a * b).sum();
-        if !yi.is_finite() {
-            let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-            return Err(LtiError::Diverged { t: ti, norm });
-        }
-        out[i] += yi;
-    }
-    Ok(())
+            std::mem::swap(x, &mut xn);
+            Ok(())
+        },
+        |i, ti, x| {
+            let yi: f64 = c.iter().zip(x).map(|(a, b)| a * b).sum();
+            if !yi.is_finite() {
+                let norm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+                return Err(LtiError::Diverged { t: ti, norm });
+            }
+            out[i] += yi;
+            Ok(())
+        },
+    )
 }
 
 /// An overflowing exponential named by its cause: the fastest-growing mode of the part.

@@ -1,6 +1,6 @@
 //! Numerical building blocks shared by the upper layers: tolerances, overflow-safe balancing
 //! and power-of-two scaling, safe eigenvalues, scalar root bracketing, the matrix exponential
-//! and the Dormand–Prince integrator.
+//! and the Dormand–Prince integrator, and the one time-marching skeleton of the exact responses.
 //!
 //! Nothing here knows about transfer functions; everything works on plain `f64`,
 //! [`Complex64`](num_complex::Complex64) and nalgebra matrices.
@@ -12,6 +12,7 @@ pub mod eig;
 pub mod expm;
 pub mod linalg;
 pub mod lstsq;
+pub(crate) mod march;
 pub mod rk45;
 pub(crate) mod scalar;
 pub mod tol;

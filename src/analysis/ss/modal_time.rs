@@ -177,60 +177,54 @@ pub(super) fn march(
     t: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
     let p = mf.c.nrows();
-    let mut order: Vec<usize> = (0..t.len()).collect();
-    order.sort_by(|&i, &j| t[i].total_cmp(&t[j]));
     let mut y = vec![vec![0.0; t.len()]; p];
     let bcol = |i: usize| input.map_or(C::new(0.0, 0.0), |col| mf.b[(i, col)]);
     let (tracks, general) = tracks(mf, &z0, input);
-    let mut z = z0;
-    // track states and their maps over the current step length
-    let mut w: Vec<C> = tracks
+    // the state: the tracks' values and the general blocks' modal coordinates
+    let w: Vec<C> = tracks
         .iter()
         .map(|tr| C::new(if tr.forced { 0.0 } else { 1.0 }, 0.0))
         .collect();
-    let mut e = vec![C::new(0.0, 0.0); tracks.len()];
-    let mut f = vec![C::new(0.0, 0.0); tracks.len()];
+    let mut state = (w, z0);
     // coefficients by output, track-major for the inner loop
     let coef: Vec<Vec<C>> = (0..p)
         .map(|j| tracks.iter().map(|tr| tr.coef[j]).collect())
         .collect();
-    let mut maps: Vec<BlockMap> = Vec::new();
-    let mut map_h = f64::NAN;
-    let mut now = 0.0;
     let mut tmp = vec![C::new(0.0, 0.0); crate::numeric::linalg::modal::MAX_BLOCK];
-    for &i in &order {
-        let ti = t[i];
-        let dt = ti - now;
-        if dt > 0.0 {
-            let tol = 8.0 * f64::EPSILON * ti.max(dt);
-            // a new step length (NaN at the start compares false: no map yet)
-            if map_h.is_nan() || (map_h - dt).abs() > tol {
-                for (k, tr) in tracks.iter().enumerate() {
-                    let zz = tr.lambda * dt;
-                    e[k] = zz.exp();
-                    f[k] = if !tr.forced {
-                        C::new(0.0, 0.0)
-                    } else if zz.norm() == 0.0 {
-                        C::new(dt, 0.0)
-                    } else {
-                        expm1(zz) / zz * dt
-                    };
-                }
-                maps = general
-                    .iter()
-                    .map(|&bi| {
-                        let blk = &mf.blocks[bi];
-                        let k = blk.lambda.nrows();
-                        let b: Vec<C> = (0..k).map(|r| bcol(blk.start + r)).collect();
-                        block_map(&blk.lambda, &b, dt)
-                    })
-                    .collect::<Result<_>>()?;
-                map_h = dt;
+    crate::numeric::march::march(
+        t,
+        &mut state,
+        // the tracks' factors e^(λh) and (e^(λh) − 1)/λ, and the general blocks' maps
+        |dt, _| {
+            let mut e = Vec::with_capacity(tracks.len());
+            let mut f = Vec::with_capacity(tracks.len());
+            for tr in &tracks {
+                let zz = tr.lambda * dt;
+                e.push(zz.exp());
+                f.push(if !tr.forced {
+                    C::new(0.0, 0.0)
+                } else if zz.norm() == 0.0 {
+                    C::new(dt, 0.0)
+                } else {
+                    expm1(zz) / zz * dt
+                });
             }
-            for ((wk, ek), fk) in w.iter_mut().zip(&e).zip(&f) {
+            let maps = general
+                .iter()
+                .map(|&bi| {
+                    let blk = &mf.blocks[bi];
+                    let k = blk.lambda.nrows();
+                    let b: Vec<C> = (0..k).map(|r| bcol(blk.start + r)).collect();
+                    block_map(&blk.lambda, &b, dt)
+                })
+                .collect::<Result<Vec<BlockMap>>>()?;
+            Ok((e, f, maps))
+        },
+        |(e, f, maps), (w, z), _, _| {
+            for ((wk, ek), fk) in w.iter_mut().zip(e).zip(f) {
                 *wk = *ek * *wk + *fk;
             }
-            for (&bi, mp) in general.iter().zip(&maps) {
+            for (&bi, mp) in general.iter().zip(maps) {
                 let blk = &mf.blocks[bi];
                 let (i0, k) = (blk.start, blk.lambda.nrows());
                 for (r, slot) in tmp.iter_mut().enumerate().take(k) {
@@ -242,32 +236,35 @@ pub(super) fn march(
                 }
                 z[i0..i0 + k].copy_from_slice(&tmp[..k]);
             }
-            now = ti;
-        }
-        for (j, row) in y.iter_mut().enumerate() {
-            let mut acc = input.map_or(0.0, |col| mf.d[(j, col)]);
-            for (c, wk) in coef[j].iter().zip(&w) {
-                acc += c.re * wk.re - c.im * wk.im;
-            }
-            for &bi in &general {
-                let blk = &mf.blocks[bi];
-                let rows = blk.start..blk.start + blk.lambda.nrows();
-                for (r, zr) in rows.clone().zip(&z[rows]) {
-                    acc += (mf.c[(j, r)] * zr).re;
+            Ok(())
+        },
+        |i, ti, (w, z)| {
+            for (j, row) in y.iter_mut().enumerate() {
+                let mut acc = input.map_or(0.0, |col| mf.d[(j, col)]);
+                for (c, wk) in coef[j].iter().zip(w) {
+                    acc += c.re * wk.re - c.im * wk.im;
                 }
+                for &bi in &general {
+                    let blk = &mf.blocks[bi];
+                    let rows = blk.start..blk.start + blk.lambda.nrows();
+                    for (r, zr) in rows.clone().zip(&z[rows]) {
+                        acc += (mf.c[(j, r)] * zr).re;
+                    }
+                }
+                if !acc.is_finite() {
+                    let norm = w
+                        .iter()
+                        .chain(z.iter())
+                        .map(|v| v.norm_sqr())
+                        .sum::<f64>()
+                        .sqrt();
+                    return Err(LtiError::Diverged { t: ti, norm });
+                }
+                row[i] = acc;
             }
-            if !acc.is_finite() {
-                let norm = w
-                    .iter()
-                    .chain(z.iter())
-                    .map(|v| v.norm_sqr())
-                    .sum::<f64>()
-                    .sqrt();
-                return Err(LtiError::Diverged { t: ti, norm });
-            }
-            row[i] = acc;
-        }
-    }
+            Ok(())
+        },
+    )?;
     Ok(y)
 }
 

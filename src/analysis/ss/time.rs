@@ -94,7 +94,6 @@ impl InputSignal {
 
 /// The exact one-step maps for a step h: Φ, Γ₀ (constant input), Γ₁ (input slope).
 struct StepMaps {
-    h: f64,
     phi: DMatrix<f64>,
     g0: DMatrix<f64>,
     g1: DMatrix<f64>,
@@ -111,7 +110,6 @@ impl StepMaps {
         }
         let e = expm(&big)?;
         Ok(StepMaps {
-            h,
             phi: e.view((0, 0), (n, n)).into_owned(),
             g0: e.view((0, n), (n, m)).into_owned(),
             // z = [x; u; u̇] with ż = Mz: the third block column maps the slope u̇
@@ -136,45 +134,38 @@ impl March<'_> {
     ) -> Result<SsTimeResponse> {
         let ss = self.ss;
         let (n, p) = (ss.order(), ss.n_outputs());
-        let mut order: Vec<usize> = (0..t.len()).collect();
-        order.sort_by(|&i, &j| t[i].total_cmp(&t[j]));
         let mut y = vec![vec![0.0; t.len()]; p];
         let mut xs = self.keep_states.then(|| vec![vec![0.0; t.len()]; n]);
         let mut x = x0;
-        let mut maps: Option<StepMaps> = None;
-        let mut now = 0.0;
-        for &i in &order {
-            let ti = t[i];
-            let dt = ti - now;
-            if dt > 0.0 {
-                let tol = 8.0 * f64::EPSILON * ti.max(dt);
-                if maps.as_ref().is_none_or(|m| (m.h - dt).abs() > tol) {
-                    maps = Some(StepMaps::new(&ss.a, &ss.b, dt)?);
+        crate::numeric::march::march(
+            t,
+            &mut x,
+            |h, _| StepMaps::new(&ss.a, &ss.b, h),
+            |mp, x, from, to| {
+                let (u, du) = input(from, to);
+                *x = &mp.phi * &*x + &mp.g0 * &u + &mp.g1 * &du;
+                Ok(())
+            },
+            |i, ti, x| {
+                let (u_now, _) = input(ti, ti);
+                let yi = &ss.c * x + &ss.d * &u_now;
+                for j in 0..p {
+                    if !yi[j].is_finite() {
+                        return Err(LtiError::Diverged {
+                            t: ti,
+                            norm: x.norm(),
+                        });
+                    }
+                    y[j][i] = yi[j];
                 }
-                let mp = maps
-                    .as_ref()
-                    .ok_or_else(|| LtiError::invalid("no step map"))?;
-                let (u, du) = input(now, ti);
-                x = &mp.phi * &x + &mp.g0 * &u + &mp.g1 * &du;
-                now = ti;
-            }
-            let (u_now, _) = input(ti, ti);
-            let yi = &ss.c * &x + &ss.d * &u_now;
-            for j in 0..p {
-                if !yi[j].is_finite() {
-                    return Err(LtiError::Diverged {
-                        t: ti,
-                        norm: x.norm(),
-                    });
+                if let Some(xs) = xs.as_mut() {
+                    for (k, row) in xs.iter_mut().enumerate() {
+                        row[i] = x[k];
+                    }
                 }
-                y[j][i] = yi[j];
-            }
-            if let Some(xs) = xs.as_mut() {
-                for (k, row) in xs.iter_mut().enumerate() {
-                    row[i] = x[k];
-                }
-            }
-        }
+                Ok(())
+            },
+        )?;
         Ok(SsTimeResponse {
             t: t.to_vec(),
             y,
