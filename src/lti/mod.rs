@@ -1,6 +1,7 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
 pub mod controller;
+pub mod domain;
 pub mod interconnect;
 pub mod lattice;
 pub mod model;
@@ -12,6 +13,7 @@ pub mod ss;
 pub mod tf;
 
 pub use controller::Controller;
+pub use domain::Domain;
 pub use model::{MAX_STATES, Model, Signals};
 pub use params::{Constraint, ModelParam};
 pub use plant::{Plant, PlantFile};

@@ -4,7 +4,7 @@ use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
 use crate::error::{LtiError, Result};
-use crate::lti::TransferFunction;
+use crate::lti::{Domain, TransferFunction};
 use crate::numeric::eigenvalues;
 use crate::poly::Poly;
 
@@ -20,6 +20,10 @@ pub struct StateSpace {
     pub c: DMatrix<f64>,
     /// p × m feedthrough matrix.
     pub d: DMatrix<f64>,
+    /// Continuous time (ẋ = Ax + Bu) or discrete time (x[k+1] = Ax[k] + Bu[k]) with its
+    /// sampling period; [`StateSpace::new`] makes a continuous model,
+    /// [`StateSpace::with_domain`] sets it.
+    pub domain: Domain,
 }
 
 impl StateSpace {
@@ -67,7 +71,29 @@ impl StateSpace {
                 });
             }
         }
-        Ok(StateSpace { a, b, c, d })
+        Ok(StateSpace {
+            a,
+            b,
+            c,
+            d,
+            domain: Domain::Continuous,
+        })
+    }
+
+    /// The same matrices in `domain` (x[k+1] = A x[k] + B u[k] in discrete time).
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::{StateSpace, lti::Domain};
+    /// let one = DMatrix::from_element(1, 1, 1.0);
+    /// let ss = StateSpace::new(one.scale(0.5), one.clone(), one.clone(), one.scale(0.0))
+    ///     .unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap());
+    /// assert_eq!(ss.domain.dt(), Some(0.1));
+    /// ```
+    pub fn with_domain(mut self, domain: Domain) -> Self {
+        self.domain = domain;
+        self
     }
 
     /// Number of states.
@@ -112,7 +138,7 @@ impl StateSpace {
         if n > 0 {
             b[(0, 0)] = 1.0;
         }
-        StateSpace::new(a, b, c, DMatrix::from_element(1, 1, d))
+        Ok(StateSpace::new(a, b, c, DMatrix::from_element(1, 1, d))?.with_domain(g.domain()))
     }
 
     /// A diagonally similar realisation (D⁻¹AD, D⁻¹B, CD) with row and column norms of A
@@ -145,6 +171,7 @@ impl StateSpace {
             b,
             c,
             d: self.d.clone(),
+            domain: self.domain,
         }
     }
 
@@ -154,6 +181,10 @@ impl StateSpace {
     /// polynomials come from the eigenvalues (conjugate pairs exact, so the coefficients are
     /// real).
     pub fn to_tf(&self) -> Result<TransferFunction> {
+        Ok(self.to_tf_in_s()?.with_domain(self.domain))
+    }
+
+    fn to_tf_in_s(&self) -> Result<TransferFunction> {
         if self.b.ncols() != 1 || self.c.nrows() != 1 {
             return Err(LtiError::invalid(format!(
                 "a transfer function needs one input and one output, the model has {} and {}",

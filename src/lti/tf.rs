@@ -9,13 +9,15 @@ use num_complex::Complex64;
 use std::fmt;
 
 use crate::error::{LtiError, Result};
-use crate::poly::{MAX_ORDER, Poly, Root};
+use crate::lti::Domain;
+use crate::poly::{MAX_ORDER, Poly, Root, format_poly};
 
 /// A SISO transfer function with real coefficients.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TransferFunction {
     num: Poly,
     den: Poly,
+    domain: Domain,
 }
 
 impl TransferFunction {
@@ -59,7 +61,11 @@ impl TransferFunction {
                 num.degree()
             )));
         }
-        Ok(TransferFunction { num, den })
+        Ok(TransferFunction {
+            num,
+            den,
+            domain: Domain::Continuous,
+        })
     }
 
     /// From zeros, poles and the gain k: G(s) = k·Π(s − zᵢ)/Π(s − pᵢ). Complex zeros and poles
@@ -91,6 +97,7 @@ impl TransferFunction {
         TransferFunction {
             num: Poly::s(),
             den: Poly::constant(1.0),
+            domain: Domain::Continuous,
         }
     }
 
@@ -99,7 +106,29 @@ impl TransferFunction {
         TransferFunction {
             num: Poly::constant(k),
             den: Poly::constant(1.0),
+            domain: Domain::Continuous,
         }
+    }
+
+    /// The same transfer function in `domain`: with [`Domain::Discrete`] the coefficients are
+    /// read in descending powers of z (G(z), the difference equation
+    /// a_n y[k+n] + … + a_0 y[k] = b_m u[k+m] + … + b_0 u[k]).
+    ///
+    /// ```
+    /// use ltikit::{TransferFunction, lti::Domain};
+    /// let g = TransferFunction::from_descending(&[0.5], &[1.0, -0.5]).unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap());
+    /// assert_eq!(g.domain().dt(), Some(0.1));
+    /// assert_eq!(g.to_string(), "0.5 / (z - 0.5)");
+    /// ```
+    pub fn with_domain(mut self, domain: Domain) -> Self {
+        self.domain = domain;
+        self
+    }
+
+    /// Continuous or discrete time (with the sampling period).
+    pub fn domain(&self) -> Domain {
+        self.domain
     }
 
     /// Numerator polynomial.
@@ -189,14 +218,14 @@ impl TransferFunction {
                 what: "numerator (cannot invert the zero transfer function)".into(),
             });
         }
-        Self::new(self.den.clone(), self.num.clone())
+        Ok(Self::new(self.den.clone(), self.num.clone())?.with_domain(self.domain))
     }
 
     /// Negative unity-feedback-free closed loop G/(1 + k·G) with a constant gain k in the
     /// feedback path.
     pub fn feedback(&self, k: f64) -> Result<Self> {
         let den = &self.den + &self.num.scale(k);
-        Self::new(self.num.clone(), den)
+        Ok(Self::new(self.num.clone(), den)?.with_domain(self.domain))
     }
 
     /// Non-zero leading coefficients ratio b_m / a_n (the high-frequency gain coefficient).
@@ -212,6 +241,7 @@ impl std::ops::Mul for &TransferFunction {
         TransferFunction {
             num: &self.num * &o.num,
             den: &self.den * &o.den,
+            domain: self.domain,
         }
     }
 }
@@ -224,11 +254,13 @@ impl std::ops::Add for &TransferFunction {
             return TransferFunction {
                 num: &self.num + &o.num,
                 den: self.den.clone(),
+                domain: self.domain,
             };
         }
         TransferFunction {
             num: &(&self.num * &o.den) + &(&o.num * &self.den),
             den: &self.den * &o.den,
+            domain: self.domain,
         }
     }
 }
@@ -239,6 +271,7 @@ impl std::ops::Neg for &TransferFunction {
         TransferFunction {
             num: -&self.num,
             den: self.den.clone(),
+            domain: self.domain,
         }
     }
 }
@@ -247,8 +280,9 @@ impl fmt::Display for TransferFunction {
     /// `N / (D)` with polynomials in descending powers, e.g. `4 / (s^2 + 0.8 s + 4)`.
     #[allow(clippy::float_cmp)] // exact 1 means "no denominator to show"
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let n = self.num.to_string();
-        let d = self.den.to_string();
+        let var = self.domain.variable();
+        let n = format_poly(&self.num, var);
+        let d = format_poly(&self.den, var);
         let wrap = |s: &str, p: &Poly| {
             if p.degree() == 0 || (p.coeffs().iter().filter(|c| **c != 0.0).count() == 1) {
                 s.to_string()

@@ -81,20 +81,26 @@ impl Factored {
         let zero = tf.num().is_zero();
         // a root within its error bound of the imaginary axis is put on it (printed and used
         // as ±jβ: nothing more is known of it)
-        let poles = crate::poly::roots::snap_to_axis(tf.den(), tf.den().roots()?);
+        // (in z the imaginary axis means nothing: no snapping)
+        let snap = |p: &Poly, r| {
+            if tf.domain().is_discrete() {
+                r
+            } else {
+                crate::poly::roots::snap_to_axis(p, r)
+            }
+        };
+        let poles = snap(tf.den(), tf.den().roots()?);
         let zeros = if zero {
             Vec::new()
         } else {
-            crate::poly::roots::snap_to_axis(tf.num(), tf.num().roots()?)
+            snap(tf.num(), tf.num().roots()?)
         };
         let pz = PoleZero::new(poles, zeros, zero);
         let source = coefficient_source(tf.clone(), &pz)?;
-        Ok(assemble(
-            pz,
-            if zero { 0.0 } else { tf.gain() },
-            source,
-            decision,
-        ))
+        Ok(
+            assemble(pz, if zero { 0.0 } else { tf.gain() }, source, decision)
+                .with_domain(tf.domain()),
+        )
     }
 }
 
@@ -107,7 +113,7 @@ pub(super) fn coefficient_source(tf: TransferFunction, pz: &PoleZero) -> Result<
         let common = Poly::from_root_list(&pz.cancelled)?;
         let (num, _) = tf.num().div_rem(&common)?;
         let (den, _) = tf.den().div_rem(&common)?;
-        TransferFunction::new(num, den)?
+        TransferFunction::new(num, den)?.with_domain(tf.domain())
     };
     Ok(Source::coefficients_of(tf, reduced))
 }

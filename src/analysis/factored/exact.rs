@@ -103,13 +103,15 @@ impl Factored {
                 s.reduced_numerator().to_poly()?,
                 s.reduced_denominator().to_poly()?,
             )?
+            .with_domain(tf.domain())
         };
         Ok(assemble(
             pz,
             if zero { 0.0 } else { tf.gain() },
             Source::coefficients_of(tf.clone(), reduced),
             Decision::exact(sides),
-        ))
+        )
+        .with_domain(tf.domain()))
     }
 
     /// Which path decided the structure: [`StructurePath::Exact`] for coefficients that

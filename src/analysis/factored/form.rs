@@ -12,7 +12,7 @@ use super::low_frequency::LowFrequency;
 use super::pole_zero::PoleZero;
 use super::source::Source;
 use crate::error::{LtiError, Result};
-use crate::lti::TransferFunction;
+use crate::lti::{Domain, TransferFunction};
 use crate::poly::{HalfPlane, Poly, Root};
 
 thread_local! {
@@ -49,6 +49,8 @@ pub struct Factored {
     bode: OnceLock<BodeForm>,
     /// Which path decided the structure (exact or numerical).
     decision: Decision,
+    /// Continuous (s) or discrete (z, with the sampling period).
+    domain: Domain,
 }
 
 /// The one constructor of a [`Factored`]: every source (coefficients, exact coefficients,
@@ -63,10 +65,31 @@ pub(super) fn assemble(pz: PoleZero, gain: f64, source: Source, decision: Decisi
         source,
         bode: OnceLock::new(),
         decision,
+        domain: Domain::Continuous,
     }
 }
 
 impl Factored {
+    /// Continuous or discrete time (with the sampling period): every analysis asks it.
+    pub fn domain(&self) -> Domain {
+        self.domain
+    }
+
+    /// The same factors read in `domain` (roots in the z-plane for [`Domain::Discrete`]).
+    ///
+    /// ```
+    /// use ltikit::{Root, analysis::Factored, lti::Domain};
+    /// use num_complex::Complex64 as C;
+    /// let f = Factored::from_zpk(&[], &[Root::new(C::new(0.5, 0.0), 1)], 0.5).unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap());
+    /// assert_eq!(f.domain().dt(), Some(0.1));
+    /// ```
+    pub fn with_domain(mut self, domain: Domain) -> Factored {
+        self.domain = domain;
+        self.bode = OnceLock::new();
+        self
+    }
+
     /// Poles, zeros, cancellations and reduced root lists.
     pub fn pole_zero(&self) -> &PoleZero {
         &self.pz
@@ -155,7 +178,7 @@ impl Factored {
         }
         let num = Poly::from_root_list(&self.pz.reduced_zeros)?.scale(self.gain);
         let den = Poly::from_root_list(&self.pz.reduced_poles)?;
-        TransferFunction::new(num, den)
+        Ok(TransferFunction::new(num, den)?.with_domain(self.domain))
     }
 
     /// The characteristic polynomial (monic for a factored source).

@@ -45,8 +45,9 @@ impl Factored {
     /// assert_eq!(gg.poles(), &[Root::new(C::new(-1.0, 0.0), 20)]);
     /// ```
     pub fn series(&self, next: &Factored) -> Result<Factored> {
+        let domain = self.domain().join(next.domain(), "series")?;
         let (z, p, k) = series_parts(self, next);
-        Factored::from_zpk(&z, &p, k)
+        Ok(Factored::from_zpk(&z, &p, k)?.with_domain(domain))
     }
 
     /// Parallel connection self + other = (N₁D₂ + N₂D₁)/(D₁D₂): the poles of both kept, the
@@ -63,15 +64,16 @@ impl Factored {
     /// assert_eq!(p.order(), 2);
     /// ```
     pub fn parallel(&self, other: &Factored) -> Result<Factored> {
+        let domain = self.domain().join(other.domain(), "parallel")?;
         let num = &(&self.num_poly()? * &Poly::from_root_list(other.poles())?)
             + &(&other.num_poly()? * &Poly::from_root_list(self.poles())?);
         let mut poles = self.poles().to_vec();
         poles.extend_from_slice(other.poles());
         if num.is_zero() {
-            return Factored::from_zpk(&[], &poles, 0.0);
+            return Ok(Factored::from_zpk(&[], &poles, 0.0)?.with_domain(domain));
         }
         let zeros = num.roots()?;
-        Factored::from_zpk(&zeros, &poles, num.leading())
+        Ok(Factored::from_zpk(&zeros, &poles, num.leading())?.with_domain(domain))
     }
 
     /// Feedback u = r + sign·H·y around this G (`sign = -1.0`: negative feedback):
@@ -97,12 +99,13 @@ impl Factored {
     /// ```
     pub fn feedback(&self, h: &Factored, sign: f64) -> Result<Feedback> {
         crate::lti::interconnect::check_sign(sign)?;
+        let domain = self.domain().join(h.domain(), "feedback")?;
         let (lz, lp, lk) = series_parts(self, h);
         let (characteristic, poles, hidden) = close(&lz, &lp, lk, sign)?;
         let mut zeros = self.zeros().to_vec();
         zeros.extend_from_slice(h.poles());
         let num = &self.num_poly()? * &Poly::from_root_list(h.poles())?;
-        let tf = TransferFunction::new(num, characteristic.clone())?;
+        let tf = TransferFunction::new(num, characteristic.clone())?.with_domain(domain);
         let closed = Factored::from_parts(tf, poles.clone(), zeros)?;
         Ok(Feedback {
             closed,

@@ -182,7 +182,8 @@ impl Factored {
             count(&pz.reduced_poles) + all.iter().map(|p| p.multiplicity).sum::<usize>(),
             count(&self.pole_zero().reduced_poles)
         );
-        let g = assemble(pz, self.gain(), Source::Factors, self.decision().clone());
+        let g = assemble(pz, self.gain(), Source::Factors, self.decision().clone())
+            .with_domain(self.domain());
         let upper = all.into_iter().filter(|p| p.zero.im >= 0.0).collect();
         Ok((g, upper))
     }

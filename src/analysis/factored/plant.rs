@@ -110,6 +110,7 @@ impl Factored {
             gain,
             Source::StateSpace(Box::new(source)),
             Decision::default(),
-        ))
+        )
+        .with_domain(ss.domain))
     }
 }
