@@ -45,6 +45,11 @@ pub struct PlantArgs {
     /// Feedthrough D (p × m; zero when absent).
     #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
     pub d: Option<String>,
+    /// Sampling period in seconds: the plant is discrete-time, --num/--den in descending
+    /// powers of z and --a…--d giving x[k+1] = A x[k] + B u[k] (also `dt = T` in a plant
+    /// file).
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub dt: Option<f64>,
     /// The channel of a MIMO plant to analyse: INPUT,OUTPUT (1-based), e.g. --channel 1,2.
     #[arg(long, value_name = "INPUT,OUTPUT")]
     pub channel: Option<String>,
@@ -149,6 +154,26 @@ impl PlantArgs {
             out.push(Plant::from_model(m, &params)?);
         } else if !self.params.is_empty() {
             return Err(UsageError("--param needs --model".into()).into());
+        }
+        if let Some(dt) = self.dt {
+            if self.model.is_some() {
+                return Err(crate::lti::plant::physical_model_has_no_dt().into());
+            }
+            let domain = crate::lti::Domain::discrete(dt)?;
+            out = out
+                .into_iter()
+                .map(|p| {
+                    if p.domain().is_discrete() && p.domain() != domain {
+                        return Err(crate::error::LtiError::invalid(format!(
+                            "--dt {}: the plant `{}` is already {}",
+                            crate::fmt::fmt_num(dt),
+                            crate::error::abbreviate(&p.name),
+                            p.domain().describe()
+                        )));
+                    }
+                    p.with_domain(domain)
+                })
+                .collect::<crate::error::Result<_>>()?;
         }
         if out.is_empty() {
             return Err(UsageError(

@@ -206,6 +206,10 @@ pub struct PlantFile {
     /// Names of the states.
     #[serde(default)]
     pub states: Vec<String>,
+    /// The sampling period of a discrete-time plant (seconds; absent: continuous time). With it
+    /// `num`/`den` are in descending powers of z and `a`…`d` give x[k+1] = A x[k] + B u[k].
+    #[serde(default)]
+    pub dt: Option<f64>,
     /// A controller in front of the plant (unity negative feedback), as a `[controller]`
     /// section: `kind = "pid"` and the parameters of [`crate::lti::Controller`].
     #[serde(default)]

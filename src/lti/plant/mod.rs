@@ -28,3 +28,4 @@ pub use text::{
 };
 
 pub use record::Plant;
+pub(crate) use record::physical_model_has_no_dt;

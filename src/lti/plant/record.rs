@@ -13,7 +13,7 @@ use crate::error::{LtiError, Result};
 use crate::fmt::fmt_num;
 use crate::lti::controller::LoopSystem;
 use crate::lti::lattice::{Lattice, Output};
-use crate::lti::{Controller, Model, Signals, StateSpace, TransferFunction, build_plant};
+use crate::lti::{Controller, Domain, Model, Signals, StateSpace, TransferFunction, build_plant};
 
 /// A plant as the user gave it: a name, a description, the model (transfer function or state
 /// space), the names of its signals, and the coefficients as typed when it was given by them.
@@ -199,6 +199,39 @@ impl Plant {
         Ok(p)
     }
 
+    /// The same plant in `domain`: a discrete-time plant reads its coefficients in powers of z
+    /// and its matrices as x[k+1] = A x[k] + B u[k].
+    ///
+    /// ```
+    /// use ltikit::lti::{Domain, Plant};
+    /// let p = Plant::from_text(Some("0.5"), "1 -0.5").unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap()).unwrap();
+    /// assert_eq!(p.domain().dt(), Some(0.1));
+    /// assert_eq!(p.name, "0.5 / (z - 0.5)");
+    /// ```
+    pub fn with_domain(mut self, domain: Domain) -> Result<Plant> {
+        let typed_name = match &self.model {
+            Model::Tf(g) => self.name == g.to_string(),
+            Model::Ss(_) => false,
+        };
+        self.model = match self.model {
+            Model::Tf(g) => Model::Tf(g.with_domain(domain)),
+            Model::Ss(ss) => Model::Ss(ss.with_domain(domain)),
+        };
+        if typed_name && let Model::Tf(g) = &self.model {
+            self.name = g.to_string();
+        }
+        Ok(self)
+    }
+
+    /// Continuous or discrete time.
+    pub fn domain(&self) -> Domain {
+        match &self.model {
+            Model::Tf(g) => g.domain(),
+            Model::Ss(ss) => ss.domain,
+        }
+    }
+
     /// From a plant record (see [`PlantFile`]).
     pub fn from_record(f: &PlantFile) -> Result<Plant> {
         Self::from_record_keyed(f).map_err(|k| k.1)
@@ -292,6 +325,13 @@ impl Plant {
             let params: Vec<(String, f64)> =
                 c.params.iter().map(|(k, v)| (k.clone(), *v)).collect();
             plant.controller = Some(Controller::new(&c.kind, &params).map_err(on("controller"))?);
+        }
+        if let Some(dt) = f.dt {
+            if f.model.is_some() {
+                return Err(on("dt")(physical_model_has_no_dt()));
+            }
+            let domain = Domain::discrete(dt).map_err(on("dt"))?;
+            plant = plant.with_domain(domain).map_err(on("dt"))?;
         }
         Ok(plant)
     }
@@ -422,4 +462,12 @@ mod tests {
             .to_string();
         assert!(e.contains("'Q'"), "{e}");
     }
+}
+
+/// The error for a sampling period given to a textbook model.
+pub(crate) fn physical_model_has_no_dt() -> LtiError {
+    LtiError::invalid(
+        "the textbook models are continuous-time physics: sample one with `ltikit c2d` \
+         instead of giving it a sampling period",
+    )
 }
