@@ -405,6 +405,14 @@ fn state_space_of(
     Ok(ss)
 }
 
+/// The error for a sampling period given to a textbook model.
+pub(crate) fn physical_model_has_no_dt() -> LtiError {
+    LtiError::invalid(
+        "the textbook models are continuous-time physics: sample one with `ltikit c2d` \
+         instead of giving it a sampling period",
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -462,12 +470,4 @@ mod tests {
             .to_string();
         assert!(e.contains("'Q'"), "{e}");
     }
-}
-
-/// The error for a sampling period given to a textbook model.
-pub(crate) fn physical_model_has_no_dt() -> LtiError {
-    LtiError::invalid(
-        "the textbook models are continuous-time physics: sample one with `ltikit c2d` \
-         instead of giving it a sampling period",
-    )
 }
