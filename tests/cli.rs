@@ -35,6 +35,7 @@ fn analyze_contract() {
     assert_eq!(
         keys(&v),
         [
+            "dt",
             "order",
             "relative_degree",
             "poles",
@@ -150,7 +151,7 @@ fn model_and_plant_file() {
 fn residue_contract_and_recomposition() {
     // (s + 3)/(s + 1)^3 = 1/(s+1)^2 + 2/(s+1)^3.
     let v = json(&["residue", "--num", "1 3", "--den", "1 3 3 1", "--json"]);
-    assert_eq!(keys(&v), ["terms", "direct"]);
+    assert_eq!(keys(&v), ["dt", "terms", "direct"]);
     let terms = v["terms"].as_array().unwrap();
     assert_eq!(keys(&terms[0]), ["pole", "power", "residue"]);
     for t in terms {
@@ -169,7 +170,7 @@ fn response_contract_and_values() {
     ]);
     assert_eq!(
         keys(&v),
-        ["closed_form", "t", "y", "transient", "steady_state"]
+        ["dt", "closed_form", "t", "y", "transient", "steady_state"]
     );
     assert_eq!(v["closed_form"], "y(t) = 1 - (1 + t) e^(-t)");
     for (i, t) in [0.0f64, 1.0, 2.5].iter().enumerate() {

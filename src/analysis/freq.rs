@@ -107,6 +107,9 @@ impl Factored {
     /// assert!((r.magnitude[0] - 2f64.powi(-20)).abs() < 1e-20);
     /// ```
     pub fn freq_response(&self, w: &[f64]) -> Result<FrequencyResponse> {
+        if let Some(dt) = self.domain().dt() {
+            return crate::analysis::discrete::freq_response(self, dt, w);
+        }
         check_frequencies(w)?;
         let form = self.bode();
         let n = w.len();

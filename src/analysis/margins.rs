@@ -133,6 +133,9 @@ impl Factored {
     /// assert!((m.gain_margin.unwrap() - 0.5).abs() < 1e-15);
     /// ```
     pub fn margins(&self) -> Result<Margins> {
+        if let Some(dt) = self.domain().dt() {
+            return crate::analysis::discrete::margins(self, dt);
+        }
         let form = self.bode();
         let mut out = Margins::default();
         if self.is_zero() {
@@ -245,7 +248,7 @@ impl Factored {
 impl Margins {
     /// The headline values (MATLAB `margin`): the gain margin closest to 0 dB and the phase
     /// margin closest to 0° among the crossings.
-    fn headline(&mut self) {
+    pub(crate) fn headline(&mut self) {
         if let Some((d, w)) = self
             .gain_crossings
             .iter()
@@ -352,7 +355,7 @@ impl Candidates {
 }
 
 /// Wraps an angle in degrees into (−180, 180].
-fn wrap_deg(x: f64) -> f64 {
+pub(crate) fn wrap_deg(x: f64) -> f64 {
     let mut y = x - 360.0 * (x / 360.0).round();
     if y <= -180.0 {
         y += 360.0;
@@ -364,7 +367,7 @@ fn wrap_deg(x: f64) -> f64 {
 }
 
 /// Sorts by frequency and merges entries closer than 1e-10 relative.
-fn dedup_by_w<T>(v: &mut Vec<T>, w: impl Fn(&T) -> f64) {
+pub(crate) fn dedup_by_w<T>(v: &mut Vec<T>, w: impl Fn(&T) -> f64) {
     v.sort_by(|a, b| w(a).total_cmp(&w(b)));
     v.dedup_by(|b, a| (w(a) - w(b)).abs() <= 1e-10 * w(a).abs().max(w(b).abs()));
 }

@@ -23,6 +23,7 @@
 pub mod asymptotes;
 pub mod closed_form;
 pub mod closed_loop;
+pub mod discrete;
 pub mod factored;
 pub mod freq;
 pub mod grid;

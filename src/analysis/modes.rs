@@ -178,12 +178,15 @@ fn second_order_by_side(
 impl Factored {
     /// One mode per distinct characteristic root ([`modes`]).
     pub fn modes(&self) -> Vec<Mode> {
+        if let Some(dt) = self.domain().dt() {
+            return crate::analysis::discrete::modes(self.poles(), dt, |p| self.side_of(p));
+        }
         modes_by_side(self.poles(), |p| self.side_of(p))
     }
 
     /// ωₙ, ζ, ω_d and the damping class when the plant has order 2 ([`second_order`]).
     pub fn second_order(&self) -> Option<SecondOrder> {
-        if self.order() != 2 {
+        if self.order() != 2 || self.domain().is_discrete() {
             return None;
         }
         let den = self.characteristic_poly().ok()?;

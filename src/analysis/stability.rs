@@ -49,12 +49,56 @@ pub struct Stability {
 
 /// Classifies a set of roots and says why.
 pub fn classify(roots: &[Root]) -> (StabilityClass, String) {
-    classify_by(roots, &half_plane)
+    classify_by(roots, &half_plane, Plane::S)
+}
+
+/// The stability region's words: the s-plane (left half plane) or the z-plane (unit disc).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Plane {
+    S,
+    Z,
+}
+
+impl Plane {
+    fn var(self) -> &'static str {
+        match self {
+            Plane::S => "s",
+            Plane::Z => "z",
+        }
+    }
+    fn outside(self) -> &'static str {
+        match self {
+            Plane::S => "in the right half plane",
+            Plane::Z => "outside the unit circle",
+        }
+    }
+    fn boundary(self) -> &'static str {
+        match self {
+            Plane::S => "on the imaginary axis",
+            Plane::Z => "on the unit circle",
+        }
+    }
+    fn boundary_short(self) -> &'static str {
+        match self {
+            Plane::S => "imaginary-axis",
+            Plane::Z => "unit-circle",
+        }
+    }
+    fn inside(self) -> &'static str {
+        match self {
+            Plane::S => "all poles in the open left half plane",
+            Plane::Z => "all poles strictly inside the unit circle",
+        }
+    }
 }
 
 /// As [`classify`], with the half plane of each root decided by `side` (exactly, on the exact
 /// path).
-fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (StabilityClass, String) {
+fn classify_by(
+    roots: &[Root],
+    side: &dyn Fn(Complex64) -> HalfPlane,
+    plane: Plane,
+) -> (StabilityClass, String) {
     if roots.is_empty() {
         return (StabilityClass::Stable, "no poles".into());
     }
@@ -62,7 +106,11 @@ fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (Stabil
         .iter()
         .filter(|r| side(r.value) == HalfPlane::Right && r.value.im >= 0.0)
         .collect();
-    if let Some(worst) = rhp.iter().max_by(|a, b| a.value.re.total_cmp(&b.value.re)) {
+    let worse = |r: &Root| match plane {
+        Plane::S => r.value.re,
+        Plane::Z => r.value.norm(),
+    };
+    if let Some(worst) = rhp.iter().max_by(|a, b| worse(a).total_cmp(&worse(b))) {
         let more = if rhp.len() > 1 {
             format!(" (and {} more)", rhp.len() - 1)
         } else {
@@ -76,8 +124,10 @@ fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (Stabil
         return (
             StabilityClass::Unstable,
             format!(
-                "pole at s = {}{mult} in the right half plane{more}",
-                fmt_root(worst.value, 3)
+                "pole at {} = {}{mult} {}{more}",
+                plane.var(),
+                fmt_root(worst.value, 3),
+                plane.outside()
             ),
         );
     }
@@ -89,7 +139,10 @@ fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (Stabil
     let axis_list = |rs: &[&Root]| {
         let mut seen: Vec<String> = Vec::new();
         for r in rs {
-            let t = fmt_root(Complex64::new(0.0, r.value.im), 3);
+            let t = match plane {
+                Plane::S => fmt_root(Complex64::new(0.0, r.value.im), 3),
+                Plane::Z => fmt_root(r.value, 3),
+            };
             if !seen.contains(&t) {
                 seen.push(t);
             }
@@ -106,7 +159,9 @@ fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (Stabil
         return (
             StabilityClass::Unstable,
             format!(
-                "repeated imaginary-axis poles at s = {} (multiplicity {m}): unstable",
+                "repeated {} poles at {} = {} (multiplicity {m}): unstable",
+                plane.boundary_short(),
+                plane.var(),
                 axis_list(&repeated)
             ),
         );
@@ -115,15 +170,14 @@ fn classify_by(roots: &[Root], side: &dyn Fn(Complex64) -> HalfPlane) -> (Stabil
         return (
             StabilityClass::MarginallyStable,
             format!(
-                "simple poles on the imaginary axis at s = {}: marginally stable",
+                "simple poles {} at {} = {}: marginally stable",
+                plane.boundary(),
+                plane.var(),
                 axis_list(&axis)
             ),
         );
     }
-    (
-        StabilityClass::Stable,
-        "all poles in the open left half plane".into(),
-    )
+    (StabilityClass::Stable, plane.inside().into())
 }
 
 impl TransferFunction {
@@ -155,12 +209,25 @@ impl Factored {
     /// counts, with no tolerance about the axis, and every reason ends "(decided exactly)".
     pub fn stability(&self) -> Stability {
         let pz = self.pole_zero();
+        if self.domain().is_discrete() {
+            return stability_by(
+                &pz.poles,
+                &pz.reduced_poles,
+                &pz.cancelled,
+                &|v| self.side_of(v),
+                Plane::Z,
+            );
+        }
         if !self.decided_exactly() {
             return stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled);
         }
-        let mut st = stability_by(&pz.poles, &pz.reduced_poles, &pz.cancelled, &|v| {
-            self.side_of(v)
-        });
+        let mut st = stability_by(
+            &pz.poles,
+            &pz.reduced_poles,
+            &pz.cancelled,
+            &|v| self.side_of(v),
+            Plane::S,
+        );
         for r in [&mut st.bibo_reason, &mut st.internal_reason, &mut st.reason] {
             r.push_str(" (decided exactly)");
         }
@@ -170,7 +237,7 @@ impl Factored {
 
 /// Stability from the characteristic roots, the reduced poles and the cancelled roots.
 pub fn stability_of(poles: &[Root], reduced_poles: &[Root], cancelled: &[Root]) -> Stability {
-    stability_by(poles, reduced_poles, cancelled, &half_plane)
+    stability_by(poles, reduced_poles, cancelled, &half_plane, Plane::S)
 }
 
 fn stability_by(
@@ -178,13 +245,14 @@ fn stability_by(
     reduced_poles: &[Root],
     cancelled: &[Root],
     side: &dyn Fn(Complex64) -> HalfPlane,
+    plane: Plane,
 ) -> Stability {
-    let (bibo, bibo_reason) = classify_by(reduced_poles, side);
-    let (internal, internal_reason) = classify_by(poles, side);
+    let (bibo, bibo_reason) = classify_by(reduced_poles, side, plane);
+    let (internal, internal_reason) = classify_by(poles, side, plane);
     let reason = if bibo == internal {
         bibo_reason.clone()
     } else {
-        let (_, cancelled_reason) = classify_by(cancelled, side);
+        let (_, cancelled_reason) = classify_by(cancelled, side, plane);
         format!(
             "BIBO {}: {bibo_reason}; internally {}: cancelled {}",
             if bibo == StabilityClass::Stable {

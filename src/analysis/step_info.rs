@@ -208,6 +208,9 @@ impl Factored {
     /// assert!((s.settling_time.unwrap() - 200f64.ln()).abs() < 1e-13);
     /// ```
     pub fn step_info_for(&self, opts: &StepInfoOptions) -> Result<Option<StepInfo>> {
+        if let Some(dt) = self.domain().dt() {
+            return crate::analysis::discrete::step_info(self, dt, opts);
+        }
         opts.validate()?;
         self.require_proper("step metrics", false)?;
         if self.has_unstable_pole() {

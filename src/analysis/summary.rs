@@ -12,6 +12,8 @@ use crate::lti::TransferFunction;
 /// Poles and zeros, stability, modes, damping class and step metrics of a plant.
 #[derive(Debug, Clone, Serialize)]
 pub struct Analysis {
+    /// The sampling period of a discrete-time plant (`None`: continuous time).
+    pub dt: Option<f64>,
     /// System order (degree of the characteristic polynomial).
     pub order: usize,
     /// deg D − deg N (negative for an improper G); `None` for G ≡ 0.
@@ -63,6 +65,7 @@ impl Factored {
     pub fn analyze(&self) -> Result<Analysis> {
         let (step_info, step_info_note) = self.step_info_or_note();
         Ok(Analysis {
+            dt: self.domain().dt(),
             order: self.order(),
             relative_degree: self.relative_degree(),
             pole_zero: self.pole_zero().clone(),
@@ -97,11 +100,14 @@ impl Factored {
     /// Why a proper G has no step metrics (it does not settle, or settles to 0).
     fn why_no_step_info(&self) -> String {
         match self.dc_gain() {
-            _ if self.has_unstable_pole() => {
-                "does not settle (no step metrics: a pole of the reduced G is not in the open \
-                 left half plane)"
-                    .into()
-            }
+            _ if self.has_unstable_pole() => format!(
+                "does not settle (no step metrics: a pole of the reduced G is not {})",
+                if self.domain().is_discrete() {
+                    "strictly inside the unit circle"
+                } else {
+                    "in the open left half plane"
+                }
+            ),
             Some(0.0) => "settles to 0 (no step metrics: rise time, overshoot and \
                  settling are relative to a non-zero final value)"
                 .into(),

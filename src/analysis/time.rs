@@ -153,6 +153,9 @@ impl Factored {
     /// assert_eq!(r.final_value, Some(0.0));
     /// ```
     pub fn time_response(&self, input: &Input, ics: &[f64], t: &[f64]) -> Result<TimeResponse> {
+        if let Some(dt) = self.domain().dt() {
+            return crate::analysis::discrete::time_response(self, dt, input, ics, t);
+        }
         check_times(t)?;
         let dec = Decomposition::new(self, input, ics)?;
         let y = simulate(&dec, t)?;

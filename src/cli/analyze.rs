@@ -176,6 +176,7 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
         "dc gain:   {}\n\n",
         match a.dc_gain {
             Some(g) => fmt_num(g),
+            None if a.dt.is_some() => "infinite (pole at z = 1)".into(),
             None => "infinite (pole at s = 0)".into(),
         }
     ));

@@ -60,11 +60,39 @@ impl Stream {
 /// with a trailing newline: objects indented, arrays of numbers on one line (`[re, im]`
 /// pairs, matrix rows, sample vectors).
 pub fn print_json<T: Serialize>(value: &T) -> Result<()> {
-    let v = json_value(value)?;
+    let mut v = json_value(value)?;
+    with_dt(&mut v);
     let mut s = String::new();
     pretty(&v, 0, &mut s);
     s.push('\n');
     print(&s)
+}
+
+thread_local! {
+    /// The sampling period of the plants this command read (`None`: continuous time).
+    static DOCUMENT_DT: std::cell::Cell<Option<Option<f64>>> =
+        const { std::cell::Cell::new(None) };
+}
+
+/// Records the domain of the plants a command analyses: every JSON document it prints then
+/// starts with `"dt"` (the sampling period, `null` for continuous time), so a script knows
+/// the domain without knowing the command. (Documents of commands that read no plant — the
+/// nonlinear models — have no `"dt"`.)
+pub fn set_document_dt(dt: Option<f64>) {
+    DOCUMENT_DT.with(|c| c.set(Some(dt)));
+}
+
+/// Puts `"dt"` first in a document object that does not carry it yet.
+fn with_dt(v: &mut serde_json::Value) {
+    if let serde_json::Value::Object(map) = v
+        && !map.contains_key("dt")
+        && let Some(dt) = DOCUMENT_DT.with(|c| c.get())
+    {
+        let mut out = serde_json::Map::new();
+        out.insert("dt".into(), serde_json::json!(dt));
+        out.extend(std::mem::take(map));
+        *map = out;
+    }
 }
 
 /// `value` as a JSON tree with every −0.0 written as 0.0 (a sign of zero is rounding, not

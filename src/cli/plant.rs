@@ -102,6 +102,7 @@ impl PlantArgs {
     /// a controller is given, on the command line or in a plant file, and no loop option).
     pub fn resolve_for(&self, default: LoopSystem) -> Result<Vec<Plant>> {
         let mut out = self.plants()?;
+        super::output::set_document_dt(out.first().and_then(|p| p.domain().dt()));
         let controller = self
             .controller
             .as_deref()

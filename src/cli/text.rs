@@ -126,7 +126,7 @@ pub fn complex_text(z: Complex64) -> String {
 
 /// A polynomial in s from its coefficients as typed (descending powers), e.g.
 /// `s^4 + 2.00000002 s^2 + 1.00000002`; parenthesised when it has several terms.
-pub fn typed_poly(c: &[crate::lti::plant::Coefficient]) -> String {
+pub fn typed_poly(c: &[crate::lti::plant::Coefficient], var: &str) -> String {
     let n = c.len().saturating_sub(1);
     let mut out = String::new();
     let mut terms = 0;
@@ -142,8 +142,8 @@ pub fn typed_poly(c: &[crate::lti::plant::Coefficient]) -> String {
         };
         let power = match k {
             0 => String::new(),
-            1 => "s".into(),
-            _ => format!("s^{k}"),
+            1 => var.into(),
+            _ => format!("{var}^{k}"),
         };
         let body = match (mag == "1" && k > 0, power.is_empty()) {
             (true, _) => power,
@@ -183,10 +183,11 @@ pub const MAX_PRINTED_ORDER: usize = 12;
 /// "G(s) = …" of one channel of a state-space model, or — above [`MAX_PRINTED_ORDER`] poles —
 /// its size in words (the factors follow in the report).
 pub fn channel_g_text(f: &crate::analysis::Factored) -> String {
+    let g = g_of(f.domain());
     let order = f.poles().iter().map(|r| r.multiplicity).sum::<usize>();
     if order > MAX_PRINTED_ORDER {
         format!(
-            "G(s): order {order}, minimal order {}, gain {} (poles and zeros below)",
+            "{g}: order {order}, minimal order {}, gain {} (poles and zeros below)",
             f.reduced_poles()
                 .iter()
                 .map(|r| r.multiplicity)
@@ -194,27 +195,51 @@ pub fn channel_g_text(f: &crate::analysis::Factored) -> String {
             crate::fmt::fmt_num(f.gain())
         )
     } else {
-        format!("G(s) = {f}")
+        format!("{g} = {f}")
     }
+}
+
+/// "G(s)", or "G(z)" for a discrete-time plant.
+pub fn g_of(domain: crate::lti::Domain) -> &'static str {
+    if domain.is_discrete() { "G(z)" } else { "G(s)" }
+}
+
+/// ", dt = 0.1 s" for a discrete-time plant, "" otherwise: appended where the report names
+/// the plant, so a reader always knows the domain.
+pub fn dt_suffix(domain: crate::lti::Domain) -> String {
+    domain.dt().map_or_else(String::new, |dt| {
+        format!("  (discrete time, dt = {} s)", crate::fmt::fmt_num(dt))
+    })
 }
 
 /// "G(s) = …" for a SISO plant: its coefficients as typed, or for a state-space plant its
 /// factors and its size (a large one in words).
 pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
+    let text = g_text_in(plant, f);
+    format!("{text}{}", dt_suffix(f.domain()))
+}
+
+fn g_text_in(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
+    let head = g_of(f.domain());
+    let var = f.domain().variable();
     if let Some(which) = plant.selection {
         return format!("{}\n{} = {f}", plant.name, which.formula());
     }
     match &plant.model {
         crate::lti::Model::Tf(g) => match &plant.typed {
             // As typed: "2.00000002" must not read as "2".
-            Some((num, den)) => format!("G(s) = {} / {}", typed_poly(num), typed_poly(den)),
-            None => format!("G(s) = {g}"),
+            Some((num, den)) => format!(
+                "{head} = {} / {}",
+                typed_poly(num, var),
+                typed_poly(den, var)
+            ),
+            None => format!("{head} = {g}"),
         },
         crate::lti::Model::Ss(ss)
             if f.poles().iter().map(|r| r.multiplicity).sum::<usize>() > MAX_PRINTED_ORDER =>
         {
             format!(
-                "G(s): a channel of a {}-state model, minimal order {}, gain {} (poles and zeros below)",
+                "{head}: a channel of a {}-state model, minimal order {}, gain {} (poles and zeros below)",
                 ss.order(),
                 f.reduced_poles()
                     .iter()
@@ -223,6 +248,6 @@ pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> Strin
                 crate::fmt::fmt_num(f.gain())
             )
         }
-        crate::lti::Model::Ss(ss) => format!("G(s) = {f}  (state space: {} states)", ss.order()),
+        crate::lti::Model::Ss(ss) => format!("{head} = {f}  (state space: {} states)", ss.order()),
     }
 }

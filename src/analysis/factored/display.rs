@@ -5,23 +5,23 @@ use std::fmt;
 
 use super::form::Factored;
 use crate::fmt::fmt_num;
-use crate::poly::{Poly, Root};
+use crate::poly::{Poly, Root, format_poly};
 
 /// The real factor of a root as text: `s`, `(s + 2)`, `(s^2 + 2 s + 5)`, with `^m`.
-fn factor_text(r: &Root) -> String {
+fn factor_text(r: &Root, var: &str) -> String {
     let body = if r.is_origin() {
-        "s".to_string()
+        var.to_string()
     } else if r.is_real() {
         format!(
             "({})",
             Poly::from_descending(&[1.0, -r.value.re])
-                .map_or_else(|_| "?".into(), |p| p.to_string())
+                .map_or_else(|_| "?".into(), |p| format_poly(&p, var))
         )
     } else {
         let c = [1.0, -2.0 * r.value.re, r.value.norm_sqr()];
         format!(
             "({})",
-            Poly::from_descending(&c).map_or_else(|_| "?".into(), |p| p.to_string())
+            Poly::from_descending(&c).map_or_else(|_| "?".into(), |p| format_poly(&p, var))
         )
     };
     if r.multiplicity > 1 {
@@ -31,11 +31,11 @@ fn factor_text(r: &Root) -> String {
     }
 }
 
-fn product(roots: &[Root]) -> Vec<String> {
+fn product(roots: &[Root], var: &str) -> Vec<String> {
     roots
         .iter()
         .filter(|r| r.value.im >= 0.0)
-        .map(factor_text)
+        .map(|r| factor_text(r, var))
         .collect()
 }
 
@@ -61,8 +61,9 @@ impl fmt::Display for Factored {
         if self.is_zero() {
             return f.write_str("0");
         }
-        let num = product(self.zeros());
-        let den = product(self.poles());
+        let var = self.domain().variable();
+        let num = product(self.zeros(), var);
+        let den = product(self.poles(), var);
         let k = self.gain();
         let mut top = if num.is_empty() {
             fmt_num(k)

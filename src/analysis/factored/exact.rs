@@ -167,6 +167,9 @@ impl Factored {
     /// The half plane of a root of this plant: decided exactly on the exact path, else by
     /// [`half_plane`] (a relative tolerance about the axis).
     pub(crate) fn side_of(&self, v: Complex64) -> HalfPlane {
+        if self.domain().is_discrete() {
+            return crate::analysis::discrete::circle_side(v);
+        }
         self.decision()
             .sides
             .as_ref()
@@ -176,7 +179,7 @@ impl Factored {
 
     /// True when the structure was decided exactly.
     pub(crate) fn decided_exactly(&self) -> bool {
-        self.decision().sides.is_some()
+        self.decision().sides.is_some() && !self.domain().is_discrete()
     }
 }
 

@@ -196,12 +196,28 @@ impl Factored {
         if self.is_zero() {
             return Some(0.0);
         }
+        if self.domain().is_discrete() {
+            return self.dc_gain_z();
+        }
         let lf = self.low_frequency();
         match lf.int_order {
             k if k > 0 => Some(0.0),
             k if k < 0 => None,
             _ => Some(lf.value()),
         }
+    }
+
+    /// G(1) of a discrete-time plant (`None` with a reduced pole at z = 1, 0 with a reduced
+    /// zero there).
+    fn dc_gain_z(&self) -> Option<f64> {
+        let one = Complex64::new(1.0, 0.0);
+        if self.pz.reduced_poles.iter().any(|p| p.same_as(one)) {
+            return None;
+        }
+        if self.pz.reduced_zeros.iter().any(|z| z.same_as(one)) {
+            return Some(0.0);
+        }
+        Some(self.eval(one).re)
     }
 
     /// G(s) at a complex point: from the coefficients as given when the plant came with them
