@@ -163,7 +163,11 @@ fn interconnections_join_the_domains() {
         tf_in(&h, z(0.1)).factored().unwrap(),
     );
     let cl = ClosedLoop::new(&fh, &fg).unwrap();
-    for which in [LoopSystem::Loop, LoopSystem::ClosedLoop, LoopSystem::Sensitivity] {
+    for which in [
+        LoopSystem::Loop,
+        LoopSystem::ClosedLoop,
+        LoopSystem::Sensitivity,
+    ] {
         assert_eq!(cl.system(which).unwrap().domain(), z(0.1));
     }
     let e = ClosedLoop::new(&h.factored().unwrap(), &fg)
@@ -179,7 +183,11 @@ fn interconnections_join_the_domains() {
         StateSpace::from_tf(&gz).unwrap(),
         StateSpace::from_tf(&hz).unwrap(),
     );
-    close(sg.feedback(&sh, -1.0).unwrap().to_tf().unwrap().eval(p), want, 1e-12);
+    close(
+        sg.feedback(&sh, -1.0).unwrap().to_tf().unwrap().eval(p),
+        want,
+        1e-12,
+    );
 }
 
 #[test]

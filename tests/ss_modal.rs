@@ -181,9 +181,9 @@ fn assert_channels_are_siso(ss: &StateSpace, w: &[f64]) -> MimoFreqResponse {
                 .unwrap()
                 .freq_response(w)
                 .unwrap();
-            for k in 0..w.len() {
+            for (k, x) in w.iter().enumerate() {
                 let (a, b) = (r.phase_deg[j][i][k], siso.phase_deg[k]);
-                assert!((a - b).abs() < 1e-9, "{i} → {j}, ω = {}: {a} {b}", w[k]);
+                assert!((a - b).abs() < 1e-9, "{i} → {j}, ω = {x}: {a} {b}");
                 let (a, b) = (r.magnitude[j][i][k], siso.magnitude[k]);
                 assert!(a == b || (a - b).abs() <= 1e-12 * b, "{i} → {j}: {a} {b}");
             }

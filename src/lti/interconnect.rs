@@ -266,10 +266,7 @@ mod tests {
         let g = tf(&[1.0], &[1.0, 0.0]);
         let one = tf(&[1.0], &[1.0]);
         // 1/s with +1 feedback: 1/(s − 1)
-        assert_eq!(
-            g.feedback(&one, 1.0).unwrap().den().coeffs(),
-            &[1.0, -1.0]
-        );
+        assert_eq!(g.feedback(&one, 1.0).unwrap().den().coeffs(), &[1.0, -1.0]);
         assert!(g.feedback(&one, 0.5).is_err());
         // G = 1, H = 1, positive feedback: 1 − 1 ≡ 0
         assert!(one.feedback(&one, 1.0).is_err());
