@@ -55,8 +55,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             HessenbergResponse::new(&ss.a, &ss.b, &ss.c, &ss.d).and_then(|h| h.eval_siso_many(&s))
         }),
         "freq_modal_sum_10k": median(7, || lattice::modal_sum(&p, &r, &w)),
-        // the public entry (modal form from 16n frequencies on): decomposition + evaluation
+        // the public entry (the channel's factored form and its Bode kernel, the one engine):
+        // factorisation + evaluation
         "freq_response_mimo_10k": median(5, || ss.freq_response_mimo(&w)),
+        "freq_modal_decomposition": median(7, || ModalForm::new(&ss.a, &ss.b, &ss.c, &ss.d)),
         "freq_modal_eval_10k": median(7, || s.iter().map(|&x| ch.eval(x)).collect::<Vec<_>>()),
         "step_10k": median(5, || ss.step_response_from(0, &t, false)),
         // the same model with interleaved states: the general (Schur) path

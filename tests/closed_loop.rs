@@ -12,8 +12,7 @@ mod common;
 
 use common::{c, tf};
 use ltikit::analysis::{ClosedLoop, Factored, LoopSystem};
-use ltikit::lti::interconnect::{feedback, parallel, series};
-use ltikit::lti::{Controller, Plant, controller::LoopSystem as Sel};
+use ltikit::lti::{Controller, Domain, Plant, controller::LoopSystem as Sel};
 use ltikit::{Root, StateSpace};
 use num_complex::Complex64;
 
@@ -46,10 +45,10 @@ fn series_parallel_feedback_against_direct_evaluation() {
     let f1 = g1.factored().unwrap();
     let f2 = g2.factored().unwrap();
     let fh = h.factored().unwrap();
-    let ser = series(&g1, &g2);
-    let par = parallel(&g1, &g2).unwrap();
-    let fbn = feedback(&g1, &h, -1.0).unwrap();
-    let fbp = feedback(&g2, &h, 1.0).unwrap();
+    let ser = g1.series(&g2).unwrap();
+    let par = g1.parallel(&g2).unwrap();
+    let fbn = g1.feedback(&h, -1.0).unwrap();
+    let fbp = g2.feedback(&h, 1.0).unwrap();
     let ss_ser = s1.series(&s2).unwrap().to_tf().unwrap();
     let ss_par = s1.parallel(&s2).unwrap().to_tf().unwrap();
     let ss_fbn = s1.feedback(&sh, -1.0).unwrap().to_tf().unwrap();
@@ -75,6 +74,120 @@ fn series_parallel_feedback_against_direct_evaluation() {
             close(fs[i], want[i], 1e-10);
         }
     }
+}
+
+/// The three interconnections of one model type in one shape: (series, parallel, feedback)
+/// of `g` and `h`, each `Ok` or the error's text.
+type Connect<'a, T> = &'a dyn Fn(&T, &T) -> [Result<ltikit::lti::Domain, String>; 3];
+
+/// Every interconnection of every model type joins the two domains: two discrete models of
+/// the same period give that period; a continuous and a discrete model, or two periods, are
+/// an error naming the operation and both domains.
+#[test]
+fn interconnections_join_the_domains() {
+    let z = |dt: f64| Domain::discrete(dt).unwrap();
+    // G = 0.5/(z − 0.5), H = 0.2/(z − 0.8) read in each domain
+    let (g, h) = (tf(&[0.5], &[1.0, -0.5]), tf(&[0.2], &[1.0, -0.8]));
+    let ops = ["series", "parallel", "feedback"];
+    let check = |name: &str, results: [[Result<Domain, String>; 3]; 3]| {
+        let [same, mixed, periods] = results;
+        for (k, op) in ops.iter().enumerate() {
+            assert_eq!(same[k], Ok(z(0.1)), "{name} {op}");
+            let e = mixed[k].clone().unwrap_err();
+            assert!(
+                e.contains(op) && e.contains("continuous-time") && e.contains("dt = 0.1 s"),
+                "{name}: {e}"
+            );
+            let e = periods[k].clone().unwrap_err();
+            assert!(
+                e.contains(op) && e.contains("dt = 0.1 s") && e.contains("dt = 0.2 s"),
+                "{name}: {e}"
+            );
+        }
+    };
+    let tfs: Connect<ltikit::TransferFunction> = &|a, b| {
+        [
+            a.series(b).map(|r| r.domain()),
+            a.parallel(b).map(|r| r.domain()),
+            a.feedback(b, -1.0).map(|r| r.domain()),
+        ]
+        .map(|r| r.map_err(|e| e.to_string()))
+    };
+    let sss: Connect<StateSpace> = &|a, b| {
+        [
+            a.series(b).map(|r| r.domain),
+            a.parallel(b).map(|r| r.domain),
+            a.feedback(b, -1.0).map(|r| r.domain),
+        ]
+        .map(|r| r.map_err(|e| e.to_string()))
+    };
+    let fs: Connect<Factored> = &|a, b| {
+        [
+            a.series(b).map(|r| r.domain()),
+            a.parallel(b).map(|r| r.domain()),
+            a.feedback(b, -1.0).map(|r| r.closed.domain()),
+        ]
+        .map(|r| r.map_err(|e| e.to_string()))
+    };
+    let tf_in = |t: &ltikit::TransferFunction, d: Domain| t.clone().with_domain(d);
+    let pairs = [
+        (z(0.1), z(0.1)),
+        (Domain::Continuous, z(0.1)),
+        (z(0.1), z(0.2)),
+    ];
+    check(
+        "transfer function",
+        pairs.map(|(a, b)| tfs(&tf_in(&g, a), &tf_in(&h, b))),
+    );
+    check(
+        "state space",
+        pairs.map(|(a, b)| {
+            sss(
+                &StateSpace::from_tf(&tf_in(&g, a)).unwrap(),
+                &StateSpace::from_tf(&tf_in(&h, b)).unwrap(),
+            )
+        }),
+    );
+    check(
+        "factored",
+        pairs.map(|(a, b)| {
+            fs(
+                &tf_in(&g, a).factored().unwrap(),
+                &tf_in(&h, b).factored().unwrap(),
+            )
+        }),
+    );
+    // the controller–plant loop of the analyses joins them too
+    let (fg, fh) = (
+        tf_in(&g, z(0.1)).factored().unwrap(),
+        tf_in(&h, z(0.1)).factored().unwrap(),
+    );
+    let cl = ClosedLoop::new(&fh, &fg).unwrap();
+    for which in [
+        LoopSystem::Loop,
+        LoopSystem::ClosedLoop,
+        LoopSystem::Sensitivity,
+    ] {
+        assert_eq!(cl.system(which).unwrap().domain(), z(0.1));
+    }
+    let e = ClosedLoop::new(&h.factored().unwrap(), &fg)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("C·G") && e.contains("continuous-time"), "{e}");
+    // the discrete loop's values: T = G/(1 + GH) at z = 1.3 + 0.4j, whatever the model type
+    let (gz, hz) = (tf_in(&g, z(0.1)), tf_in(&h, z(0.1)));
+    let p = c(1.3, 0.4);
+    let want = gz.eval(p) / (1.0 + gz.eval(p) * hz.eval(p));
+    close(gz.feedback(&hz, -1.0).unwrap().eval(p), want, 1e-13);
+    let (sg, sh) = (
+        StateSpace::from_tf(&gz).unwrap(),
+        StateSpace::from_tf(&hz).unwrap(),
+    );
+    close(
+        sg.feedback(&sh, -1.0).unwrap().to_tf().unwrap().eval(p),
+        want,
+        1e-12,
+    );
 }
 
 #[test]

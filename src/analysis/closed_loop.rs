@@ -88,9 +88,10 @@ pub struct Robustness {
 impl ClosedLoop {
     /// The loop of controller `c` and plant `g` (unity negative feedback).
     ///
-    /// Errors: an improper loop L = C·G (an unfiltered derivative on a plant without enough
-    /// roll-off: give the filter time constant), a loop that is not well posed (1 + L(∞) = 0),
-    /// the root finder's.
+    /// Errors: a controller and a plant of different domains ([`crate::lti::Domain::join`]),
+    /// an improper loop L = C·G (an unfiltered derivative on a plant without enough roll-off:
+    /// give the filter time constant), a loop that is not well posed (1 + L(∞) = 0), the root
+    /// finder's.
     pub fn new(c: &Factored, g: &Factored) -> Result<ClosedLoop> {
         let l = loop_form(c, g)?;
         l.require_proper("the loop L = C·G", false)?;
@@ -155,7 +156,8 @@ impl ClosedLoop {
     fn over_characteristic(&self, zeros: Vec<Root>, gain: f64) -> Result<Factored> {
         let zeros = if gain == 0.0 { Vec::new() } else { zeros };
         let num = Poly::from_root_list(&zeros)?.scale(gain);
-        let tf = TransferFunction::new(num, self.characteristic.clone())?;
+        let tf =
+            TransferFunction::new(num, self.characteristic.clone())?.with_domain(self.l.domain());
         Factored::from_parts(tf, self.poles.clone(), zeros)
     }
 
@@ -211,13 +213,14 @@ impl ClosedLoop {
 /// source (so the margins of L come from the polynomials in ω², like a plant typed by its
 /// coefficients); beyond that the factors alone ([`Factored::series`]).
 fn loop_form(c: &Factored, g: &Factored) -> Result<Factored> {
+    let domain = c.domain().join(g.domain(), "the loop L = C·G")?;
     let (zeros, poles, k) = series_parts(c, g);
     let n: usize = poles.iter().map(|r| r.multiplicity).sum();
     if k == 0.0 || n > crate::MAX_ORDER {
-        return Factored::from_zpk(&zeros, &poles, k);
+        return Ok(Factored::from_zpk(&zeros, &poles, k)?.with_domain(domain));
     }
     let num = Poly::from_root_list(&zeros)?.scale(k);
-    let tf = TransferFunction::new(num, Poly::from_root_list(&poles)?)?;
+    let tf = TransferFunction::new(num, Poly::from_root_list(&poles)?)?.with_domain(domain);
     Factored::from_parts(tf, poles, zeros)
 }
 

@@ -150,10 +150,7 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
                 f.reduced_poles().iter().map(|r| r.multiplicity).sum::<usize>()
             ));
         } else {
-            let reduced = f
-                .reduced_tf()
-                .map(|g| g.to_string())
-                .unwrap_or_else(|_| "(too large to print)".into());
+            let reduced = reduced_text(f.reduced_tf());
             s.push_str(&format!(
                 "Cancelled: {} ({}; reduced G = {reduced})\n",
                 texts[2],
@@ -244,6 +241,16 @@ pub fn body(f: &Factored, a: &Analysis) -> String {
 
 /// The near pole-zero pairs, one line each: "Near:      zero -2.00000000001 and pole -2
 /// (distance 1e-11, relative 5e-12; not cancelled — --minreal 1e-11 cancels pairs this close)".
+/// The reduced G as text: "(too large to print)" only when it is beyond the order limit
+/// ([`LtiError::OrderTooHigh`](crate::LtiError::OrderTooHigh)); any other error as itself.
+fn reduced_text(g: crate::error::Result<crate::TransferFunction>) -> String {
+    match g {
+        Ok(g) => g.to_string(),
+        Err(crate::LtiError::OrderTooHigh { .. }) => "(too large to print)".into(),
+        Err(e) => format!("(not formed: {e})"),
+    }
+}
+
 fn near_text(near: &[crate::analysis::NearPair]) -> String {
     let mut s = String::new();
     for (k, n) in near.iter().enumerate() {
@@ -300,4 +307,28 @@ fn step_text(si: &StepInfo) -> String {
         ));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::LtiError;
+
+    #[test]
+    fn only_the_order_limit_reads_too_large_to_print() {
+        let big = Err(LtiError::OrderTooHigh {
+            order: 300,
+            max: 200,
+        });
+        assert_eq!(reduced_text(big), "(too large to print)");
+        let other = Err(LtiError::invalid(
+            "root 1 + 2j has no complex conjugate partner",
+        ));
+        assert_eq!(
+            reduced_text(other),
+            "(not formed: root 1 + 2j has no complex conjugate partner)"
+        );
+        let g = crate::TransferFunction::from_descending(&[1.0], &[1.0, 1.0]);
+        assert_eq!(reduced_text(g), "1 / (s + 1)");
+    }
 }

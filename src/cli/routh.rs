@@ -8,6 +8,7 @@ use serde::Serialize;
 use super::PlantArgs;
 use super::output::{print, print_json};
 use crate::analysis::{RouthEvent, RouthTable, routh};
+use crate::error::LtiError;
 use crate::fmt::fmt_sig;
 use crate::lti::Model;
 use crate::poly::{Poly, format_poly};
@@ -29,7 +30,7 @@ pub struct RouthArgs {
 }
 
 /// Root counts decided in exact rational arithmetic.
-#[derive(Serialize, Clone, Copy, PartialEq, Eq)]
+#[derive(Serialize, Debug, Clone, Copy, PartialEq, Eq)]
 struct Exact {
     rhp: usize,
     axis: usize,
@@ -64,7 +65,7 @@ pub fn run(a: &RouthArgs) -> Result<()> {
         Some(k) => bail!("--gain must be finite, got {}", crate::error::number(k)),
     };
     let t = routh(&p)?;
-    let exact = exact_counts(&plant, g, a.gain);
+    let exact = exact_counts(&plant, g, a.gain)?;
     let gains = if a.gain_range {
         Some(crate::analysis::stable_gains(g.num(), g.den())?)
     } else {
@@ -182,12 +183,29 @@ pub fn run(a: &RouthArgs) -> Result<()> {
 
 /// The root counts of D (or D + K·N) in exact rational arithmetic: the coefficients as typed
 /// when the plant was given by them, otherwise the f64 values (exact binary fractions); `None`
-/// beyond the exact path's budget.
+/// beyond the exact path's budget ([`LtiError::BeyondExactBudget`]: the floating-point table
+/// decides and the report says so).
+///
+/// Errors: any other error of the exact path, as itself (every typed token was checked by the
+/// exact reader when the plant was read, so none is expected).
 fn exact_counts(
     plant: &crate::lti::Plant,
     g: &crate::TransferFunction,
     gain: Option<f64>,
-) -> Option<Exact> {
+) -> crate::error::Result<Option<Exact>> {
+    match exact_counts_within_budget(plant, g, gain) {
+        Ok(e) => Ok(Some(e)),
+        Err(LtiError::BeyondExactBudget { .. }) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// [`exact_counts`], with the budget error as an error.
+fn exact_counts_within_budget(
+    plant: &crate::lti::Plant,
+    g: &crate::TransferFunction,
+    gain: Option<f64>,
+) -> crate::error::Result<Exact> {
     use crate::poly::exact::{ExactPoly, Rational};
     let (num, den) = match &plant.typed {
         Some((n, d)) => {
@@ -195,26 +213,66 @@ fn exact_counts(
                 c.iter().map(|x| x.text.clone()).collect::<Vec<_>>()
             };
             (
-                ExactPoly::parse_descending(&texts(n)).ok()?,
-                ExactPoly::parse_descending(&texts(d)).ok()?,
+                ExactPoly::parse_descending(&texts(n))?,
+                ExactPoly::parse_descending(&texts(d))?,
             )
         }
         None => (
-            ExactPoly::from_f64_descending(g.num().coeffs()).ok()?,
-            ExactPoly::from_f64_descending(g.den().coeffs()).ok()?,
+            ExactPoly::from_f64_descending(g.num().coeffs())?,
+            ExactPoly::from_f64_descending(g.den().coeffs())?,
         ),
     };
     let p = match gain {
         None => den,
         Some(k) => {
-            let k = ExactPoly::from_rationals(&[Rational::from_f64(k).ok()?]).ok()?;
+            let k = ExactPoly::from_rationals(&[Rational::from_f64(k)?])?;
             &den + &(&k * &num)
         }
     };
-    let h = p.half_plane_counts().ok()?;
-    Some(Exact {
+    let h = p.half_plane_counts()?;
+    Ok(Exact {
         rhp: h.rhp,
         axis: h.axis,
         lhp: h.lhp,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lti::Plant;
+    use crate::lti::plant::Coefficient;
+
+    #[test]
+    fn only_the_budget_sends_routh_to_the_floating_point_counts() {
+        // within the budget: counted exactly
+        let p = Plant::from_text(None, "1 2 3").unwrap();
+        let Model::Tf(g) = &p.model else {
+            unreachable!()
+        };
+        let e = exact_counts(&p, g, None).unwrap().unwrap();
+        assert_eq!((e.rhp, e.axis, e.lhp), (0, 0, 2));
+        // beyond it (degree 120 > 100): no exact counts, not an error
+        let den = format!("1{} 1", " 0".repeat(119));
+        let p = Plant::from_text(None, &den).unwrap();
+        let Model::Tf(g) = &p.model else {
+            unreachable!()
+        };
+        assert!(exact_counts(&p, g, None).unwrap().is_none());
+        // any other error of the exact path is reported as itself, not as "beyond the budget"
+        let mut p = Plant::from_text(None, "1 2 3").unwrap();
+        let Model::Tf(g) = p.model.clone() else {
+            unreachable!()
+        };
+        let bad = Coefficient {
+            text: "2x".into(),
+            value: 2.0,
+        };
+        if let Some((_, den)) = &mut p.typed {
+            den[1] = bad;
+        }
+        let e = exact_counts(&p, &g, None).unwrap_err();
+        assert!(matches!(e, LtiError::BadNumber { .. }), "{e}");
+        assert!(e.to_string().contains("'2x'"), "{e}");
+    }
 }

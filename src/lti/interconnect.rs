@@ -1,24 +1,31 @@
-//! Interconnections of models: series, parallel and feedback, for transfer functions (on the
-//! coefficients, nothing cancelled) and for state-space models (block matrices, no detour
-//! through coefficients; any numbers of inputs and outputs that fit).
+//! Interconnections of models in one shape on every model type: the methods
+//! `series(&self, &next)`, `parallel(&self, &other)` and `feedback(&self, &h, sign)` of
+//! [`TransferFunction`] (on the coefficients, nothing cancelled), [`StateSpace`] (block
+//! matrices, no detour through coefficients; any numbers of inputs and outputs that fit) and
+//! the factored core's `Factored` (the factors kept; its `feedback` returns a `Feedback` with
+//! the closed loop, the characteristic polynomial, the closed-loop poles and the hidden modes).
 //!
-//! Conventions (as python-control and MATLAB): `series(g1, g2)` is g2·g1 (the signal goes
-//! through g1 first); `feedback(g, h, sign)` closes u = r + sign·h·y around g, so `sign = -1.0`
-//! is negative feedback, T = G/(1 + G·H).
+//! Conventions (as python-control and MATLAB): `g1.series(&g2)` is g2·g1 (the signal goes
+//! through g1 first); `g.feedback(&h, sign)` closes u = r + sign·h·y around g, so
+//! `sign = -1.0` is negative feedback, T = G/(1 + G·H).
 //!
-//! Transfer functions given in factored form keep their factors under the same operations on
-//! the factored form of the analysis layer (`Factored::{series, parallel, feedback}`), which
-//! also report the cancelled (hidden) modes.
+//! Every interconnection joins the two models' domains ([`Domain::join`](crate::lti::Domain::join)): the result is in
+//! their common domain, and connecting a continuous-time and a discrete-time model, or two
+//! different sampling periods, is an error naming the operation and both domains.
 //!
 //! ```
 //! use ltikit::TransferFunction;
-//! use ltikit::lti::interconnect::{feedback, parallel, series};
+//! use ltikit::lti::Domain;
 //! let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();   // 1/(s+1)
 //! let h = TransferFunction::from_descending(&[2.0], &[1.0, 3.0]).unwrap();   // 2/(s+3)
-//! assert_eq!(series(&g, &h).den().coeffs(), &[1.0, 4.0, 3.0]);
-//! assert_eq!(parallel(&g, &h).unwrap().num().coeffs(), &[3.0, 5.0]);
-//! let t = feedback(&g, &h, -1.0).unwrap();                                  // (s+3)/((s+1)(s+3)+2)
+//! assert_eq!(g.series(&h).unwrap().den().coeffs(), &[1.0, 4.0, 3.0]);
+//! assert_eq!(g.parallel(&h).unwrap().num().coeffs(), &[3.0, 5.0]);
+//! let t = g.feedback(&h, -1.0).unwrap();                                   // (s+3)/((s+1)(s+3)+2)
 //! assert_eq!(t.den().coeffs(), &[1.0, 4.0, 5.0]);
+//! // a continuous and a discrete model do not connect
+//! let gz = g.clone().with_domain(Domain::discrete(0.1).unwrap());
+//! let e = g.series(&gz).unwrap_err().to_string();
+//! assert!(e.contains("series") && e.contains("continuous-time") && e.contains("dt = 0.1"));
 //! ```
 
 use nalgebra::DMatrix;
@@ -26,35 +33,66 @@ use nalgebra::DMatrix;
 use crate::error::{LtiError, Result};
 use crate::lti::{StateSpace, TransferFunction};
 
-/// Series connection g2·g1 (no cancellation).
-pub fn series(g1: &TransferFunction, g2: &TransferFunction) -> TransferFunction {
-    g2 * g1
-}
-
-/// Parallel connection g1 + g2 = (N₁D₂ + N₂D₁)/(D₁D₂) (no cancellation).
-///
-/// Errors: those of [`TransferFunction::new`] (a sum that vanishes identically is the zero
-/// transfer function, which is allowed).
-pub fn parallel(g1: &TransferFunction, g2: &TransferFunction) -> Result<TransferFunction> {
-    let num = &(g1.num() * g2.den()) + &(g2.num() * g1.den());
-    TransferFunction::new(num, g1.den() * g2.den())
-}
-
-/// Feedback u = r + sign·H·y around G: T = N_G·D_H/(D_G·D_H − sign·N_G·N_H) (no
-/// cancellation; `sign = -1.0` is negative feedback).
-///
-/// Errors: a sign other than ±1, a characteristic polynomial that vanishes identically (the
-/// loop is not well posed).
-pub fn feedback(g: &TransferFunction, h: &TransferFunction, sign: f64) -> Result<TransferFunction> {
-    check_sign(sign)?;
-    let num = g.num() * h.den();
-    let den = &(g.den() * h.den()) - &(g.num() * h.num()).scale(sign);
-    if den.is_zero() {
-        return Err(LtiError::invalid(
-            "the feedback loop is not well posed: 1 − sign·G·H vanishes identically",
-        ));
+impl TransferFunction {
+    /// Series connection: `self` first, then `next` — next·self (no cancellation), in the
+    /// two models' common domain.
+    ///
+    /// Errors: models of different domains ([`Domain::join`](crate::lti::Domain::join)).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// assert_eq!(g.series(&g).unwrap().den().coeffs(), &[1.0, 2.0, 1.0]);
+    /// ```
+    pub fn series(&self, next: &TransferFunction) -> Result<TransferFunction> {
+        let domain = self.domain().join(next.domain(), "series")?;
+        Ok((next * self).with_domain(domain))
     }
-    TransferFunction::new(num, den)
+
+    /// Parallel connection self + other = (N₁D₂ + N₂D₁)/(D₁D₂) (no cancellation), in the two
+    /// models' common domain.
+    ///
+    /// Errors: models of different domains; those of [`TransferFunction::new`] (a sum that
+    /// vanishes identically is the zero transfer function, which is allowed).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// let p = g.parallel(&g).unwrap();
+    /// assert_eq!((p.num().coeffs(), p.den().coeffs()), (&[2.0, 2.0][..], &[1.0, 2.0, 1.0][..]));
+    /// ```
+    pub fn parallel(&self, other: &TransferFunction) -> Result<TransferFunction> {
+        let domain = self.domain().join(other.domain(), "parallel")?;
+        let num = &(self.num() * other.den()) + &(other.num() * self.den());
+        Ok(TransferFunction::new(num, self.den() * other.den())?.with_domain(domain))
+    }
+
+    /// Feedback u = r + sign·H·y around G = `self`: T = N_G·D_H/(D_G·D_H − sign·N_G·N_H) (no
+    /// cancellation; `sign = -1.0` is negative feedback), in the two models' common domain. A
+    /// constant gain k in the loop is `h = TransferFunction::constant(k)`.
+    ///
+    /// Errors: a sign other than ±1, models of different domains, a characteristic polynomial
+    /// that vanishes identically (the loop is not well posed).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// // 1/s with a gain 2 in negative feedback: 1/(s + 2)
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 0.0]).unwrap();
+    /// let t = g.feedback(&TransferFunction::constant(2.0), -1.0).unwrap();
+    /// assert_eq!(t.den().coeffs(), &[1.0, 2.0]);
+    /// ```
+    pub fn feedback(&self, h: &TransferFunction, sign: f64) -> Result<TransferFunction> {
+        check_sign(sign)?;
+        let domain = self.domain().join(h.domain(), "feedback")?;
+        let num = self.num() * h.den();
+        let den = &(self.den() * h.den()) - &(self.num() * h.num()).scale(sign);
+        if den.is_zero() {
+            return Err(LtiError::invalid(
+                "the feedback loop is not well posed: 1 − sign·G·H vanishes identically",
+            ));
+        }
+        Ok(TransferFunction::new(num, den)?.with_domain(domain))
+    }
 }
 
 /// Errors unless `sign` is −1 or +1.
@@ -72,9 +110,11 @@ pub(crate) fn check_sign(sign: f64) -> Result<()> {
 
 impl StateSpace {
     /// Series connection: `self` first, then `next` (x = [x₁; x₂]):
-    /// A = [A₁ 0; B₂C₁ A₂], B = [B₁; B₂D₁], C = [D₂C₁ C₂], D = D₂D₁.
+    /// A = [A₁ 0; B₂C₁ A₂], B = [B₁; B₂D₁], C = [D₂C₁ C₂], D = D₂D₁, in the two models'
+    /// common domain.
     ///
-    /// Errors: the outputs of `self` do not match the inputs of `next`.
+    /// Errors: models of different domains ([`Domain::join`](crate::lti::Domain::join)); the outputs of `self` do not
+    /// match the inputs of `next`.
     ///
     /// ```
     /// use ltikit::{StateSpace, TransferFunction};
@@ -83,6 +123,7 @@ impl StateSpace {
     /// assert_eq!(s.to_tf().unwrap().den().coeffs(), &[1.0, 2.0, 1.0]);
     /// ```
     pub fn series(&self, next: &StateSpace) -> Result<StateSpace> {
+        let domain = self.domain.join(next.domain, "series")?;
         if self.n_outputs() != next.n_inputs() {
             return Err(LtiError::invalid(format!(
                 "series connection: the first model has {} outputs but the second {} inputs",
@@ -98,13 +139,13 @@ impl StateSpace {
         a.view_mut((n1, n1), (n2, n2)).copy_from(&next.a);
         let b = stack_rows(&self.b, &(&next.b * &self.d));
         let c = stack_cols(&(&next.d * &self.c), &next.c);
-        StateSpace::new(a, b, c, &next.d * &self.d)
+        Ok(StateSpace::new(a, b, c, &next.d * &self.d)?.with_domain(domain))
     }
 
     /// Parallel connection (same inputs, outputs added): A = diag(A₁, A₂), B = [B₁; B₂],
-    /// C = [C₁ C₂], D = D₁ + D₂.
+    /// C = [C₁ C₂], D = D₁ + D₂, in the two models' common domain.
     ///
-    /// Errors: different numbers of inputs or outputs.
+    /// Errors: models of different domains; different numbers of inputs or outputs.
     ///
     /// ```
     /// use ltikit::{StateSpace, TransferFunction};
@@ -113,6 +154,7 @@ impl StateSpace {
     /// assert!((p.to_tf().unwrap().eval(0.0.into()).re - 2.0).abs() < 1e-14);
     /// ```
     pub fn parallel(&self, other: &StateSpace) -> Result<StateSpace> {
+        let domain = self.domain.join(other.domain, "parallel")?;
         if self.dims() != other.dims() {
             return Err(LtiError::invalid(format!(
                 "parallel connection: {}×{} and {}×{} models (outputs × inputs) differ",
@@ -125,14 +167,15 @@ impl StateSpace {
         let a = block_diag(&self.a, &other.a);
         let b = stack_rows(&self.b, &other.b);
         let c = stack_cols(&self.c, &other.c);
-        StateSpace::new(a, b, c, &self.d + &other.d)
+        Ok(StateSpace::new(a, b, c, &self.d + &other.d)?.with_domain(domain))
     }
 
     /// Feedback u₁ = r + sign·y₂ with y₂ = H·y₁ around `self` = G (x = [x_G; x_H]). With
     /// E = (I − sign·D_H·D_G)⁻¹ and u₁ = E(r + sign·D_H·C_G x_G + sign·C_H x_H):
-    /// ẋ_G = A_G x_G + B_G u₁, ẋ_H = A_H x_H + B_H y₁, y₁ = C_G x_G + D_G u₁.
+    /// ẋ_G = A_G x_G + B_G u₁, ẋ_H = A_H x_H + B_H y₁, y₁ = C_G x_G + D_G u₁ (x[k+1] for ẋ in
+    /// discrete time), in the two models' common domain.
     ///
-    /// Errors: a sign other than ±1, mismatched dimensions, a singular I − sign·D_H·D_G
+    /// Errors: a sign other than ±1, models of different domains, mismatched dimensions, a singular I − sign·D_H·D_G
     /// (algebraic loop not well posed).
     ///
     /// ```
@@ -145,6 +188,7 @@ impl StateSpace {
     /// ```
     pub fn feedback(&self, h: &StateSpace, sign: f64) -> Result<StateSpace> {
         check_sign(sign)?;
+        let domain = self.domain.join(h.domain, "feedback")?;
         let (m, p) = (self.n_inputs(), self.n_outputs());
         if h.n_inputs() != p || h.n_outputs() != m {
             return Err(LtiError::invalid(format!(
@@ -178,7 +222,7 @@ impl StateSpace {
         let de = &self.d * &e;
         let b = stack_rows(&(&self.b * &e), &(&h.b * &de));
         let c = stack_cols(&y1, &y2);
-        StateSpace::new(a, b, c, de)
+        Ok(StateSpace::new(a, b, c, de)?.with_domain(domain))
     }
 
     /// (outputs, inputs).
@@ -222,13 +266,10 @@ mod tests {
         let g = tf(&[1.0], &[1.0, 0.0]);
         let one = tf(&[1.0], &[1.0]);
         // 1/s with +1 feedback: 1/(s − 1)
-        assert_eq!(
-            feedback(&g, &one, 1.0).unwrap().den().coeffs(),
-            &[1.0, -1.0]
-        );
-        assert!(feedback(&g, &one, 0.5).is_err());
+        assert_eq!(g.feedback(&one, 1.0).unwrap().den().coeffs(), &[1.0, -1.0]);
+        assert!(g.feedback(&one, 0.5).is_err());
         // G = 1, H = 1, positive feedback: 1 − 1 ≡ 0
-        assert!(feedback(&one, &one, 1.0).is_err());
+        assert!(one.feedback(&one, 1.0).is_err());
     }
 
     #[test]
@@ -236,7 +277,7 @@ mod tests {
         // G = (s + 2)/(s + 1) (D = 1), H = 3/(s + 4): T = G/(1 + GH)
         let g = tf(&[1.0, 2.0], &[1.0, 1.0]);
         let h = tf(&[3.0], &[1.0, 4.0]);
-        let t = feedback(&g, &h, -1.0).unwrap();
+        let t = g.feedback(&h, -1.0).unwrap();
         let ss = StateSpace::from_tf(&g)
             .unwrap()
             .feedback(&StateSpace::from_tf(&h).unwrap(), -1.0)

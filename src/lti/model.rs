@@ -125,7 +125,7 @@ impl StateSpace {
     }
 
     /// The SISO channel from input `input` to output `output` (0-based): (A, B[:, i],
-    /// C[j, :], D[j, i]).
+    /// C[j, :], D[j, i]), in the model's domain.
     ///
     /// Errors: an index that does not exist (naming the ranges).
     ///
@@ -157,6 +157,7 @@ impl StateSpace {
             self.c.rows(output, 1).into_owned(),
             DMatrix::from_element(1, 1, self.d[(output, input)]),
         )
+        .map(|ch| ch.with_domain(self.domain))
     }
 
     /// Refuses models beyond [`MAX_STATES`] states or [`MAX_SIGNALS`] inputs or outputs.

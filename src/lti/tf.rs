@@ -221,13 +221,6 @@ impl TransferFunction {
         Ok(Self::new(self.den.clone(), self.num.clone())?.with_domain(self.domain))
     }
 
-    /// Negative unity-feedback-free closed loop G/(1 + k·G) with a constant gain k in the
-    /// feedback path.
-    pub fn feedback(&self, k: f64) -> Result<Self> {
-        let den = &self.den + &self.num.scale(k);
-        Ok(Self::new(self.num.clone(), den)?.with_domain(self.domain))
-    }
-
     /// Non-zero leading coefficients ratio b_m / a_n (the high-frequency gain coefficient).
     pub fn gain(&self) -> f64 {
         self.num.leading() / self.den.leading()
@@ -236,7 +229,8 @@ impl TransferFunction {
 
 impl std::ops::Mul for &TransferFunction {
     type Output = TransferFunction;
-    /// Series connection G₁·G₂ (no cancellation is performed).
+    /// The product G₁·G₂ (no cancellation is performed), in G₁'s domain; the series
+    /// connection that checks the domains is [`TransferFunction::series`].
     fn mul(self, o: &TransferFunction) -> TransferFunction {
         TransferFunction {
             num: &self.num * &o.num,
@@ -248,7 +242,8 @@ impl std::ops::Mul for &TransferFunction {
 
 impl std::ops::Add for &TransferFunction {
     type Output = TransferFunction;
-    /// Parallel connection G₁ + G₂ over the common denominator D₁D₂.
+    /// The sum G₁ + G₂ over the common denominator D₁D₂, in G₁'s domain; the parallel
+    /// connection that checks the domains is [`TransferFunction::parallel`].
     fn add(self, o: &TransferFunction) -> TransferFunction {
         if self.den == o.den {
             return TransferFunction {
@@ -330,7 +325,7 @@ mod tests {
         let g = (&s + &one).inv().unwrap();
         let h = &g * &g;
         assert_eq!(h.den().coeffs(), &[1.0, 2.0, 1.0]);
-        let cl = g.feedback(1.0).unwrap();
+        let cl = g.feedback(&one, -1.0).unwrap();
         assert_eq!(cl.den().coeffs(), &[1.0, 2.0]);
         assert_eq!(format!("{}", -&g), "-1 / (s + 1)");
     }

@@ -1,6 +1,10 @@
-//! Interconnections of factored plants: series keeps the factors, parallel and feedback find
-//! the roots of the one new polynomial (the sum's numerator, the closed-loop characteristic
-//! polynomial) and report what cancels.
+//! Interconnections of factored plants, in the one shape of every model type
+//! ([`crate::lti::interconnect`]: `series(&self, &next)`, `parallel(&self, &other)`,
+//! `feedback(&self, &h, sign)`, the two domains joined): series keeps the factors, parallel and
+//! feedback find the roots of the one new polynomial (the sum's numerator, the closed-loop
+//! characteristic polynomial) and report what cancels. `feedback` returns more than the closed
+//! loop — a [`Feedback`] with the closed loop in `closed`, the characteristic polynomial, its
+//! roots and the hidden modes.
 
 use super::coefficients::coefficient_source;
 use super::decision::Decision;
@@ -33,7 +37,8 @@ impl Factored {
     /// (s + 1)⁻¹⁰ · (s + 1)⁻¹⁰ is exactly a 20-fold pole; a zero of one that is a pole of the
     /// other cancels in the reduced form and stays a characteristic root (a hidden mode).
     ///
-    /// Errors: those of [`Factored::from_zpk`] (more than
+    /// Errors: models of different domains ([`Domain::join`](crate::lti::Domain::join)); those
+    /// of [`Factored::from_zpk`] (more than
     /// [`MAX_FACTORED_ORDER`](super::pole_zero::MAX_FACTORED_ORDER) roots).
     ///
     /// ```
@@ -53,7 +58,8 @@ impl Factored {
     /// Parallel connection self + other = (N₁D₂ + N₂D₁)/(D₁D₂): the poles of both kept, the
     /// zeros found as the roots of the new numerator (the one root finding).
     ///
-    /// Errors: a numerator beyond [`crate::MAX_ORDER`], the root finder's.
+    /// Errors: models of different domains, a numerator beyond [`crate::MAX_ORDER`], the root
+    /// finder's.
     ///
     /// ```
     /// use ltikit::TransferFunction;
@@ -83,8 +89,11 @@ impl Factored {
     /// and in the hidden list. T keeps the coefficients (for the margin polynomials) and its
     /// roots.
     ///
-    /// Errors: a sign other than ±1, an improper loop G·H, a loop that is not well posed
-    /// (1 − sign·G·H ≡ 0 at s → ∞), the root finder's.
+    /// Returns the closed loop T (`closed`, in the two models' common domain) with the
+    /// characteristic polynomial, its roots and the hidden modes ([`Feedback`]).
+    ///
+    /// Errors: a sign other than ±1, models of different domains, an improper loop G·H, a
+    /// loop that is not well posed (1 − sign·G·H ≡ 0 at s → ∞), the root finder's.
     ///
     /// ```
     /// use ltikit::TransferFunction;
@@ -124,13 +133,15 @@ impl Factored {
     }
 
     /// A factored form whose roots are already known: coefficients `tf` (kept as the source)
-    /// with its denominator roots `poles` and numerator roots `zeros` (no root finding).
+    /// with its denominator roots `poles` and numerator roots `zeros` (no root finding), in
+    /// `tf`'s domain.
     pub(crate) fn from_parts(
         tf: TransferFunction,
         poles: Vec<Root>,
         zeros: Vec<Root>,
     ) -> Result<Factored> {
         let zero = tf.num().is_zero();
+        let domain = tf.domain();
         let poles = canonical_roots(&poles, "pole")?;
         let zeros = if zero {
             Vec::new()
@@ -140,7 +151,7 @@ impl Factored {
         let pz = PoleZero::new(poles, zeros, zero);
         let gain = if zero { 0.0 } else { tf.gain() };
         let source = coefficient_source(tf, &pz)?;
-        Ok(assemble(pz, gain, source, Decision::default()))
+        Ok(assemble(pz, gain, source, Decision::default()).with_domain(domain))
     }
 }
 

@@ -1,7 +1,8 @@
 //! Analyses of state-space models as such (SISO or MIMO): time responses by exact
 //! discretisation ([`time`]), the analysis of the whole model ([`report`]: eigen structure,
 //! controllability, minimal realisation, zeros, dc gains, stability, modes) and the MIMO
-//! frequency response ([`freq`]). (A SISO channel's poles, zeros and everything built on them go through the
+//! frequency response ([`freq`], each channel through the factored core's one frequency
+//! engine). (A SISO channel's poles, zeros and everything built on them go through the
 //! factored core.)
 
 pub mod freq;

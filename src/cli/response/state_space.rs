@@ -33,8 +33,9 @@ struct SsResponseJson {
 
 /// Runs `response` on the state-space model of `plant` (its chosen channel, if any).
 pub(super) fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
-    let ss = channel_model(a, plant)?;
-    let (inputs, outputs) = signal_names(a, plant);
+    let channel = a.plant.channel()?;
+    let ss = channel_model(plant, channel)?;
+    let (inputs, outputs) = signal_names(plant, channel);
     let x0 = match &a.x0 {
         Some(s) => Some(parse::numbers(s, "--x0")?),
         None => None,
@@ -235,19 +236,19 @@ fn rows(out: &mut Stream, text: &mut String, v: &[Vec<f64>]) -> Result<bool> {
     Ok(true)
 }
 
-/// The model, or its chosen channel.
-fn channel_model(a: &ResponseArgs, plant: &Plant) -> Result<StateSpace> {
+/// The model, or its chosen channel (input, output).
+fn channel_model(plant: &Plant, channel: Option<(usize, usize)>) -> Result<StateSpace> {
     let ss = plant.state_space()?;
-    Ok(match a.plant.channel()? {
+    Ok(match channel {
         Some((i, o)) => ss.channel(i, o)?,
         None => ss,
     })
 }
 
 /// The input and output names (those of the chosen channel).
-fn signal_names(a: &ResponseArgs, plant: &Plant) -> (Vec<String>, Vec<String>) {
+fn signal_names(plant: &Plant, channel: Option<(usize, usize)>) -> (Vec<String>, Vec<String>) {
     let sig = &plant.signals;
-    match a.plant.channel().ok().flatten() {
+    match channel {
         Some((i, o)) => (
             sig.inputs.get(i).cloned().into_iter().collect(),
             sig.outputs.get(o).cloned().into_iter().collect(),
