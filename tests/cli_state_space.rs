@@ -60,6 +60,7 @@ fn analyze_mimo_per_channel_json_contract() {
     assert_eq!(
         keys,
         [
+            "dt",
             "model",
             "name",
             "states",

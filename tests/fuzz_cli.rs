@@ -146,6 +146,7 @@ const PLANT: &[&str] = &[
     "--sensitivity",
     "--control-sensitivity",
     "--minreal",
+    "--dt",
 ];
 
 /// The picture options of bode, step, pzmap and nyquist.
@@ -586,6 +587,7 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--input" => r.pick(&["step", "impulse", "ramp", "sin:2"]).into(),
         "--channel" => "1,1".into(),
         "--minreal" => "1e-8".into(),
+        "--dt" => r.pick(&["0.1", "1", "0.01"]).into(),
         "--controller" => "pid:kp=1,ki=0.5,kd=0.1,tf=0.01".into(),
         "--phase" => "1,2".into(),
         _ => return None,
@@ -639,6 +641,11 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         "--minreal" => v(r
             .pick(&[
                 "1e-8", "0", "-1", "1", "0.999", "nan", "inf", "1e300", "1e-300", "", "x",
+            ])
+            .into()),
+        "--dt" => v(r
+            .pick(&[
+                "0.1", "1", "1e-3", "0", "-1", "nan", "inf", "1e300", "1e-300", "", "x",
             ])
             .into()),
         "--channel" => v(r
