@@ -262,6 +262,8 @@ impl Factored {
     /// Straight-line Bode asymptotes of G in lowest terms over [w_min, w_max]
     /// ([`bode_asymptotes`]).
     pub fn bode_asymptotes(&self, w_min: f64, w_max: f64) -> Result<BodeAsymptotes> {
+        self.domain()
+            .require_continuous("straight-line Bode asymptotes")?;
         bode_asymptotes(
             self.reduced_zeros(),
             self.reduced_poles(),

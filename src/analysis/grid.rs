@@ -66,6 +66,9 @@ pub fn check_points(points: usize) -> Result<()> {
 /// ```
 pub fn auto_frequency_grid(f: &Factored, points: usize) -> Result<Vec<f64>> {
     check_points(points)?;
+    if let Some(dt) = f.domain().dt() {
+        return Ok(discrete_frequency_grid(f, dt, points));
+    }
     let form = f.bode();
     let (a, b) = form.decade_range();
     let (lo, hi) = (10f64.powf(a), 10f64.powf(b));
@@ -103,6 +106,42 @@ pub fn auto_frequency_grid(f: &Factored, points: usize) -> Result<Vec<f64>> {
     Ok(w)
 }
 
+/// A logarithmic grid for a discrete-time plant, ending exactly at the Nyquist frequency
+/// π/T and starting two decades below its slowest mode (equivalent s = ln(z)/T) or three
+/// below π/T; dense about the angle of every pole or zero near the unit circle.
+fn discrete_frequency_grid(f: &Factored, dt: f64, points: usize) -> Vec<f64> {
+    let hi = std::f64::consts::PI / dt;
+    let slowest = f
+        .reduced_poles()
+        .iter()
+        .chain(f.reduced_zeros())
+        .filter_map(|r| super::discrete::equivalent_s(r.value, dt))
+        .map(|s| s.norm())
+        .filter(|m| *m > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let lo = (hi * 1e-3).min(slowest * 1e-2).max(hi * 1e-6);
+    let (a, b) = (lo.log10(), hi.log10());
+    let mut w: Vec<f64> = (0..points)
+        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (points - 1) as f64))
+        .collect();
+    w[0] = lo;
+    w[points - 1] = hi;
+    for r in f.reduced_poles().iter().chain(f.reduced_zeros()) {
+        let d = (r.value.norm() - 1.0).abs();
+        let angle = r.value.im.atan2(r.value.re).abs();
+        if d < 0.2 && angle > 0.0 {
+            for k in -24i32..=24 {
+                let x = (angle + d.max(1e-9) * 0.25 * f64::from(k)) / dt;
+                w.push(x);
+            }
+        }
+    }
+    w.retain(|&x| x.is_finite() && x >= lo && x <= hi);
+    w.sort_by(f64::total_cmp);
+    w.dedup();
+    w
+}
+
 /// The end time for plotting a time response (step, impulse, initial condition) of `tf`,
 /// from its reduced poles:
 /// - stable modes: 1.5 × the 2 % settling time of the slowest, (ln 50 + 2(m−1))/|σ| for an
@@ -128,6 +167,9 @@ pub fn auto_frequency_grid(f: &Factored, points: usize) -> Result<Vec<f64>> {
 /// assert_eq!(auto_time_span(&g.factored().unwrap()).unwrap().t_end, 5.0);
 /// ```
 pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
+    if let Some(dt) = f.domain().dt() {
+        return discrete_time_span(f, dt);
+    }
     let pz = f.pole_zero();
     let mut settle: Option<(f64, String)> = None;
     let mut period: Option<(f64, String)> = None;
@@ -226,6 +268,55 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
         return Err(LtiError::Undefined {
             what: "time span".into(),
             reason: format!("{reason}: {raw:e} s is outside the floating-point range"),
+        });
+    }
+    Ok(TimeSpan { t_end, reason })
+}
+
+/// The span of a discrete-time plant: its modes read through the equivalent s = ln(z)/T
+/// (settling ln 50/|σ|, five periods on the circle, ×1000 growth outside), at least 20
+/// samples and the order plus 10 (a deadbeat or FIR plant has no mode).
+fn discrete_time_span(f: &Factored, dt: f64) -> Result<TimeSpan> {
+    use super::discrete::{circle_side, equivalent_s};
+    let mut raw: Option<(f64, String)> = None;
+    let mut growth: Option<(f64, String)> = None;
+    for r in f.reduced_poles() {
+        let Some(s) = equivalent_s(r.value, dt) else {
+            continue;
+        };
+        let m = r.multiplicity as f64;
+        let name = fmt_root(r.value, 4);
+        let (t, why) = match circle_side(r.value) {
+            HalfPlane::Left => (
+                1.5 * (50f64.ln() + 2.0 * (m - 1.0)) / s.re.abs(),
+                format!("2 % settling of the slowest mode z = {name} × 1.5"),
+            ),
+            HalfPlane::Axis if s.im.abs() > 0.0 => (
+                5.0 * std::f64::consts::TAU / s.im.abs(),
+                format!("five periods of the mode z = {name} on the unit circle"),
+            ),
+            HalfPlane::Axis => continue,
+            HalfPlane::Right => {
+                let t = 1000f64.ln() / s.re;
+                if growth.as_ref().is_none_or(|(g, _)| t < *g) {
+                    growth = Some((t, format!("unstable pole at z = {name}: ×1000")));
+                }
+                continue;
+            }
+        };
+        if raw.as_ref().is_none_or(|(x, _)| t > *x) {
+            raw = Some((t, why));
+        }
+    }
+    let floor = (20.0f64).max(f.order() as f64 + 10.0) * dt;
+    let (t, reason) = growth
+        .or(raw)
+        .unwrap_or((floor, "no decaying mode: 20 samples".into()));
+    let t_end = if t < floor { floor } else { nice_ceil(t) };
+    if !(t_end.is_finite() && t_end > 0.0) {
+        return Err(LtiError::Undefined {
+            what: "time span".into(),
+            reason: format!("{reason}: {t:e} s is outside the floating-point range"),
         });
     }
     Ok(TimeSpan { t_end, reason })

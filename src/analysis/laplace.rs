@@ -255,6 +255,8 @@ fn meet(f: &Factored, input: &Input) -> Meeting {
 impl Decomposition {
     /// Splits Y(s) into its forced and initial-condition parts (see the module docs).
     pub(crate) fn new(f: &Factored, input: &Input, ics: &[f64]) -> Result<Decomposition> {
+        f.domain()
+            .require_continuous("the closed form y(t) (inverse Laplace transform)")?;
         input.validate()?;
         f.require_proper(&format!("the {input} response"), false)?;
         let meeting = meet(f, input);

@@ -526,6 +526,8 @@ impl TransferFunction {
 impl Factored {
     /// The Nyquist contour ([`nyquist_contour`]).
     pub fn nyquist(&self) -> Result<NyquistContour> {
+        self.domain()
+            .require_continuous("the Nyquist contour (along the imaginary axis)")?;
         nyquist_contour(self)
     }
 }

@@ -232,6 +232,9 @@ impl Factored {
         let n = (points - 1) as f64;
         let uniform: Vec<f64> = (0..points).map(|i| t_end * (i as f64 / n)).collect();
         check_times(&uniform)?;
+        if let Some(dt) = self.domain().dt() {
+            return self.staircase(input, dt, t_end, uniform);
+        }
         let dec = Decomposition::new(self, input, &[])?;
         let t = match dec.closed_form() {
             Ok(parts) => lock_to_oscillation(&uniform, &parts.closed_form),
@@ -242,6 +245,42 @@ impl Factored {
             t,
             y,
             final_value: dec.final_value(),
+        })
+    }
+}
+
+impl Factored {
+    /// A discrete-time response for drawing: each sample held until the next (two points
+    /// per sample, the second at the next sample's time) when there are at most as many
+    /// samples as `uniform` points; otherwise the held values at the `uniform` times.
+    fn staircase(
+        &self,
+        input: &Input,
+        dt: f64,
+        t_end: f64,
+        uniform: Vec<f64>,
+    ) -> Result<TimeResponse> {
+        let samples = (t_end / dt).floor() as usize;
+        if samples + 1 > uniform.len() {
+            return self.time_response(input, &[], &uniform);
+        }
+        let k: Vec<f64> = (0..=samples).map(|k| k as f64 * dt).collect();
+        let r = self.time_response(input, &[], &k)?;
+        let mut t = Vec::with_capacity(2 * k.len());
+        let mut y = Vec::with_capacity(2 * k.len());
+        for (i, (&ti, &yi)) in k.iter().zip(&r.y).enumerate() {
+            t.push(ti);
+            y.push(yi);
+            let next = k.get(i + 1).copied().unwrap_or(t_end);
+            if next > ti {
+                t.push(next);
+                y.push(yi);
+            }
+        }
+        Ok(TimeResponse {
+            t,
+            y,
+            final_value: r.final_value,
         })
     }
 }

@@ -20,6 +20,9 @@ pub struct ResidueArgs {
 
 pub fn run(a: &ResidueArgs) -> Result<()> {
     let plant = a.plant.single()?;
+    plant.domain().require_continuous(
+        "`residue` (partial fractions in s for the inverse Laplace transform)",
+    )?;
     let chans = a.plant.channels(&plant)?;
     super::channels::print_each(&plant, &chans, a.json, |f| f.partial_fractions(), report)
 }

@@ -59,6 +59,9 @@ pub fn run(a: &RouthArgs) -> Result<()> {
             "routh needs a transfer function (its characteristic polynomial); this plant is a state-space model"
         );
     };
+    g.domain().require_continuous(
+        "the Routh–Hurwitz table (it counts roots in the right half plane, not outside the unit circle)",
+    )?;
     let p = match a.gain {
         None => g.den().clone(),
         Some(k) if k.is_finite() => &g.den().clone() + &g.num().scale(k),

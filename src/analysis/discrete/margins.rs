@@ -91,7 +91,7 @@ pub(crate) fn margins(f: &Factored, dt: f64) -> Result<Margins> {
     let phases: Vec<f64> = grid.iter().map(|&t| phase(t)).collect();
     for i in 0..grid.len().saturating_sub(1) {
         let (ka, kb) = (branch(phases[i]), branch(phases[i + 1]));
-        if !ka.is_finite() || !kb.is_finite() || ka == kb {
+        if !ka.is_finite() || !kb.is_finite() || (ka - kb).abs() < 0.5 {
             continue;
         }
         if !(mags[i].is_finite() && mags[i + 1].is_finite()) {

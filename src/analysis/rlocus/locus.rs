@@ -198,6 +198,9 @@ impl Factored {
     /// assert_eq!(l.poles.len(), 3);
     /// ```
     pub fn root_locus(&self, opts: &RootLocusOptions) -> Result<RootLocus> {
+        self.domain().require_continuous(
+            "the root locus (its stable gains are read on the imaginary axis)",
+        )?;
         let (num, den) = self.locus_polys()?;
         root_locus(&num, &den, opts)
     }
