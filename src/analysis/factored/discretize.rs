@@ -57,7 +57,7 @@ impl Factored {
                     (Vec::new(), poles, 0.0)
                 } else {
                     let ss = self.reduced_realisation()?;
-                    let (zeros, gain) = zeros_and_gain(&ss.c2d(dt, method)?)?;
+                    let (zeros, gain) = zeros_and_gain(&ss.c2d(dt, method)?, None)?;
                     (with(zeros, map_roots(cancelled, zoh)?), poles, gain)
                 }
             }
@@ -135,7 +135,7 @@ impl Factored {
                     (Vec::new(), poles, 0.0)
                 } else {
                     let ss = self.reduced_realisation()?.with_domain(self.domain());
-                    let (zeros, gain) = zeros_and_gain(&ss.d2c(method)?)?;
+                    let (zeros, gain) = zeros_and_gain(&ss.d2c(method)?, Some(LOG_RANK_TOL))?;
                     let c = map_roots(cancelled, |z| zoh_preimage(z, dt))?;
                     (with(zeros, c), poles, gain)
                 }
@@ -151,14 +151,21 @@ impl Factored {
     }
 }
 
+/// The relative rank tolerance of the zeros of a realisation converted by the matrix
+/// logarithm: its structurally zero Markov parameters come out at ~1e-14 of the system's
+/// norm (the rounding of the discrete data, amplified by 1/T), which the default tolerance
+/// ((n + 1)²·ε) would take for a gain — and then report zeros near infinity.
+const LOG_RANK_TOL: f64 = 1e-10;
+
 /// The transmission zeros (multiplicities by clusters, exact conjugates) and the first
-/// non-zero Markov parameter of a SISO model; no zeros and gain 0 for G ≡ 0.
-fn zeros_and_gain(ss: &StateSpace) -> Result<(Vec<Root>, f64)> {
-    let rd = relative_degree(&ss.a, &ss.b, &ss.c, &ss.d, None)?;
+/// non-zero Markov parameter of a SISO model (rank tolerance `tol`, relative; `None`: the
+/// default); no zeros and gain 0 for G ≡ 0.
+fn zeros_and_gain(ss: &StateSpace, tol: Option<f64>) -> Result<(Vec<Root>, f64)> {
+    let rd = relative_degree(&ss.a, &ss.b, &ss.c, &ss.d, tol)?;
     if rd.r.is_none() {
         return Ok((Vec::new(), 0.0));
     }
-    let tz = transmission_zeros(&ss.a, &ss.b, &ss.c, &ss.d, None)?;
+    let tz = transmission_zeros(&ss.a, &ss.b, &ss.c, &ss.d, tol)?;
     Ok((conjugate_closed(&tz.distinct), rd.gain))
 }
 
