@@ -262,8 +262,11 @@ pub fn number(x: f64) -> String {
 /// use ltikit::error::complex_number;
 /// assert_eq!(complex_number(-0.5, 0.0), "-0.5");
 /// assert_eq!(complex_number(0.3, -0.4), "0.3 - 0.4j");
+/// assert_eq!(complex_number(-0.0, 0.0), "0");
 /// ```
 pub fn complex_number(re: f64, im: f64) -> String {
+    // a zero's sign is rounding, not information
+    let re = if re == 0.0 { 0.0 } else { re };
     if im == 0.0 {
         return number(re);
     }

@@ -205,6 +205,8 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("rtol", "--rtol"),
     ("atol", "--atol"),
     ("phase", "--phase"),
+    ("method", "--method"),
+    ("prewarp", "--prewarp"),
 ];
 
 /// The flag of a library field name, if the command line has one.
