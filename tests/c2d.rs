@@ -43,17 +43,30 @@ const D_MIMO: &[&[f64]] = &[&[0.0, 0.5], &[0.0, 0.0]];
 fn zoh_of_a_first_order_lag_is_its_closed_form() {
     // 1/(s + a) → ((1 − e^(−aT))/a) / (z − e^(−aT)) (the ZOH equivalent, exact)
     let mut worst = 0.0f64;
-    for (a, t) in [(2.0, 0.1), (0.5, 0.01), (10.0, 0.3), (1.0, 1e-4), (3.0, 2.0)] {
-        let want_pole = (-a * t as f64).exp();
-        let want_gain = -(-a * t as f64).exp_m1() / a;
+    for (a, t) in [
+        (2.0f64, 0.1f64),
+        (0.5, 0.01),
+        (10.0, 0.3),
+        (1.0, 1e-4),
+        (3.0, 2.0),
+    ] {
+        let want_pole = (-a * t).exp();
+        let want_gain = -(-a * t).exp_m1() / a;
         let g = tf(&[1.0], &[1.0, a]).c2d(t, ZOH).unwrap();
         assert_eq!(g.domain(), Domain::discrete(t).unwrap());
         assert_eq!(g.den().degree(), 1);
         let e1 = rel(g.den().coeff(0), -want_pole);
         let e2 = rel(g.num().coeff(0), want_gain);
-        assert!(e1 <= 1e-15 && e2 <= 1e-15, "a = {a}, T = {t}: {e1:e} {e2:e}");
+        assert!(
+            e1 <= 1e-15 && e2 <= 1e-15,
+            "a = {a}, T = {t}: {e1:e} {e2:e}"
+        );
         // the factored form maps the pole exactly
-        let f = tf(&[1.0], &[1.0, a]).factored().unwrap().c2d(t, ZOH).unwrap();
+        let f = tf(&[1.0], &[1.0, a])
+            .factored()
+            .unwrap()
+            .c2d(t, ZOH)
+            .unwrap();
         assert_eq!(f.poles()[0].value, c(want_pole, 0.0));
         let e3 = rel(f.gain(), want_gain);
         assert!(e3 <= 1e-15, "{e3:e}");
@@ -106,9 +119,17 @@ fn zoh_of_an_underdamped_second_order_plant_is_its_closed_form() {
 //   python3 -m venv /tmp/v && /tmp/v/bin/pip install scipy mpmath
 //   cont2discrete((A, B, C, D), 0.1, method=…)   (D = 0 for 'impulse')
 const SCIPY_AD: &[&[f64]] = &[
-    &[0.8869438879077807, 0.17977067330052918, 0.008445329197696283],
+    &[
+        0.8869438879077807,
+        0.17977067330052918,
+        0.008445329197696283,
+    ],
     &[-0.1776593410011051, 0.8869438879077806, 0.08144000745256831],
-    &[0.04072000372628415, 0.0042226645988481405, 0.7409545313980365],
+    &[
+        0.04072000372628415,
+        0.0042226645988481405,
+        0.7409545313980365,
+    ],
 ];
 const SCIPY_ZOH_BD: &[&[f64]] = &[
     &[0.0948428056947249, 0.009033172754186023],
@@ -126,9 +147,21 @@ const SCIPY_FOH_DD: &[&[f64]] = &[
 ];
 const SCIPY_TUSTIN: [&[&[f64]]; 4] = [
     &[
-        &[0.8878248974008207, 0.17979284737150675, 0.007817080320500292],
-        &[-0.17783857729138164, 0.8878248974008208, 0.08207934336525308],
-        &[0.041039671682626545, 0.003908540160250148, 0.7393003713113153],
+        &[
+            0.8878248974008207,
+            0.17979284737150675,
+            0.007817080320500292,
+        ],
+        &[
+            -0.17783857729138164,
+            0.8878248974008208,
+            0.08207934336525308,
+        ],
+        &[
+            0.041039671682626545,
+            0.003908540160250148,
+            0.7393003713113153,
+        ],
     ],
     &[
         &[0.09478209888606605, 0.008598788352550322],
@@ -137,7 +170,11 @@ const SCIPY_TUSTIN: [&[&[f64]]; 4] = [
     ],
     &[
         &[0.9644322845417236, 0.09185069376587844, 0.8735587258159079],
-        &[-0.08891928864569083, 0.9439124487004105, 0.04103967168262655],
+        &[
+            -0.08891928864569083,
+            0.9439124487004105,
+            0.04103967168262655,
+        ],
     ],
     &[
         &[0.09189955051788157, 0.46091459839749854],
@@ -150,7 +187,11 @@ const SCIPY_PREWARP: [&[&[f64]]; 4] = [
     &[
         &[0.8852210201376126, 0.1831949145932549, 0.0081125793340972],
         &[-0.1811667697597306, 0.8852210201376126, 0.08348487796253025],
-        &[0.04174243898126513, 0.004056289667048601, 0.7344764228807467],
+        &[
+            0.04174243898126513,
+            0.004056289667048601,
+            0.7344764228807467,
+        ],
     ],
     &[
         &[0.09668948776028927, 0.008941171971387779],
@@ -216,7 +257,9 @@ fn mimo_zoh_matches_scipy_and_a_30_digit_reference() {
         }
     }
     assert!(worst <= 1e-15, "{worst:e}");
-    println!("MIMO ZOH: {e_scipy:.1e} from scipy, {worst:.1e} (absolute) from the 30-digit reference");
+    println!(
+        "MIMO ZOH: {e_scipy:.1e} from scipy, {worst:.1e} (absolute) from the 30-digit reference"
+    );
 }
 
 #[test]
@@ -230,10 +273,7 @@ fn mimo_foh_tustin_and_impulse_match_scipy() {
     assert!(foh.iter().all(|e| *e <= 1e-14), "FOH {foh:?}");
     for (method, want) in [
         (TUSTIN, SCIPY_TUSTIN),
-        (
-            Discretization::Tustin { prewarp: Some(5.0) },
-            SCIPY_PREWARP,
-        ),
+        (Discretization::Tustin { prewarp: Some(5.0) }, SCIPY_PREWARP),
     ] {
         let d = mimo(D_MIMO).c2d(0.1, method).unwrap();
         let errs = [
@@ -294,7 +334,9 @@ fn mapped_poles_are_exponentials_of_the_factored_poles() {
     }
     assert!(e_factored <= 1e-12, "{e_factored:e}");
     assert!(e_coefficients <= 1e-9, "{e_coefficients:e}");
-    println!("G(z) against the realisation: {e_factored:.1e} (factored), {e_coefficients:.1e} (coefficients)");
+    println!(
+        "G(z) against the realisation: {e_factored:.1e} (factored), {e_coefficients:.1e} (coefficients)"
+    );
 }
 
 #[test]
@@ -326,12 +368,18 @@ fn matched_pole_zero_follows_matlab() {
     assert!(rel(d.num().coeff(1), want) <= 1e-15, "{}", d.num().coeff(1));
     assert!(rel(d.num().coeff(0), want) <= 1e-15);
     assert!((want - 0.052339).abs() < 5e-7);
-    let f = g.factored().unwrap().c2d(0.1, Discretization::Matched).unwrap();
+    let f = g
+        .factored()
+        .unwrap()
+        .c2d(0.1, Discretization::Matched)
+        .unwrap();
     assert!(rel(f.gain(), want) <= 1e-15);
     assert_eq!(f.zeros(), &[Root::new(c(-1.0, 0.0), 1)]);
     // the dc gain of a plant without integrators is kept; a biproper plant gets no zero at −1
     let g = tf(&[0.81, 0.162], &[1.0, 2.0]);
-    let d = g.c2d(2.0 * std::f64::consts::PI / 6.0, Discretization::Matched).unwrap();
+    let d = g
+        .c2d(2.0 * std::f64::consts::PI / 6.0, Discretization::Matched)
+        .unwrap();
     assert!((d.eval(c(1.0, 0.0)).re - 0.081).abs() < 1e-15);
     assert_eq!(d.num().degree(), 1);
     // state space goes through the factored form (SISO only)
@@ -351,7 +399,9 @@ fn tustin_of_a_transfer_function_is_the_substitution() {
     let plant = tf(&[4.0, 1.0], &[1.0, 0.8, 4.0]);
     let (t, w) = (0.2, 2.0);
     for g in [
-        plant.c2d(t, Discretization::Tustin { prewarp: Some(w) }).unwrap(),
+        plant
+            .c2d(t, Discretization::Tustin { prewarp: Some(w) })
+            .unwrap(),
         StateSpace::from_tf(&plant)
             .unwrap()
             .c2d(t, Discretization::Tustin { prewarp: Some(w) })
@@ -364,7 +414,9 @@ fn tustin_of_a_transfer_function_is_the_substitution() {
         assert!((a - b).norm() <= 1e-13 * b.norm(), "{a} {b}");
     }
     let f = plant.factored().unwrap();
-    let fd = f.c2d(t, Discretization::Tustin { prewarp: Some(w) }).unwrap();
+    let fd = f
+        .c2d(t, Discretization::Tustin { prewarp: Some(w) })
+        .unwrap();
     let (a, b) = (fd.eval(c(0.0, w * t).exp()), plant.eval(c(0.0, w)));
     assert!((a - b).norm() <= 1e-13 * b.norm(), "{a} {b}");
 }
@@ -420,18 +472,28 @@ fn d2c_inverts_c2d() {
             assert!(ec <= 5e-11, "{g} {method:?}: {ec:e}: {h}");
             for s in [c(0.1, 1.0), c(-0.3, 4.0)] {
                 let (a, b) = (h.eval(s), g.eval(s));
-                assert!((a - b).norm() <= 1e-10 * b.norm(), "{g} {method:?} at {s}: {a} {b}");
+                assert!(
+                    (a - b).norm() <= 1e-10 * b.norm(),
+                    "{g} {method:?} at {s}: {a} {b}"
+                );
             }
             // factored form: G(s) comes back
             let f = g.factored().unwrap();
             let fb = f.c2d(t, method).unwrap().d2c(method).unwrap();
             for s in [c(0.1, 1.0), c(-0.3, 4.0)] {
                 let (a, b) = (fb.eval(s), f.eval(s));
-                assert!((a - b).norm() <= 1e-12 * b.norm(), "{g} {method:?} at {s}: {a} {b}");
+                assert!(
+                    (a - b).norm() <= 1e-12 * b.norm(),
+                    "{g} {method:?} at {s}: {a} {b}"
+                );
             }
             let w = if k == 0 { &mut worst.0 } else { &mut worst.1 };
             *w = w.max(e);
-            let wc = if k == 0 { &mut worst_tf.0 } else { &mut worst_tf.1 };
+            let wc = if k == 0 {
+                &mut worst_tf.0
+            } else {
+                &mut worst_tf.1
+            };
             *wc = wc.max(ec);
         }
     }
@@ -494,18 +556,29 @@ fn poles_without_a_preimage_are_named() {
     let g = tf(&[1.0], &[1.0, 1.0]).with_domain(dt);
     let e = g.d2c(TUSTIN).unwrap_err().to_string();
     assert!(e.contains("z = -1") && e.contains("Tustin"), "{e}");
-    let e = StateSpace::from_tf(&g).unwrap().d2c(TUSTIN).unwrap_err().to_string();
+    let e = StateSpace::from_tf(&g)
+        .unwrap()
+        .d2c(TUSTIN)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("z = -1"), "{e}");
     // d2c inverts zoh and tustin only, and needs a discrete model
-    let e = tf(&[1.0], &[1.0, -0.5]).with_domain(dt).d2c(Discretization::Foh);
+    let e = tf(&[1.0], &[1.0, -0.5])
+        .with_domain(dt)
+        .d2c(Discretization::Foh);
     assert!(e.unwrap_err().to_string().contains("zoh and tustin"));
     assert!(tf(&[1.0], &[1.0, 1.0]).d2c(ZOH).is_err());
 }
 
 #[test]
 fn bad_input_is_refused_with_the_numbers() {
-    let e = Discretization::parse("euler", None).unwrap_err().to_string();
-    assert!(e.contains("'euler'") && e.contains("zoh, foh, tustin (or bilinear), matched, impulse"), "{e}");
+    let e = Discretization::parse("euler", None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("'euler'") && e.contains("zoh, foh, tustin (or bilinear), matched, impulse"),
+        "{e}"
+    );
     assert!(Discretization::parse("zoh", Some(1.0)).is_err());
     for name in ["zoh", "FOH", "tustin", "bilinear", "matched", "impulse"] {
         assert!(Discretization::parse(name, None).is_ok(), "{name}");
@@ -553,7 +626,9 @@ fn foh_and_impulse_through_the_factored_form() {
         }
     }
     // impulse invariance: h_d[k] = T·h(kT); for 1/(s + 1): T·e^(−kT) ⇒ T·z/(z − e^(−T))
-    let d = tf(&[1.0], &[1.0, 1.0]).c2d(0.1, Discretization::Impulse).unwrap();
+    let d = tf(&[1.0], &[1.0, 1.0])
+        .c2d(0.1, Discretization::Impulse)
+        .unwrap();
     assert!((d.num().coeff(1) - 0.1).abs() < 1e-16 && d.num().coeff(0).abs() < 1e-16);
     assert!((d.den().coeff(0) + (-0.1f64).exp()).abs() < 1e-16);
 }

@@ -126,8 +126,14 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
         "mems-pullin",
         &[&["--output", "--param", "--vmax", "--size", "--json"]],
     ),
-    ("c2d", &[PLANT, &["--method", "--prewarp", "--json", "--output"]]),
-    ("d2c", &[PLANT, &["--method", "--prewarp", "--json", "--output"]]),
+    (
+        "c2d",
+        &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
+    ),
+    (
+        "d2c",
+        &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
+    ),
 ];
 
 /// The plant options every analysis command takes.
@@ -741,7 +747,9 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
             .pick(&["1,2", "0,0", "1,1", "9,1", "x,y", "theta,omega", "", "1"])
             .into()),
         "--dt" => v(r
-            .pick(&["0.1", "0.01", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", ""])
+            .pick(&[
+                "0.1", "0.01", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "",
+            ])
             .into()),
         "--prewarp" => v(number(r)),
         "--method" => v(r

@@ -85,9 +85,10 @@ fn refuse_loop_options(p: &PlantArgs, command: &str) -> Result<()> {
 
 pub fn run_c2d(a: &C2dArgs) -> Result<()> {
     let mut pa = a.plant.clone();
-    let dt = pa.dt.take().ok_or_else(|| {
-        UsageError("c2d needs the sampling period of the result: --dt T".into())
-    })?;
+    let dt = pa
+        .dt
+        .take()
+        .ok_or_else(|| UsageError("c2d needs the sampling period of the result: --dt T".into()))?;
     refuse_loop_options(&pa, "c2d")?;
     let method = Discretization::parse(&a.method, a.prewarp)?;
     let plant = pa.single()?;
@@ -100,8 +101,22 @@ pub fn run_c2d(a: &C2dArgs) -> Result<()> {
     } else {
         eigen_roots(&model)?
     };
-    let name = format!("{} sampled by {} at dt = {} s", plant.name, method.name(), fmt_num(dt));
-    finish(&model, &poles, method, Some(dt), dt, &name, a.json, a.output.as_ref())
+    let name = format!(
+        "{} sampled by {} at dt = {} s",
+        plant.name,
+        method.name(),
+        fmt_num(dt)
+    );
+    finish(
+        &model,
+        &poles,
+        method,
+        Some(dt),
+        dt,
+        &name,
+        a.json,
+        a.output.as_ref(),
+    )
 }
 
 pub fn run_d2c(a: &D2cArgs) -> Result<()> {
@@ -119,7 +134,16 @@ pub fn run_d2c(a: &D2cArgs) -> Result<()> {
         eigen_roots(&model)?
     };
     let name = format!("{} converted by {} (d2c)", plant.name, method.name());
-    finish(&model, &poles, method, None, period, &name, a.json, a.output.as_ref())
+    finish(
+        &model,
+        &poles,
+        method,
+        None,
+        period,
+        &name,
+        a.json,
+        a.output.as_ref(),
+    )
 }
 
 fn is_siso(p: &Plant) -> bool {
@@ -266,7 +290,10 @@ fn finish(
     s.push_str(&format!(
         "method: {}{}\n",
         method.name(),
-        prewarp.map_or(String::new(), |w| format!(" (prewarped at {} rad/s)", fmt_num(w)))
+        prewarp.map_or(String::new(), |w| format!(
+            " (prewarped at {} rad/s)",
+            fmt_num(w)
+        ))
     ));
     s.push_str(&format!(
         "poles ({var}): {}\n",

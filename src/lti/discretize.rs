@@ -544,7 +544,11 @@ impl StateSpace {
         };
         let out = StateSpace::new(a, b, c, d).map_err(|e| match e {
             LtiError::NonFinite { value, .. } => LtiError::Overflow {
-                what: format!("the {} discretisation at dt = {}", method.name(), fmt_num(dt)),
+                what: format!(
+                    "the {} discretisation at dt = {}",
+                    method.name(),
+                    fmt_num(dt)
+                ),
                 reason: format!(" (an entry became {value})"),
             },
             other => other,
@@ -583,9 +587,7 @@ impl StateSpace {
                 None => {
                     let z = crate::numeric::eigenvalues(&self.a)?
                         .into_iter()
-                        .min_by(|x, y| {
-                            (x + 1.0).norm().total_cmp(&(y + 1.0).norm())
-                        })
+                        .min_by(|x, y| (x + 1.0).norm().total_cmp(&(y + 1.0).norm()))
                         .unwrap_or(Complex64::new(-1.0, 0.0));
                     return Err(LtiError::NoPreimage {
                         method: "d2c (tustin)".into(),

@@ -63,8 +63,12 @@ impl Factored {
             }
             Discretization::Matched | Discretization::Tustin { .. } if !self.is_zero() => {
                 let (z, p, k) = match h {
-                    Some(h) => tustin_zpk(self.reduced_zeros(), self.reduced_poles(), self.gain(), h)?,
-                    None => matched_zpk(self.reduced_zeros(), self.reduced_poles(), self.gain(), dt)?,
+                    Some(h) => {
+                        tustin_zpk(self.reduced_zeros(), self.reduced_poles(), self.gain(), h)?
+                    }
+                    None => {
+                        matched_zpk(self.reduced_zeros(), self.reduced_poles(), self.gain(), dt)?
+                    }
                 };
                 let c = match h {
                     Some(h) => map_roots(cancelled, |v| tustin_root(v, h))?,
@@ -75,7 +79,11 @@ impl Factored {
             Discretization::Matched => (Vec::new(), map_roots(self.poles(), zoh)?, 0.0),
             Discretization::Tustin { .. } => {
                 let h = h.unwrap_or(0.5 * dt);
-                (Vec::new(), map_roots(self.poles(), |v| tustin_root(v, h))?, 0.0)
+                (
+                    Vec::new(),
+                    map_roots(self.poles(), |v| tustin_root(v, h))?,
+                    0.0,
+                )
             }
             Discretization::Foh | Discretization::Impulse => {
                 let ss = self.reduced_realisation()?.c2d(dt, method)?;
