@@ -207,6 +207,7 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("phase", "--phase"),
     ("method", "--method"),
     ("prewarp", "--prewarp"),
+    ("dt", "--dt"),
 ];
 
 /// The flag of a library field name, if the command line has one.

@@ -1,7 +1,7 @@
 //! Sampling a continuous-time model (`c2d`) and its inverse (`d2c`), on the matrices and the
 //! coefficients; the factored form's own versions (ZOH poles mapped as e^(pT) with their exact
-//! multiplicities) are [`crate::analysis::Factored::c2d`] and
-//! [`crate::analysis::Factored::d2c`], which share the root maps of this module.
+//! multiplicities) are `Factored::c2d` and
+//! `Factored::d2c` (the analysis layer), which share the root maps of this module.
 //!
 //! | method | state space (A, B, C, D) → (A_d, B_d, C_d, D_d) |
 //! |---|---|

@@ -2,7 +2,7 @@
 //!
 //! Every model type — [`TransferFunction`](crate::TransferFunction),
 //! [`StateSpace`](crate::StateSpace) and the factored core
-//! ([`Factored`](crate::analysis::Factored)) — carries its [`Domain`], and every analysis asks
+//! (`analysis::Factored`) — carries its [`Domain`], and every analysis asks
 //! it instead of being copied for z: stability is decided against the imaginary axis or the
 //! unit circle, the dc gain is G(0) or G(1), a frequency ω is s = jω or z = e^(jωT), a
 //! response is a closed form in t or a sequence in k.
@@ -102,7 +102,7 @@ impl Domain {
     pub fn require_discrete(&self, what: &str) -> Result<f64> {
         match self {
             Domain::Continuous => Err(LtiError::InvalidInput(format!(
-                "{what} is for discrete-time models; this one is continuous (give --dt)"
+                "{what} is for discrete-time models; this one is continuous (give it a sampling period `dt`)"
             ))),
             Domain::Discrete { dt } => Ok(*dt),
         }

@@ -13,7 +13,7 @@
 //!
 //! The principal logarithm of a real matrix is real when no eigenvalue lies on the closed
 //! negative real axis; such an eigenvalue is an error naming it ([`LtiError::Undefined`]).
-//! Used by the ZOH `d2c` ([`crate::lti::StateSpace::d2c`]), which reports the same condition as
+//! Used by the ZOH `d2c` (`StateSpace::d2c` in the lti layer), which reports the same condition as
 //! a pole without a preimage.
 
 use nalgebra::DMatrix;
