@@ -209,6 +209,22 @@ pub enum LtiError {
         /// The limit's name in [`crate::limits::LIMITS`] (`MAX_POINTS`).
         limit: String,
     },
+    /// A discrete-time pole has no continuous-time preimage under a conversion (`d2c`): e^(sT)
+    /// is never 0 nor a negative real number (ZOH), and no finite s maps to z = −1 (Tustin).
+    #[error(
+        "{method}: the pole z = {} has no continuous-time preimage ({reason})",
+        complex_number(*.re, *.im)
+    )]
+    NoPreimage {
+        /// The conversion ("d2c (zoh)").
+        method: String,
+        /// Real part of the pole.
+        re: f64,
+        /// Imaginary part of the pole.
+        im: f64,
+        /// Why ("e^(sT) is never 0 nor a negative real number").
+        reason: String,
+    },
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]
     BadNumber {
@@ -238,6 +254,24 @@ pub fn number(x: f64) -> String {
     } else {
         plain
     }
+}
+
+/// A complex number as an error message shows it: `-0.5`, `0.3 + 0.4j`, `-1 - 2j`.
+///
+/// ```
+/// use ltikit::error::complex_number;
+/// assert_eq!(complex_number(-0.5, 0.0), "-0.5");
+/// assert_eq!(complex_number(0.3, -0.4), "0.3 - 0.4j");
+/// assert_eq!(complex_number(-0.0, 0.0), "0");
+/// ```
+pub fn complex_number(re: f64, im: f64) -> String {
+    // a zero's sign is rounding, not information
+    let re = if re == 0.0 { 0.0 } else { re };
+    if im == 0.0 {
+        return number(re);
+    }
+    let sign = if im < 0.0 { "-" } else { "+" };
+    format!("{} {sign} {}j", number(re), number(im.abs()))
 }
 
 /// The number of characters of an offending input token shown in an error message.

@@ -126,6 +126,14 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
         "mems-pullin",
         &[&["--output", "--param", "--vmax", "--size", "--json"]],
     ),
+    (
+        "c2d",
+        &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
+    ),
+    (
+        "d2c",
+        &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
+    ),
 ];
 
 /// The plant options every analysis command takes.
@@ -582,14 +590,19 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--t" | "--w" => "0 0.5 1 2".into(),
         "--size" => "800x600".into(),
         "--title" => "a title".into(),
-        "--output" => files.path(&format!("case{k}.png")),
+        "--output" if !matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.png")),
         "--input" if cmd == "simulate" => "0.5".into(),
         "--input" => r.pick(&["step", "impulse", "ramp", "sin:2"]).into(),
         "--channel" => "1,1".into(),
         "--minreal" => "1e-8".into(),
-        "--dt" => r.pick(&["0.1", "1", "0.01"]).into(),
         "--controller" => "pid:kp=1,ki=0.5,kd=0.1,tf=0.01".into(),
         "--phase" => "1,2".into(),
+        "--dt" => "0.1".into(),
+        "--prewarp" => "1".into(),
+        "--method" => r
+            .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
+            .into(),
+        "--output" if matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.toml")),
         _ => return None,
     })
 }
@@ -641,11 +654,6 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         "--minreal" => v(r
             .pick(&[
                 "1e-8", "0", "-1", "1", "0.999", "nan", "inf", "1e300", "1e-300", "", "x",
-            ])
-            .into()),
-        "--dt" => v(r
-            .pick(&[
-                "0.1", "1", "1e-3", "0", "-1", "nan", "inf", "1e300", "1e-300", "", "x",
             ])
             .into()),
         "--channel" => v(r
@@ -738,6 +746,22 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         "--phase" => v(r
             .pick(&["1,2", "0,0", "1,1", "9,1", "x,y", "theta,omega", "", "1"])
             .into()),
+        "--dt" => v(r
+            .pick(&[
+                "0.1", "0.01", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "",
+            ])
+            .into()),
+        "--prewarp" => v(number(r)),
+        "--method" => v(r
+            .pick(&[
+                "zoh", "foh", "tustin", "bilinear", "matched", "impulse", "euler", "",
+            ])
+            .into()),
+        "--output" if matches!(cmd, "c2d" | "d2c") => v(match r.below(4) {
+            0 => files.output(r, k).0,
+            1 => "/proc/ltikit-fuzz.toml".into(),
+            _ => files.path(&format!("case{k}.toml")),
+        }),
         "--out" => v(if cfg!(debug_assertions) || r.one_in(2) {
             // the demo takes seconds in a debug build: only where it fails at once
             r.pick(&["/proc/ltikit-demo", "/dev/null/x"]).into()
@@ -773,6 +797,9 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
 struct Case {
     args: Vec<String>,
     picture: Option<PathBuf>,
+    /// The plant file `c2d`/`d2c -o` may write (when the name is a valid one in the scratch
+    /// directory).
+    plant_file: Option<PathBuf>,
     stdin: Option<String>,
 }
 
@@ -793,6 +820,8 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
     let mut chosen: Vec<&str> = Vec::new();
     for &opt in &opts {
         let required = opt == "<MODEL>"
+            || opt == "--method"
+            || (opt == "--dt" && cmd == "c2d")
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
         let chance = match opt {
@@ -809,8 +838,10 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         let has = |c: &Vec<&str>, o: &str| c.contains(&o);
         if plant_group {
             // the plant comes from the plant generator; keep the loop options (one at most)
+            // (and a sampling period: every analysis takes discrete plants)
             chosen.retain(|o| {
-                !PLANT.contains(o) || matches!(*o, "--controller" | "--channel" | "--plant")
+                !PLANT.contains(o)
+                    || matches!(*o, "--controller" | "--channel" | "--plant" | "--dt")
             });
             if r.one_in(8) {
                 let lp = [
@@ -842,6 +873,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
     }
     let mut args: Vec<String> = vec![cmd.into()];
     let mut picture = None;
+    let mut plant_file = None;
     let mut stdin = None;
     if plant_group {
         // usually one generated plant, sometimes a file or none
@@ -862,7 +894,11 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         if opt == "--output" {
             let p = PathBuf::from(&vals[0]);
             if p.starts_with(&files.dir) && !p.is_dir() {
-                picture = Some(p);
+                if matches!(cmd, "c2d" | "d2c") {
+                    plant_file = Some(p);
+                } else {
+                    picture = Some(p);
+                }
             }
         }
         if opt == "--batch" && vals.first().is_some_and(|v| v == "-") {
@@ -882,6 +918,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
     Case {
         args,
         picture,
+        plant_file,
         stdin,
     }
 }
@@ -1251,6 +1288,20 @@ fn hostile_options_at_every_command() {
             for f in channel_files {
                 let _ = std::fs::remove_file(f);
             }
+        }
+        if let Some(p) = &c.plant_file {
+            // a whole plant file on success (it names its period or its matrices), none
+            // after an error
+            match (res.code, std::fs::read_to_string(p)) {
+                (Some(0), Ok(text)) if text.contains(" = [") => {}
+                (Some(0), _) if p.extension().is_some_and(|e| e == "toml") => {
+                    why.push("success without a whole plant file".into())
+                }
+                (Some(0), _) => {}
+                (_, Ok(_)) => why.push("a failed conversion left a file".into()),
+                _ => {}
+            }
+            let _ = std::fs::remove_file(p);
         }
         if args[0] == "demo" {
             let _ = std::fs::remove_dir_all(files.dir.join(format!("demo{k}")));

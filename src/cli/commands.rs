@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, demo, freq, help, linearize, margins, plots, pullin, residue, response, rlocus, routh,
-    simulate,
+    analyze, c2d, demo, freq, help, linearize, margins, plots, pullin, residue, response, rlocus,
+    routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -62,6 +62,12 @@ pub(crate) enum Command {
     /// The MEMS pull-in diagram PNG: equilibrium gap against voltage.
     #[command(name = "mems-pullin")]
     MemsPullin(pullin::PullinArgs),
+    /// Sample a continuous-time plant at --dt T: zoh, foh, tustin (with --prewarp), matched
+    /// pole-zero or impulse invariance; the discrete plant, its mapped poles; -o F.toml.
+    C2d(c2d::C2dArgs),
+    /// The continuous-time plant whose zoh or tustin sampling is the given discrete plant
+    /// (matrix logarithm; a pole at 0 or on the negative real axis has no zoh preimage).
+    D2c(c2d::D2cArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -156,5 +162,7 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Linearize(a) => linearize::run(&a),
         Command::Simulate(a) => simulate::run(&a),
         Command::MemsPullin(a) => pullin::run(&a),
+        Command::C2d(a) => c2d::run_c2d(&a),
+        Command::D2c(a) => c2d::run_d2c(&a),
     }
 }

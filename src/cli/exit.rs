@@ -205,6 +205,9 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("rtol", "--rtol"),
     ("atol", "--atol"),
     ("phase", "--phase"),
+    ("method", "--method"),
+    ("prewarp", "--prewarp"),
+    ("dt", "--dt"),
 ];
 
 /// The flag of a library field name, if the command line has one.

@@ -3,6 +3,7 @@
 
 mod analyze;
 mod batch;
+mod c2d;
 mod channels;
 mod commands;
 mod demo;

@@ -102,7 +102,7 @@ impl Domain {
     pub fn require_discrete(&self, what: &str) -> Result<f64> {
         match self {
             Domain::Continuous => Err(LtiError::InvalidInput(format!(
-                "{what} is for discrete-time models; this one is continuous (give it a sampling period dt)"
+                "{what} is for discrete-time models; this one is continuous (give it a sampling period `dt`)"
             ))),
             Domain::Discrete { dt } => Ok(*dt),
         }

@@ -1,6 +1,7 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
 pub mod controller;
+pub mod discretize;
 pub mod domain;
 pub mod interconnect;
 pub mod lattice;
@@ -13,6 +14,7 @@ pub mod ss;
 pub mod tf;
 
 pub use controller::Controller;
+pub use discretize::Discretization;
 pub use domain::Domain;
 pub use model::{MAX_STATES, Model, Signals};
 pub use params::{Constraint, ModelParam};

@@ -1,5 +1,5 @@
 //! Numerical building blocks shared by the upper layers: tolerances, overflow-safe balancing
-//! and power-of-two scaling, safe eigenvalues, scalar root bracketing, the matrix exponential
+//! and power-of-two scaling, safe eigenvalues, scalar root bracketing, the matrix exponential and logarithm
 //! and the Dormand–Prince integrator, and the one time-marching skeleton of the exact responses.
 //!
 //! Nothing here knows about transfer functions; everything works on plain `f64`,
@@ -11,6 +11,7 @@ pub mod dd;
 pub mod eig;
 pub mod expm;
 pub mod linalg;
+pub mod logm;
 pub mod lstsq;
 pub(crate) mod march;
 pub mod rk45;
@@ -19,3 +20,4 @@ pub mod tol;
 
 pub use eig::{eigenvalues, eigenvalues_checked};
 pub use expm::expm;
+pub use logm::logm;

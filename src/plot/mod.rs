@@ -40,7 +40,7 @@ mod legend;
 mod markup;
 mod nyquist;
 mod options;
-mod output;
+pub(crate) mod output;
 mod projection;
 mod pzmap;
 mod raster;

@@ -49,6 +49,20 @@ fn temp_path(path: &Path) -> Result<PathBuf> {
     })
 }
 
+/// Writes `bytes` to `path` atomically (a temporary sibling, then a rename): an error leaves
+/// no file (the plant files of `c2d`/`d2c -o`).
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = temp_path(path)?;
+    let result = (|| -> Result<()> {
+        fs::write(&tmp, bytes).map_err(|e| io_err(path, e))?;
+        fs::rename(&tmp, path).map_err(|e| io_err(path, e))
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
+}
+
 /// Writes the canvas to `path` as PNG atomically.
 pub(crate) fn write_png(canvas: &Canvas, path: &Path) -> Result<()> {
     let tmp = temp_path(path)?;

@@ -49,12 +49,14 @@
 //! | `minreal.rs` | near pole-zero pairs, and their cancellation within a tolerance ([`Factored::minreal`]) |
 //! | `pole_zero.rs`, `low_frequency.rs`, `decision.rs`, `source.rs` | the parts: roots, the asymptote K·s^k, how the structure was decided, the source |
 //! | `series.rs` | products and power series of factors in scaled form |
+//! | `discretize.rs` | sampling ([`Factored::c2d`]: ZOH poles e^(pT) with their multiplicities) and its inverse ([`Factored::d2c`]) |
 //! | `bode/` | the cached evaluation form of the frequency kernels |
 //! | `display.rs` | G(s) as text |
 
 mod bode;
 mod coefficients;
 mod decision;
+mod discretize;
 mod display;
 mod exact;
 mod form;

@@ -1,0 +1,842 @@
+//! Sampling a continuous-time model (`c2d`) and its inverse (`d2c`), on the matrices and the
+//! coefficients; the factored form's own versions (ZOH poles mapped as e^(pT) with their exact
+//! multiplicities) are `Factored::c2d` and
+//! `Factored::d2c` (the analysis layer), which share the root maps of this module.
+//!
+//! | method | state space (A, B, C, D) → (A_d, B_d, C_d, D_d) |
+//! |---|---|
+//! | ZOH | exp([[A, B], [0, 0]]·T) = [[A_d, B_d], [0, I]]; C, D unchanged |
+//! | FOH (triangle hold) | exp([[A·T, B·T, 0], [0, 0, I], [0, 0, 0]]) = [[Φ, Γ₁, Γ₂], …]: A_d = Φ, B_d = Γ₁ − Γ₂ + Φ·Γ₂, D_d = D + C·Γ₂ (as MATLAB, python-control and scipy `foh`) |
+//! | Tustin | with h = T/2, or h = tan(ωT/2)/ω when prewarped at ω: A_d = (I − hA)⁻¹(I + hA), B_d = (I − hA)⁻¹·2h·B, C_d = C(I − hA)⁻¹, D_d = D + h·C·(I − hA)⁻¹B (scipy's `bilinear`, i.e. `gbt` with α = ½) |
+//! | impulse | A_d = e^(AT), B_d = T·e^(AT)·B, C_d = C, D_d = T·C·B; needs D = 0 (scipy's `impulse`: h_d[k] = T·h(kT) for k ≥ 0, the whole h(0) at k = 0) |
+//! | matched | SISO: poles e^(pT), finite zeros e^(zT), zeros at infinity as MATLAB (see [`matched_zpk`]), gain matched at low frequency |
+//!
+//! `d2c` inverts ZOH by the real matrix logarithm of [[A_d, B_d], [0, I]]
+//! ([`crate::numeric::logm`]; a pole at 0 or on the negative real axis has no preimage), and
+//! Tustin by A = (1/h)(A_d + I)⁻¹(A_d − I), B = (A_d + I)⁻¹B_d/h, C = 2C_d(A_d + I)⁻¹,
+//! D = D_d − C_d(A_d + I)⁻¹B_d (a pole at −1 has no preimage).
+
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+use crate::error::{LtiError, Result, abbreviate};
+use crate::fmt::fmt_num;
+use crate::lti::{Domain, StateSpace, TransferFunction};
+use crate::poly::{Poly, Root};
+
+/// The names `--method` / `Discretization::parse` accept.
+pub const METHOD_NAMES: &str = "zoh, foh, tustin (or bilinear), matched, impulse";
+
+/// How a continuous-time model is sampled (see the [module docs](self)).
+///
+/// ```
+/// use ltikit::lti::Discretization;
+/// assert_eq!(Discretization::parse("bilinear", None).unwrap(), Discretization::Tustin { prewarp: None });
+/// assert_eq!(Discretization::parse("ZOH", None).unwrap().name(), "zoh");
+/// let e = Discretization::parse("euler", None).unwrap_err().to_string();
+/// assert!(e.contains("zoh, foh, tustin"), "{e}");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Discretization {
+    /// Zero-order hold: the input is held constant over each sampling period (exact at the
+    /// samples for a staircase input).
+    Zoh,
+    /// First-order (triangle) hold: the input interpolated linearly between the samples
+    /// (non-causal; MATLAB's, python-control's and scipy's `foh`).
+    Foh,
+    /// The bilinear (Tustin) map s = (1/h)·(z − 1)/(z + 1), h = T/2; with `prewarp` = ω the
+    /// factor 2/T becomes ω/tan(ωT/2), so that G(z) matches G(s) at s = jω (0 < ω < π/T).
+    Tustin {
+        /// The frequency in rad/s at which the responses match, if any.
+        prewarp: Option<f64>,
+    },
+    /// Matched pole-zero (SISO): poles and zeros mapped by z = e^(sT), zeros at infinity as
+    /// MATLAB's `c2d(…, 'matched')`, gain matched at low frequency.
+    Matched,
+    /// Impulse invariance, scipy's convention: h_d[k] = T·h(kT) (needs a strictly proper
+    /// plant).
+    Impulse,
+}
+
+impl Discretization {
+    /// From a method name (`zoh`, `foh`, `tustin` or `bilinear`, `matched`, `impulse`; any
+    /// case) and an optional prewarp frequency (Tustin only).
+    ///
+    /// Errors: an unknown name (listing the known ones), a prewarp frequency with another
+    /// method.
+    pub fn parse(name: &str, prewarp: Option<f64>) -> Result<Discretization> {
+        let method = match name.trim().to_ascii_lowercase().as_str() {
+            "zoh" => Discretization::Zoh,
+            "foh" => Discretization::Foh,
+            "tustin" | "bilinear" => Discretization::Tustin { prewarp },
+            "matched" => Discretization::Matched,
+            "impulse" => Discretization::Impulse,
+            _ => {
+                return Err(LtiError::invalid(format!(
+                    "`method`: unknown discretisation method '{}' (known: {METHOD_NAMES})",
+                    abbreviate(name)
+                )));
+            }
+        };
+        if prewarp.is_some() && !matches!(method, Discretization::Tustin { .. }) {
+            return Err(LtiError::invalid(format!(
+                "`prewarp` is for the tustin method, not {}",
+                method.name()
+            )));
+        }
+        Ok(method)
+    }
+
+    /// The method's name: "zoh", "foh", "tustin", "matched" or "impulse".
+    pub fn name(&self) -> &'static str {
+        match self {
+            Discretization::Zoh => "zoh",
+            Discretization::Foh => "foh",
+            Discretization::Tustin { .. } => "tustin",
+            Discretization::Matched => "matched",
+            Discretization::Impulse => "impulse",
+        }
+    }
+
+    /// h of the Tustin map s = (1/h)(z − 1)/(z + 1) at period `dt`: T/2, or tan(ωT/2)/ω when
+    /// prewarped at ω. Errors unless 0 < ω < π/T. `None` for the other methods.
+    pub(crate) fn tustin_h(&self, dt: f64) -> Result<Option<f64>> {
+        let Discretization::Tustin { prewarp } = self else {
+            return Ok(None);
+        };
+        let Some(w) = prewarp else {
+            return Ok(Some(0.5 * dt));
+        };
+        let nyquist = std::f64::consts::PI / dt;
+        if !w.is_finite() || *w <= 0.0 || *w >= nyquist {
+            return Err(LtiError::InvalidParameter {
+                name: "prewarp".into(),
+                value: *w,
+                reason: format!(
+                    "the prewarp frequency must lie in (0, π/T) = (0, {}) rad/s for dt = {}",
+                    fmt_num(nyquist),
+                    fmt_num(dt)
+                ),
+            });
+        }
+        Ok(Some((0.5 * w * dt).tan() / w))
+    }
+}
+
+/// The discrete domain of a `c2d` at period `dt` of a model in `domain`: errors if the model
+/// is already discrete or `dt` is not finite and > 0.
+pub(crate) fn c2d_domain(domain: Domain, dt: f64) -> Result<Domain> {
+    domain.require_continuous("c2d")?;
+    Domain::discrete(dt)
+}
+
+/// The d2c methods: ZOH and Tustin.
+fn require_d2c_method(method: Discretization) -> Result<()> {
+    match method {
+        Discretization::Zoh | Discretization::Tustin { .. } => Ok(()),
+        other => Err(LtiError::invalid(format!(
+            "`method`: d2c inverts zoh and tustin, not {}",
+            other.name()
+        ))),
+    }
+}
+
+/// The period of a model given to `d2c` (errors for a continuous one) after checking the
+/// method.
+pub(crate) fn d2c_period(domain: Domain, method: Discretization) -> Result<f64> {
+    let dt = domain.require_discrete("d2c")?;
+    require_d2c_method(method)?;
+    Ok(dt)
+}
+
+/// e^(pT), with the exact conjugate for a root below the axis and a real result for a real
+/// root.
+pub(crate) fn zoh_root(p: Complex64, dt: f64) -> Complex64 {
+    if p.im < 0.0 {
+        return zoh_root(p.conj(), dt).conj();
+    }
+    if p.im == 0.0 {
+        return Complex64::new((p.re * dt).exp(), 0.0);
+    }
+    let r = (p.re * dt).exp();
+    let (s, c) = (p.im * dt).sin_cos();
+    Complex64::new(r * c, r * s)
+}
+
+/// e^(pT) − 1 without cancellation (for p·T near 0).
+fn expm1_complex(x: Complex64) -> Complex64 {
+    if x.im == 0.0 {
+        return Complex64::new(x.re.exp_m1(), 0.0);
+    }
+    let half = (0.5 * x.im).sin();
+    // e^a cos b − 1 = expm1(a)·cos b − 2 sin²(b/2)
+    Complex64::new(
+        x.re.exp_m1() * x.im.cos() - 2.0 * half * half,
+        x.re.exp() * x.im.sin(),
+    )
+}
+
+/// The principal logarithm ln(z)/T of a discrete pole, or the error that it has none under
+/// ZOH (z = 0 or on the negative real axis).
+pub(crate) fn zoh_preimage(z: Complex64, dt: f64) -> Result<Complex64> {
+    if (z.im == 0.0 && z.re <= 0.0) || z.norm() == 0.0 {
+        return Err(LtiError::NoPreimage {
+            method: "d2c (zoh)".into(),
+            re: z.re,
+            im: z.im,
+            reason: "e^(sT) is never 0 nor a negative real number".into(),
+        });
+    }
+    if z.im < 0.0 {
+        return Ok(zoh_preimage(z.conj(), dt)?.conj());
+    }
+    if z.im == 0.0 {
+        return Ok(Complex64::new(z.re.ln() / dt, 0.0));
+    }
+    Ok(z.ln() / dt)
+}
+
+/// `roots` mapped by `f` (multiplicities kept), sorted.
+pub(crate) fn map_roots(
+    roots: &[Root],
+    mut f: impl FnMut(Complex64) -> Result<Complex64>,
+) -> Result<Vec<Root>> {
+    let mut out = roots
+        .iter()
+        .map(|r| Ok(Root::new(f(r.value)?, r.multiplicity)))
+        .collect::<Result<Vec<_>>>()?;
+    crate::poly::roots::sort_roots(&mut out);
+    Ok(out)
+}
+
+fn count(roots: &[Root]) -> usize {
+    roots.iter().map(|r| r.multiplicity).sum()
+}
+
+/// Zeros, poles and gain of a discrete G(z) = k·Π(z − ζ)/Π(z − π).
+pub(crate) type Zpk = (Vec<Root>, Vec<Root>, f64);
+
+/// The matched pole-zero map of G(s) = k·Π(s − zᵢ)/Π(s − pⱼ) at period `dt`, as MATLAB's
+/// `c2d(sys, T, 'matched')`:
+/// - poles e^(pT) and finite zeros e^(zT), multiplicities kept;
+/// - the zeros at infinity (relative degree r) go to z = −1 except one, so that a strictly
+///   proper G(s) gives a strictly proper G(z) (one sample of delay): r − 1 zeros at −1. This is
+///   the "modified" matched pole-zero method of Franklin, Powell & Workman (Digital Control of
+///   Dynamic Systems, §6.3.3), which MATLAB implements: `c2d(tf(11, [1 1 0]), 0.1, 'matched')`
+///   is 0.052339 (z + 1)/((z − 1)(z − 0.9048)) (MATLAB Answers 2175248, "One zero is missing
+///   in the result of c2d function uses 'matched'");
+/// - the gain matched at low frequency: lim s→0 s^k·G(s) = lim z→1 ((z − 1)/T)^k·G(z), k the
+///   number of poles minus zeros at s = 0 (which map to z = 1): the dc gain for k = 0, the
+///   integrators' asymptote otherwise (it reproduces MATLAB's 0.052339 above).
+///
+/// Errors: more zeros than poles, a root other than 0 that maps onto z = 1 (aliasing: no
+/// low frequency to match at), a gain beyond f64.
+pub(crate) fn matched_zpk(zeros: &[Root], poles: &[Root], gain: f64, dt: f64) -> Result<Zpk> {
+    let (nz, np) = (count(zeros), count(poles));
+    if nz > np {
+        return Err(LtiError::Improper {
+            operation: "the matched pole-zero map".into(),
+            required: "proper".into(),
+            num_degree: nz,
+            den_degree: np,
+            limit: np,
+        });
+    }
+    let at_minus_one = if np > nz { np - nz - 1 } else { 0 };
+    let mut zd = map_roots(zeros, |z| Ok(zoh_root(z, dt)))?;
+    if at_minus_one > 0 {
+        zd.push(Root::new(Complex64::new(-1.0, 0.0), at_minus_one));
+        crate::poly::roots::sort_roots(&mut zd);
+    }
+    let pd = map_roots(poles, |p| Ok(zoh_root(p, dt)))?;
+    // k_d = K_s·T^κ·Π'(1 − πⱼ) / (Π'(1 − ζᵢ)·2^m), K_s = k·Π'(−zᵢ)/Π'(−pⱼ) (' : roots ≠ 0,
+    // κ = poles minus zeros at 0)
+    let mut ratio = Complex64::new(gain, 0.0);
+    let factor = |r: &Root, numerator: bool, ratio: &mut Complex64| -> Result<()> {
+        if r.value == Complex64::new(0.0, 0.0) {
+            // s = 0 ↔ z = 1: counted by the power of T below
+            return Ok(());
+        }
+        let x = r.value * dt;
+        let one_minus = -expm1_complex(x);
+        if one_minus.norm() <= 64.0 * f64::EPSILON * x.norm() {
+            return Err(LtiError::Undefined {
+                what: "the matched pole-zero gain".into(),
+                reason: format!(
+                    "the root s = {} maps onto z = 1 at dt = {} (aliasing): there is no low frequency to match the gain at",
+                    crate::error::complex_number(r.value.re, r.value.im),
+                    fmt_num(dt)
+                ),
+            });
+        }
+        // (−r)/(1 − e^(rT)) per zero, its inverse per pole; (−r)·T/(1 − e^(rT)) → 1 as r → 0
+        let f = -x / one_minus;
+        let m = r.multiplicity as i32;
+        *ratio *= if numerator { f.powi(m) } else { f.powi(-m) };
+        Ok(())
+    };
+    for z in zeros {
+        factor(z, true, &mut ratio)?;
+    }
+    for p in poles {
+        factor(p, false, &mut ratio)?;
+    }
+    // with f(r) = −rT/(1 − e^(rT)): k_d = k·2^(−m)·T^(np − nz)·Π'f(zᵢ)/Π'f(pⱼ)
+    let t_power = np as i32 - nz as i32;
+    let kd = ratio.re * dt.powi(t_power) / 2f64.powi(at_minus_one as i32);
+    if !kd.is_finite() {
+        return Err(LtiError::NonFinite {
+            what: "the matched pole-zero gain".into(),
+            value: kd,
+        });
+    }
+    Ok((zd, pd, kd))
+}
+
+/// The Tustin map of G(s) = k·Π(s − zᵢ)/Π(s − pⱼ) with s = (1/h)(z − 1)/(z + 1): roots
+/// (1 + hr)/(1 − hr), the zeros at infinity to z = −1, gain k·h^(np − nz)·Π(1 − hzᵢ)/Π(1 − hpⱼ).
+///
+/// Errors: more zeros than poles, a root at s = 1/h (it maps to z = ∞).
+pub(crate) fn tustin_zpk(zeros: &[Root], poles: &[Root], gain: f64, h: f64) -> Result<Zpk> {
+    let (nz, np) = (count(zeros), count(poles));
+    if nz > np {
+        return Err(LtiError::Improper {
+            operation: "the Tustin map".into(),
+            required: "proper".into(),
+            num_degree: nz,
+            den_degree: np,
+            limit: np,
+        });
+    }
+    let one = Complex64::new(1.0, 0.0);
+    let mut ratio = Complex64::new(gain, 0.0);
+    let mut image = |r: &Root, numerator: bool| -> Result<Root> {
+        let hr = r.value * h;
+        let den = one - hr;
+        if den.norm() <= 4.0 * f64::EPSILON * hr.norm().max(1.0) {
+            return Err(LtiError::Undefined {
+                what: "the Tustin map".into(),
+                reason: format!(
+                    "the root s = {} maps to z = ∞ (s = 1/h = {})",
+                    crate::error::complex_number(r.value.re, r.value.im),
+                    fmt_num(1.0 / h)
+                ),
+            });
+        }
+        let m = r.multiplicity as i32;
+        ratio *= if numerator { den.powi(m) } else { den.powi(-m) };
+        let z = conj_map(r.value, |v| Ok((one + v * h) / (one - v * h)))?;
+        Ok(Root::new(z, r.multiplicity))
+    };
+    let mut zd = zeros
+        .iter()
+        .map(|r| image(r, true))
+        .collect::<Result<Vec<_>>>()?;
+    let mut pd = poles
+        .iter()
+        .map(|r| image(r, false))
+        .collect::<Result<Vec<_>>>()?;
+    if np > nz {
+        zd.push(Root::new(Complex64::new(-1.0, 0.0), np - nz));
+    }
+    crate::poly::roots::sort_roots(&mut zd);
+    crate::poly::roots::sort_roots(&mut pd);
+    let kd = ratio.re * h.powi((np - nz) as i32);
+    finite_gain(kd, "the Tustin map's gain")?;
+    Ok((zd, pd, kd))
+}
+
+/// The inverse Tustin map of G(z) = k·Π(z − ζᵢ)/Π(z − πⱼ) with z = (1 + hs)/(1 − hs): roots
+/// (ζ − 1)/(h(ζ + 1)); zeros at z = −1 go to infinity; np − nz zeros at s = 1/h; gain
+/// k·(−1)^(np − nz)·(2/h)^c·Π'(1 + ζᵢ)/Π(1 + πⱼ) (c zeros at −1, Π' over the others).
+///
+/// Errors: a pole at z = −1 (it has no preimage), more zeros than poles.
+pub(crate) fn tustin_zpk_inverse(zeros: &[Root], poles: &[Root], gain: f64, h: f64) -> Result<Zpk> {
+    let (nz, np) = (count(zeros), count(poles));
+    if nz > np {
+        return Err(LtiError::Improper {
+            operation: "the inverse Tustin map".into(),
+            required: "proper".into(),
+            num_degree: nz,
+            den_degree: np,
+            limit: np,
+        });
+    }
+    let one = Complex64::new(1.0, 0.0);
+    let at_minus_one = |v: Complex64| (v + one).norm() <= 4.0 * f64::EPSILON * v.norm().max(1.0);
+    let mut ratio = Complex64::new(gain * if (np - nz) % 2 == 1 { -1.0 } else { 1.0 }, 0.0);
+    let mut zc = Vec::new();
+    for r in zeros {
+        let m = r.multiplicity as i32;
+        if at_minus_one(r.value) {
+            ratio *= (2.0 / h).powi(m);
+            continue;
+        }
+        ratio *= (r.value + one).powi(m);
+        let s = conj_map(r.value, |v| Ok((v - one) / ((v + one) * h)))?;
+        zc.push(Root::new(s, r.multiplicity));
+    }
+    let mut pc = Vec::new();
+    for r in poles {
+        if at_minus_one(r.value) {
+            return Err(LtiError::NoPreimage {
+                method: "d2c (tustin)".into(),
+                re: r.value.re,
+                im: r.value.im,
+                reason: "the Tustin map sends no finite s to z = −1".into(),
+            });
+        }
+        ratio /= (r.value + one).powi(r.multiplicity as i32);
+        let s = conj_map(r.value, |v| Ok((v - one) / ((v + one) * h)))?;
+        pc.push(Root::new(s, r.multiplicity));
+    }
+    if np > nz {
+        zc.push(Root::new(Complex64::new(1.0 / h, 0.0), np - nz));
+    }
+    crate::poly::roots::sort_roots(&mut zc);
+    crate::poly::roots::sort_roots(&mut pc);
+    let kc = ratio.re;
+    finite_gain(kc, "the inverse Tustin map's gain")?;
+    Ok((zc, pc, kc))
+}
+
+/// The Tustin image (1 + hs)/(1 − hs) of a root (exact conjugates, real for a real root).
+pub(crate) fn tustin_root(s: Complex64, h: f64) -> Result<Complex64> {
+    let one = Complex64::new(1.0, 0.0);
+    conj_map(s, |v| Ok((one + v * h) / (one - v * h)))
+}
+
+/// The inverse Tustin image (z − 1)/(h(z + 1)) of a root.
+pub(crate) fn tustin_preimage(z: Complex64, h: f64) -> Result<Complex64> {
+    let one = Complex64::new(1.0, 0.0);
+    if (z + one).norm() <= 4.0 * f64::EPSILON * z.norm().max(1.0) {
+        return Err(LtiError::NoPreimage {
+            method: "d2c (tustin)".into(),
+            re: z.re,
+            im: z.im,
+            reason: "the Tustin map sends no finite s to z = −1".into(),
+        });
+    }
+    conj_map(z, |v| Ok((v - one) / ((v + one) * h)))
+}
+
+/// `f(v)` with conjugate symmetry made exact: the conjugate of f(v̄) below the axis, a real
+/// result for a real v.
+fn conj_map(v: Complex64, mut f: impl FnMut(Complex64) -> Result<Complex64>) -> Result<Complex64> {
+    if v.im < 0.0 {
+        return Ok(f(v.conj())?.conj());
+    }
+    let w = f(v)?;
+    Ok(if v.im == 0.0 {
+        Complex64::new(w.re, 0.0)
+    } else {
+        w
+    })
+}
+
+fn finite_gain(k: f64, what: &str) -> Result<()> {
+    if k.is_finite() {
+        Ok(())
+    } else {
+        Err(LtiError::NonFinite {
+            what: what.into(),
+            value: k,
+        })
+    }
+}
+
+/// The top-left n × c block of `m` starting at column `col`.
+fn block(m: &DMatrix<f64>, n: usize, col: usize, cols: usize) -> DMatrix<f64> {
+    m.view((0, col), (n, cols)).into_owned()
+}
+
+/// (I − hA)⁻¹ by an LU solve, or the error naming the eigenvalue 1/h.
+fn tustin_inverse(a: &DMatrix<f64>, h: f64) -> Result<DMatrix<f64>> {
+    let n = a.nrows();
+    let m = DMatrix::<f64>::identity(n, n) - a * h;
+    m.lu().try_inverse().ok_or_else(|| LtiError::Undefined {
+        what: "the Tustin map".into(),
+        reason: format!(
+            "I − hA is singular: A has an eigenvalue at s = 1/h = {}, which maps to z = ∞",
+            fmt_num(1.0 / h)
+        ),
+    })
+}
+
+impl StateSpace {
+    /// The discrete-time model at period `dt` by `method` (see the [module docs](self) for
+    /// the formulas); any number of inputs and outputs (`Matched`: one input and one output).
+    /// The result is in [`Domain::Discrete`] with that `dt`.
+    ///
+    /// Errors: a model that is already discrete, `dt` not finite and > 0, a prewarp frequency
+    /// outside (0, π/T), D ≠ 0 for `Impulse`, a MIMO model for `Matched`, an exponential
+    /// that overflows.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::{StateSpace, lti::Discretization};
+    /// // ẋ = −2x + u, y = x sampled with a zero-order hold at T = 0.1 s
+    /// let one = |x: f64| DMatrix::from_element(1, 1, x);
+    /// let ss = StateSpace::new(one(-2.0), one(1.0), one(1.0), one(0.0)).unwrap();
+    /// let d = ss.c2d(0.1, Discretization::Zoh).unwrap();
+    /// assert!((d.a[(0, 0)] - (-0.2f64).exp()).abs() < 1e-16);
+    /// assert!((d.b[(0, 0)] - (1.0 - (-0.2f64).exp()) / 2.0).abs() < 1e-16);
+    /// assert_eq!(d.domain.dt(), Some(0.1));
+    /// assert!(d.c2d(0.1, Discretization::Zoh).is_err()); // already discrete
+    /// ```
+    pub fn c2d(&self, dt: f64, method: Discretization) -> Result<StateSpace> {
+        let domain = c2d_domain(self.domain, dt)?;
+        let (n, m) = (self.order(), self.b.ncols());
+        let (a, b, c, d) = match method {
+            Discretization::Zoh => {
+                let mut aug = DMatrix::<f64>::zeros(n + m, n + m);
+                aug.view_mut((0, 0), (n, n)).copy_from(&(&self.a * dt));
+                aug.view_mut((0, n), (n, m)).copy_from(&(&self.b * dt));
+                let e = crate::numeric::expm(&aug)?;
+                (
+                    block(&e, n, 0, n),
+                    block(&e, n, n, m),
+                    self.c.clone(),
+                    self.d.clone(),
+                )
+            }
+            Discretization::Foh => {
+                let mut aug = DMatrix::<f64>::zeros(n + 2 * m, n + 2 * m);
+                aug.view_mut((0, 0), (n, n)).copy_from(&(&self.a * dt));
+                aug.view_mut((0, n), (n, m)).copy_from(&(&self.b * dt));
+                aug.view_mut((n, n + m), (m, m))
+                    .copy_from(&DMatrix::<f64>::identity(m, m));
+                let e = crate::numeric::expm(&aug)?;
+                let phi = block(&e, n, 0, n);
+                let g1 = block(&e, n, n, m);
+                let g2 = block(&e, n, n + m, m);
+                let bd = &g1 - &g2 + &phi * &g2;
+                let dd = &self.d + &self.c * &g2;
+                (phi, bd, self.c.clone(), dd)
+            }
+            Discretization::Tustin { .. } => {
+                let h = method.tustin_h(dt)?.unwrap_or(0.5 * dt);
+                let inv = tustin_inverse(&self.a, h)?;
+                let id = DMatrix::<f64>::identity(n, n);
+                let ad = &inv * (&id + &self.a * h);
+                let bd = &inv * &self.b * (2.0 * h);
+                let cd = &self.c * &inv;
+                let dd = &self.d + &self.c * &bd * 0.5;
+                (ad, bd, cd, dd)
+            }
+            Discretization::Impulse => {
+                if let Some(x) = self.d.iter().find(|x| **x != 0.0) {
+                    return Err(LtiError::invalid(format!(
+                        "impulse invariance needs a strictly proper model (D = 0); D has the entry {}",
+                        fmt_num(*x)
+                    )));
+                }
+                let ad = crate::numeric::expm(&(&self.a * dt))?;
+                let bd = &ad * &self.b * dt;
+                let dd = &self.c * &self.b * dt;
+                (ad, bd, self.c.clone(), dd)
+            }
+            Discretization::Matched => {
+                let (z, p, k) = self.siso_zpk("the matched pole-zero method")?;
+                let (zd, pd, kd) = matched_zpk(&z, &p, k, dt)?;
+                return Ok(StateSpace::from_zpk(&zd, &pd, kd)?.with_domain(domain));
+            }
+        };
+        let out = StateSpace::new(a, b, c, d).map_err(|e| match e {
+            LtiError::NonFinite { value, .. } => LtiError::Overflow {
+                what: format!(
+                    "the {} discretisation at dt = {}",
+                    method.name(),
+                    fmt_num(dt)
+                ),
+                reason: format!(" (an entry became {value})"),
+            },
+            other => other,
+        })?;
+        Ok(out.with_domain(domain))
+    }
+
+    /// The continuous-time model whose `method` discretisation at the model's period is this
+    /// discrete model: ZOH by the real matrix logarithm of [[A, B], [0, I]], Tustin (with its
+    /// prewarp frequency) by the inverse bilinear map (see the [module docs](self)).
+    ///
+    /// Errors: a continuous model, a method other than ZOH and Tustin, a pole (eigenvalue of
+    /// A) without a preimage — at 0 or on the negative real axis for ZOH
+    /// ([`LtiError::NoPreimage`] names it), at −1 for Tustin.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::{StateSpace, lti::{Discretization, Domain}};
+    /// let one = |x: f64| DMatrix::from_element(1, 1, x);
+    /// let ss = StateSpace::new(one(-2.0), one(1.0), one(1.0), one(0.0)).unwrap();
+    /// let back = ss.c2d(0.1, Discretization::Zoh).unwrap().d2c(Discretization::Zoh).unwrap();
+    /// assert!((back.a[(0, 0)] + 2.0).abs() < 1e-13 && (back.b[(0, 0)] - 1.0).abs() < 1e-13);
+    /// let neg = StateSpace::new(one(-0.5), one(1.0), one(1.0), one(0.0)).unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap());
+    /// assert!(neg.d2c(Discretization::Zoh).unwrap_err().to_string().contains("z = -0.5"));
+    /// ```
+    pub fn d2c(&self, method: Discretization) -> Result<StateSpace> {
+        let dt = d2c_period(self.domain, method)?;
+        let (n, m) = (self.order(), self.b.ncols());
+        let id = DMatrix::<f64>::identity(n, n);
+        let (a, b, c, d) = if let Some(h) = method.tustin_h(dt)? {
+            let plus = &self.a + &id;
+            let inv = plus.clone().lu().try_inverse();
+            let inv = match inv {
+                Some(inv) => inv,
+                None => {
+                    let z = crate::numeric::eigenvalues(&self.a)?
+                        .into_iter()
+                        .min_by(|x, y| (x + 1.0).norm().total_cmp(&(y + 1.0).norm()))
+                        .unwrap_or(Complex64::new(-1.0, 0.0));
+                    return Err(LtiError::NoPreimage {
+                        method: "d2c (tustin)".into(),
+                        re: z.re,
+                        im: z.im,
+                        reason: "the Tustin map sends no finite s to z = −1".into(),
+                    });
+                }
+            };
+            let a = &inv * (&self.a - &id) / h;
+            let b = &inv * &self.b / h;
+            let c = &self.c * &inv * 2.0;
+            let d = &self.d - &self.c * &inv * &self.b;
+            (a, b, c, d)
+        } else {
+            if n > 0
+                && let Some(z) = crate::numeric::logm::negative_real_eigenvalue(&self.a)?
+            {
+                return Err(LtiError::NoPreimage {
+                    method: "d2c (zoh)".into(),
+                    re: z.re,
+                    im: z.im,
+                    reason: "e^(sT) is never 0 nor a negative real number".into(),
+                });
+            }
+            let mut aug = DMatrix::<f64>::identity(n + m, n + m);
+            aug.view_mut((0, 0), (n, n)).copy_from(&self.a);
+            aug.view_mut((0, n), (n, m)).copy_from(&self.b);
+            let l = crate::numeric::logm(&aug)? / dt;
+            (
+                block(&l, n, 0, n),
+                block(&l, n, n, m),
+                self.c.clone(),
+                self.d.clone(),
+            )
+        };
+        Ok(StateSpace::new(a, b, c, d)?.with_domain(Domain::Continuous))
+    }
+
+    /// Zeros, poles and gain of a SISO model, from its minimal realisation: the eigenvalues
+    /// of A with the multiplicities of their eigen structure, the transmission zeros, the
+    /// first non-zero Markov parameter (the factored form's recipe, at the numeric layer).
+    fn siso_zpk(&self, what: &str) -> Result<Zpk> {
+        if self.b.ncols() != 1 || self.c.nrows() != 1 {
+            return Err(LtiError::invalid(format!(
+                "{what} needs one input and one output; the model has {} inputs and {} outputs",
+                self.b.ncols(),
+                self.c.nrows()
+            )));
+        }
+        use crate::numeric::linalg::{
+            eigen_structure, minimal_realization, relative_degree, transmission_zeros,
+        };
+        let min = minimal_realization(&self.a, &self.b, &self.c, &self.d, None)?;
+        let rd = relative_degree(&min.a, &min.b, &min.c, &min.d, None)?;
+        let poles = if min.order() == 0 {
+            Vec::new()
+        } else {
+            let st = eigen_structure(&min.a)?;
+            conjugate_closed(
+                &st.clusters
+                    .iter()
+                    .map(|c| (c.value, c.algebraic))
+                    .collect::<Vec<_>>(),
+            )
+        };
+        if rd.r.is_none() {
+            return Ok((Vec::new(), poles, 0.0));
+        }
+        let tz = transmission_zeros(&min.a, &min.b, &min.c, &min.d, None)?;
+        Ok((conjugate_closed(&tz.distinct), poles, rd.gain))
+    }
+}
+
+/// Roots with multiplicities made a real set: real values (imaginary part within rounding of
+/// 0) on the axis, each upper value with its exact conjugate (lower values are taken as the
+/// partners of upper ones).
+pub(crate) fn conjugate_closed(values: &[(Complex64, usize)]) -> Vec<Root> {
+    let mut out = Vec::new();
+    for &(v, m) in values {
+        if v.im.abs() <= 8.0 * f64::EPSILON * v.norm() {
+            out.push(Root::new(Complex64::new(v.re, 0.0), m));
+        } else if v.im > 0.0 {
+            out.push(Root::new(v, m));
+            out.push(Root::new(v.conj(), m));
+        }
+    }
+    let mut merged: Vec<Root> = Vec::new();
+    for r in out {
+        match merged.iter_mut().find(|q| q.value == r.value) {
+            Some(q) => q.multiplicity += r.multiplicity,
+            None => merged.push(r),
+        }
+    }
+    crate::poly::roots::sort_roots(&mut merged);
+    merged
+}
+
+impl TransferFunction {
+    /// The discrete-time transfer function at period `dt` by `method`: ZOH, FOH and impulse
+    /// through the controllable canonical realisation ([`StateSpace::c2d`]), Tustin by the
+    /// substitution s = (1/h)(z − 1)/(z + 1) in the coefficients, matched pole-zero on the
+    /// roots of the numerator and the denominator. The result is in [`Domain::Discrete`];
+    /// its denominator is monic.
+    ///
+    /// Errors: those of [`StateSpace::c2d`], an improper G.
+    ///
+    /// ```
+    /// use ltikit::{TransferFunction, lti::Discretization};
+    /// // 1/(s + 1) by Tustin at T = 0.5: (0.2z + 0.2)/(z − 0.6)
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// let d = g.c2d(0.5, Discretization::Tustin { prewarp: None }).unwrap();
+    /// assert_eq!(d.to_string(), "(0.2 z + 0.2) / (z - 0.6)");
+    /// ```
+    pub fn c2d(&self, dt: f64, method: Discretization) -> Result<TransferFunction> {
+        let domain = c2d_domain(self.domain(), dt)?;
+        self.require_proper("c2d", false)?;
+        let out = match method {
+            Discretization::Tustin { .. } => {
+                let h = method.tustin_h(dt)?.unwrap_or(0.5 * dt);
+                // N(s)/D(s)·(z + 1)^n h^n: s^k → h^(n−k)(z − 1)^k (z + 1)^(n−k)
+                let n = self.order();
+                let num = substitute(self.num(), n, h, [1.0, -1.0], [1.0, 1.0])?;
+                let den = substitute(self.den(), n, h, [1.0, -1.0], [1.0, 1.0])?;
+                monic(num, den)?
+            }
+            Discretization::Matched => {
+                let zeros = if self.num().is_zero() {
+                    Vec::new()
+                } else {
+                    self.num().roots()?
+                };
+                let (zd, pd, kd) = matched_zpk(&zeros, &self.den().roots()?, self.gain(), dt)?;
+                let num = Poly::from_root_list(&zd)?.scale(kd);
+                TransferFunction::new(num, Poly::from_root_list(&pd)?)?
+            }
+            _ => {
+                let ss = StateSpace::from_tf(self)?.c2d(dt, method)?;
+                let g = ss.to_tf()?;
+                monic(g.num().clone(), g.den().clone())?
+            }
+        };
+        Ok(out.with_domain(domain))
+    }
+
+    /// The continuous-time transfer function whose `method` discretisation (ZOH or Tustin) at
+    /// this model's period is this one: ZOH through the realisation ([`StateSpace::d2c`]),
+    /// Tustin by the substitution z = (1 + hs)/(1 − hs).
+    ///
+    /// Errors: a continuous G, another method, a pole without a preimage (named).
+    ///
+    /// ```
+    /// use ltikit::{TransferFunction, lti::{Discretization, Domain}};
+    /// let gd = TransferFunction::from_descending(&[0.2, 0.2], &[1.0, -0.6]).unwrap()
+    ///     .with_domain(Domain::discrete(0.5).unwrap());
+    /// let g = gd.d2c(Discretization::Tustin { prewarp: None }).unwrap();
+    /// assert_eq!(g.to_string(), "1 / (s + 1)");
+    /// ```
+    pub fn d2c(&self, method: Discretization) -> Result<TransferFunction> {
+        let dt = d2c_period(self.domain(), method)?;
+        self.require_proper("d2c", false)?;
+        let out = if let Some(h) = method.tustin_h(dt)? {
+            // z^k → (1 + hs)^k (1 − hs)^(n−k)
+            let n = self.order();
+            // the degree of the image drops by the multiplicity of a pole at z = −1
+            let asc = self.den().ascending();
+            let at_minus_one: f64 = asc
+                .iter()
+                .enumerate()
+                .map(|(k, a)| if k % 2 == 0 { *a } else { -a })
+                .sum();
+            let size: f64 = asc.iter().map(|a| a.abs()).sum();
+            if at_minus_one.abs() <= 8.0 * (n as f64 + 1.0) * f64::EPSILON * size {
+                let p = self
+                    .den()
+                    .roots()?
+                    .into_iter()
+                    .map(|r| r.value)
+                    .min_by(|x, y| (x + 1.0).norm().total_cmp(&(y + 1.0).norm()))
+                    .unwrap_or(Complex64::new(-1.0, 0.0));
+                return Err(LtiError::NoPreimage {
+                    method: "d2c (tustin)".into(),
+                    re: p.re,
+                    im: p.im,
+                    reason: "the Tustin map sends no finite s to z = −1".into(),
+                });
+            }
+            let den = substitute_z(self.den(), n, h)?;
+            let num = substitute_z(self.num(), n, h)?;
+            monic(num, den)?
+        } else {
+            let ss = StateSpace::from_tf(self)?.d2c(method)?;
+            let g = ss.to_tf()?;
+            monic(g.num().clone(), g.den().clone())?
+        };
+        Ok(out.with_domain(Domain::Continuous))
+    }
+}
+
+/// Σ p_k s^k with s^k → h^(n−k)·a(z)^k·b(z)^(n−k), a and b linear (descending pairs).
+fn substitute(p: &Poly, n: usize, h: f64, a: [f64; 2], b: [f64; 2]) -> Result<Poly> {
+    let asc = p.ascending();
+    let mut out = Poly::zero();
+    for (k, &c) in asc.iter().enumerate() {
+        if c == 0.0 {
+            continue;
+        }
+        let mut term = Poly::from_descending(&[c * h.powi((n - k) as i32)])?;
+        for _ in 0..k {
+            term = &term * &Poly::from_descending(&a)?;
+        }
+        for _ in k..n {
+            term = &term * &Poly::from_descending(&b)?;
+        }
+        out = &out + &term;
+    }
+    Ok(out)
+}
+
+/// Σ p_k z^k with z^k → (1 + hs)^k (1 − hs)^(n−k).
+fn substitute_z(p: &Poly, n: usize, h: f64) -> Result<Poly> {
+    substitute(p, n, 1.0, [h, 1.0], [-h, 1.0])
+}
+
+/// num/den with den made monic (its leading coefficient divided out of both).
+fn monic(num: Poly, den: Poly) -> Result<TransferFunction> {
+    let lead = den.leading();
+    TransferFunction::new(num.scale(1.0 / lead), den.scale(1.0 / lead))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tustin_zpk_round_trip() {
+        let c = |re, im| Complex64::new(re, im);
+        let zeros = [Root::new(c(-3.0, 0.0), 1)];
+        let poles = [
+            Root::new(c(-1.0, 2.0), 1),
+            Root::new(c(-1.0, -2.0), 1),
+            Root::new(c(-0.5, 0.0), 2),
+        ];
+        let (zd, pd, kd) = tustin_zpk(&zeros, &poles, 2.0, 0.05).unwrap();
+        let (zc, pc, kc) = tustin_zpk_inverse(&zd, &pd, kd, 0.05).unwrap();
+        assert!((kc - 2.0).abs() < 1e-13, "{kc}");
+        assert_eq!(zc.len(), 1);
+        assert!((zc[0].value - zeros[0].value).norm() < 1e-12);
+        assert_eq!(pc.len(), 3);
+        assert_eq!(pc.iter().map(|p| p.multiplicity).sum::<usize>(), 4);
+    }
+}
