@@ -16,6 +16,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
 
+use crate::analysis::discrete::{circle_side, equivalent_s};
 use crate::error::Result;
 use crate::fmt::fmt_root;
 use crate::lti::StateSpace;
@@ -233,7 +234,8 @@ impl StateSpace {
         };
         let uncontrollable_modes = removed(&min.uncontrollable);
         let unobservable_modes = removed(&min.unobservable);
-        let (internally_stable, internal_reason) = internal_stability(&eigenvalues);
+        let dt = self.domain.dt();
+        let (internally_stable, internal_reason) = internal_stability(&eigenvalues, dt.is_some());
         let mut dc_gain = vec![vec![DcGain::Infinite; m]; p];
         let mut bibo_stable = vec![vec![true; m]; p];
         for j in 0..p {
@@ -248,46 +250,70 @@ impl StateSpace {
                     // axis (the rule of the module docs).
                     let st = eigen_structure(&mr.a)?;
                     let r = |c: &EigenCluster| radius(c.algebraic, n, scale.max(st.scale));
-                    (
-                        st.clusters.iter().any(|c| c.value.norm() <= r(c)),
-                        st.clusters
-                            .iter()
-                            .all(|c| c.value.re < -r(c) && half_plane(c.value) == HalfPlane::Left),
-                    )
+                    match dt {
+                        // in z: an eigenvalue at 1 makes the dc gain infinite; stable inside
+                        // the unit circle
+                        Some(_) => (
+                            st.clusters
+                                .iter()
+                                .any(|c| (c.value - Complex64::new(1.0, 0.0)).norm() <= r(c)),
+                            st.clusters.iter().all(|c| {
+                                c.value.norm() < 1.0 - r(c)
+                                    && circle_side(c.value) == HalfPlane::Left
+                            }),
+                        ),
+                        None => (
+                            st.clusters.iter().any(|c| c.value.norm() <= r(c)),
+                            st.clusters.iter().all(|c| {
+                                c.value.re < -r(c) && half_plane(c.value) == HalfPlane::Left
+                            }),
+                        ),
+                    }
                 };
                 dc_gain[j][i] = if at_origin {
                     DcGain::Infinite
+                } else if dt.is_some() {
+                    // G(1) = D + C (I − A)⁻¹ B
+                    let eye = DMatrix::<f64>::identity(mr.a.nrows(), mr.a.nrows());
+                    dc_of(&(&mr.a - eye), &mr.b, &mr.c, &mr.d)
                 } else {
                     dc_of(&mr.a, &mr.b, &mr.c, &mr.d)
                 };
                 bibo_stable[j][i] = stable;
             }
         }
-        let modes = sets
-            .iter()
-            .filter(|s| s.value.im >= 0.0)
-            .map(|s| {
-                let l = s.value;
-                SsMode {
-                    value: l,
-                    algebraic: s.algebraic,
-                    wn: l.norm(),
-                    // 0 − Re λ: an eigenvalue on the axis has ζ = +0, not −0.
-                    zeta: if l.norm() > 0.0 {
-                        (0.0 - l.re) / l.norm()
-                    } else {
-                        f64::NAN
-                    },
-                    tau: (l.re < 0.0).then(|| -1.0 / l.re),
-                    shapes: s
-                        .vectors
-                        .column_iter()
-                        .map(|v| v.iter().copied().collect())
-                        .collect(),
-                    residuals: s.residuals.clone(),
-                }
-            })
-            .collect();
+        let modes =
+            sets.iter()
+                .filter(|s| s.value.im >= 0.0)
+                .map(|s| {
+                    // in z, the equivalent s = ln(z)/T (MATLAB `damp`); z = 0 has none
+                    let l = match dt {
+                        Some(dt) => equivalent_s(s.value, dt)
+                            .unwrap_or(Complex64::new(f64::NEG_INFINITY, 0.0)),
+                        None => s.value,
+                    };
+                    SsMode {
+                        value: s.value,
+                        algebraic: s.algebraic,
+                        wn: l.norm(),
+                        // 0 − Re λ: an eigenvalue on the axis has ζ = +0, not −0.
+                        zeta: if l.re == f64::NEG_INFINITY {
+                            1.0 // z = 0: a deadbeat mode
+                        } else if l.norm() > 0.0 {
+                            (0.0 - l.re) / l.norm()
+                        } else {
+                            f64::NAN
+                        },
+                        tau: (l.re < 0.0).then(|| -1.0 / l.re),
+                        shapes: s
+                            .vectors
+                            .column_iter()
+                            .map(|v| v.iter().copied().collect())
+                            .collect(),
+                        residuals: s.residuals.clone(),
+                    }
+                })
+                .collect();
         Ok(SsAnalysis {
             n,
             m,
@@ -385,35 +411,53 @@ fn dc_of(a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>, d: &DMatrix<f64>)
 
 /// Internal stability from the eigenvalues: all in the open left half plane; an eigenvalue on
 /// the axis makes A marginally stable when semisimple and unstable when defective.
-fn internal_stability(ev: &[SsEigenvalue]) -> (bool, String) {
-    if let Some(e) = ev.iter().find(|e| half_plane(e.value) == HalfPlane::Right) {
+fn internal_stability(ev: &[SsEigenvalue], discrete: bool) -> (bool, String) {
+    let side = |v: Complex64| {
+        if discrete {
+            circle_side(v)
+        } else {
+            half_plane(v)
+        }
+    };
+    let (outside, on, inside) = if discrete {
+        (
+            "outside the unit circle",
+            "on the unit circle",
+            "strictly inside the unit circle",
+        )
+    } else {
+        (
+            "in the right half plane",
+            "on the imaginary axis",
+            "in the open left half plane",
+        )
+    };
+    if let Some(e) = ev.iter().find(|e| side(e.value) == HalfPlane::Right) {
         return (
             false,
-            format!(
-                "unstable: eigenvalue {} in the right half plane",
-                fmt_root(e.value, 6)
-            ),
+            format!("unstable: eigenvalue {} {outside}", fmt_root(e.value, 6)),
         );
     }
     if let Some(e) = ev
         .iter()
-        .find(|e| half_plane(e.value) == HalfPlane::Axis && !e.semisimple)
+        .find(|e| side(e.value) == HalfPlane::Axis && !e.semisimple)
     {
         return (
             false,
             format!(
-                "unstable: eigenvalue {} on the imaginary axis is defective (a Jordan block of algebraic multiplicity {}, geometric {}): the state grows like a polynomial in t",
+                "unstable: eigenvalue {} {on} is defective (a Jordan block of algebraic multiplicity {}, geometric {}): the state grows like a polynomial in {}",
                 fmt_root(e.value, 6),
                 e.algebraic,
-                e.geometric
+                e.geometric,
+                if discrete { "k" } else { "t" }
             ),
         );
     }
-    if let Some(e) = ev.iter().find(|e| half_plane(e.value) == HalfPlane::Axis) {
+    if let Some(e) = ev.iter().find(|e| side(e.value) == HalfPlane::Axis) {
         return (
             false,
             format!(
-                "marginally stable: eigenvalue {} on the imaginary axis (semisimple{}), none in the right half plane",
+                "marginally stable: eigenvalue {} {on} (semisimple{}), none {outside}",
                 fmt_root(e.value, 6),
                 if e.algebraic > 1 {
                     format!(", multiplicity {}", e.algebraic)
@@ -423,8 +467,5 @@ fn internal_stability(ev: &[SsEigenvalue]) -> (bool, String) {
             ),
         );
     }
-    (
-        true,
-        "stable: every eigenvalue of A in the open left half plane".into(),
-    )
+    (true, format!("stable: every eigenvalue of A {inside}"))
 }

@@ -100,6 +100,35 @@ struct StepMaps {
 }
 
 impl StepMaps {
+    /// The maps of a gap of m = h/T samples of a discrete-time model: Φ = A^m and
+    /// Γ₀ = Σ_{i<m} A^i B (the input held over the gap), by binary powers of the augmented
+    /// matrix [[A, B], [0, I]]; no slope term.
+    fn discrete(a: &DMatrix<f64>, b: &DMatrix<f64>, h: f64, dt: f64) -> StepMaps {
+        let (n, m) = (a.nrows(), b.ncols());
+        let mut big = DMatrix::zeros(n + m, n + m);
+        big.view_mut((0, 0), (n, n)).copy_from(a);
+        big.view_mut((0, n), (n, m)).copy_from(b);
+        for i in 0..m {
+            big[(n + i, n + i)] = 1.0;
+        }
+        let mut result = DMatrix::identity(n + m, n + m);
+        let mut e = (h / dt).round().max(0.0) as u64;
+        while e > 0 {
+            if e & 1 == 1 {
+                result = &result * &big;
+            }
+            e >>= 1;
+            if e > 0 {
+                big = &big * &big;
+            }
+        }
+        StepMaps {
+            phi: result.view((0, 0), (n, n)).into_owned(),
+            g0: result.view((0, n), (n, m)).into_owned(),
+            g1: DMatrix::zeros(n, m),
+        }
+    }
+
     fn new(a: &DMatrix<f64>, b: &DMatrix<f64>, h: f64) -> Result<StepMaps> {
         let (n, m) = (a.nrows(), b.ncols());
         let mut big = DMatrix::zeros(n + 2 * m, n + 2 * m);
@@ -137,10 +166,23 @@ impl March<'_> {
         let mut y = vec![vec![0.0; t.len()]; p];
         let mut xs = self.keep_states.then(|| vec![vec![0.0; t.len()]; n]);
         let mut x = x0;
+        // in discrete time the state moves at the samples: a time reads the sample at or
+        // before it
+        let dt = ss.domain.dt();
+        let snapped: Vec<f64> = match dt {
+            Some(dt) => t
+                .iter()
+                .map(|&x| (x / dt * (1.0 + 4.0 * f64::EPSILON)).floor() * dt)
+                .collect(),
+            None => t.to_vec(),
+        };
         crate::numeric::march::march(
-            t,
+            &snapped,
             &mut x,
-            |h, _| StepMaps::new(&ss.a, &ss.b, h),
+            |h, _| match dt {
+                Some(dt) => Ok(StepMaps::discrete(&ss.a, &ss.b, h, dt)),
+                None => StepMaps::new(&ss.a, &ss.b, h),
+            },
             |mp, x, from, to| {
                 let (u, du) = input(from, to);
                 *x = &mp.phi * &*x + &mp.g0 * &u + &mp.g1 * &du;
@@ -179,7 +221,8 @@ impl StateSpace {
     /// [`MODAL_MIN_ORDER`](super::modal_time::MODAL_MIN_ORDER) without the states asked for,
     /// when the form is safe ([`ModalForm::new`]); `None` sends them to the dense march.
     fn modal_for(&self, states: bool) -> Option<ModalForm> {
-        if states || self.order() < super::modal_time::MODAL_MIN_ORDER {
+        if states || self.order() < super::modal_time::MODAL_MIN_ORDER || self.domain.is_discrete()
+        {
             return None;
         }
         ModalForm::new(&self.a, &self.b, &self.c, &self.d)
@@ -253,6 +296,26 @@ impl StateSpace {
         self.check_input(input)?;
         check_times(t)?;
         let x0 = self.b.column(input).into_owned();
+        if let Some(dt) = self.domain.dt() {
+            // δ[k]: y[0] = D eᵢ (with x[0] = 0), then y[k] = C A^(k−1) B eᵢ — the free
+            // response from B one sample late
+            let late: Vec<f64> = t.iter().map(|&x| (x - dt).max(0.0)).collect();
+            let mut r = self.free(x0, &late, states)?;
+            for (i, &ti) in t.iter().enumerate() {
+                if ti < dt * (1.0 - 4.0 * f64::EPSILON) {
+                    for (j, row) in r.y.iter_mut().enumerate() {
+                        row[i] = self.d[(j, input)];
+                    }
+                    if let Some(xs) = r.x.as_mut() {
+                        for row in xs.iter_mut() {
+                            row[i] = 0.0;
+                        }
+                    }
+                }
+            }
+            r.t = t.to_vec();
+            return Ok(r);
+        }
         self.free(x0, t, states)
     }
 

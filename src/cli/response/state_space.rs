@@ -135,10 +135,16 @@ pub(super) fn run(a: &ResponseArgs, plant: &Plant) -> Result<()> {
         open = open && table(r, &outputs, &plant.signals.states, &mut out)?;
     }
     if open {
-        out.put(
-            "\nValues by exact discretisation (matrix exponential of the augmented matrix and a \
-             recursion).\n",
-        )?;
+        out.put(match plant.domain().dt() {
+            Some(_) => {
+                "\nValues by the recursion x[k+1] = A x[k] + B u[k] (powers of the augmented \
+                 matrix over each gap; a time between samples reads the sample before it).\n"
+            }
+            None => {
+                "\nValues by exact discretisation (matrix exponential of the augmented matrix \
+                 and a recursion).\n"
+            }
+        })?;
     }
     out.finish()
 }
