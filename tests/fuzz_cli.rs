@@ -155,6 +155,8 @@ const PLANT: &[&str] = &[
     "--control-sensitivity",
     "--minreal",
     "--dt",
+    "--sample",
+    "--controller-method",
 ];
 
 /// The picture options of bode, step, pzmap and nyquist.
@@ -596,6 +598,8 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--channel" => "1,1".into(),
         "--minreal" => "1e-8".into(),
         "--controller" => "pid:kp=1,ki=0.5,kd=0.1,tf=0.01".into(),
+        "--sample" => "0.1".into(),
+        "--controller-method" => r.pick(&["tustin", "zoh", "matched"]).into(),
         "--phase" => "1,2".into(),
         "--dt" => "0.1".into(),
         "--prewarp" => "1".into(),
@@ -752,6 +756,16 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
             ])
             .into()),
         "--prewarp" => v(number(r)),
+        "--sample" => v(r
+            .pick(&[
+                "0.1", "0.5", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "", "x",
+            ])
+            .into()),
+        "--controller-method" => v(r
+            .pick(&[
+                "tustin", "zoh", "foh", "matched", "impulse", "bilinear", "x", "",
+            ])
+            .into()),
         "--method" => v(r
             .pick(&[
                 "zoh", "foh", "tustin", "bilinear", "matched", "impulse", "euler", "",

@@ -32,7 +32,7 @@ use serde::Serialize;
 
 use super::factored::{Factored, close, series_parts};
 use super::margins::local_maxima;
-use super::stability::classify;
+use super::stability::classify_in;
 use crate::error::{LtiError, Result};
 pub use crate::lti::controller::LoopSystem;
 use crate::lti::{Controller, Plant, TransferFunction};
@@ -163,18 +163,26 @@ impl ClosedLoop {
 
     /// Internal stability from the characteristic roots; an unstable hidden mode is named.
     pub fn internal_stability(&self) -> InternalStability {
-        let (class, why) = classify(&self.poles);
+        let discrete = self.l.domain().is_discrete();
+        let (class, why) = classify_in(&self.poles, discrete);
+        let side = |r: &Root| {
+            if discrete {
+                crate::analysis::discrete::circle_side(r.value)
+            } else {
+                r.half_plane()
+            }
+        };
         let unstable_hidden: Vec<Root> = self
             .hidden
             .iter()
-            .filter(|r| r.half_plane() != HalfPlane::Left)
+            .filter(|r| side(r) != HalfPlane::Left)
             .copied()
             .collect();
         let stable = class == super::StabilityClass::Stable;
         let reason = if unstable_hidden.is_empty() {
             format!("closed loop: {why}")
         } else {
-            let (_, hidden_why) = classify(&unstable_hidden);
+            let (_, hidden_why) = classify_in(&unstable_hidden, discrete);
             format!(
                 "the loop is internally unstable: hidden mode (cancelled between controller and plant) {hidden_why}"
             )
@@ -250,7 +258,13 @@ pub fn select(plant: &Plant, g: Factored) -> Result<(Factored, Option<ClosedLoop
         Some(c) => c.clone(),
         None => Controller::parse("p:kp=1")?,
     };
-    let cl = ClosedLoop::new(&c.tf()?.factored()?, &g).map_err(|e| match e {
+    // a continuous controller in front of a discrete-time plant: C(z) by its method
+    let cf = c.tf()?.factored()?;
+    let cf = match g.domain().dt() {
+        Some(dt) => cf.c2d(dt, c.method())?,
+        None => cf,
+    };
+    let cl = ClosedLoop::new(&cf, &g).map_err(|e| match e {
         LtiError::Improper { .. } if c.is_improper() => LtiError::invalid(format!(
             "{e}: the controller {c} has an unfiltered derivative; give its filter time constant (e.g. tf=0.01)"
         )),
@@ -262,6 +276,10 @@ pub fn select(plant: &Plant, g: Factored) -> Result<(Factored, Option<ClosedLoop
 /// max over ω ≥ 0 of |F(jω)|: the local maxima (roots of d|F|²/dω², polished), the value at
 /// ω = 0 and the limit at ω → ∞; ∞ at the lowest imaginary-axis pole.
 pub fn peak(f: &Factored) -> Result<Peak> {
+    if let Some(dt) = f.domain().dt() {
+        let (value, w) = crate::analysis::discrete::peak(f, dt);
+        return Ok(Peak { value, w });
+    }
     if let Some(beta) = f
         .reduced_poles()
         .iter()

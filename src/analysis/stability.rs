@@ -52,6 +52,15 @@ pub fn classify(roots: &[Root]) -> (StabilityClass, String) {
     classify_by(roots, &half_plane, Plane::S)
 }
 
+/// [`classify`] in continuous or discrete time (against the unit circle when `discrete`).
+pub(crate) fn classify_in(roots: &[Root], discrete: bool) -> (StabilityClass, String) {
+    if discrete {
+        classify_by(roots, &crate::analysis::discrete::circle_side, Plane::Z)
+    } else {
+        classify(roots)
+    }
+}
+
 /// The stability region's words: the s-plane (left half plane) or the z-plane (unit disc).
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Plane {

@@ -50,6 +50,20 @@ pub struct PlantArgs {
     /// file).
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub dt: Option<f64>,
+    /// Sample the (continuous) plant with a zero-order hold at period T before the analysis:
+    /// with a controller, the sampled-data loop — C discretised by --controller-method, the
+    /// plant seen through its ZOH — analysed at the samples.
+    #[arg(
+        long,
+        value_name = "T",
+        allow_hyphen_values = true,
+        conflicts_with = "dt"
+    )]
+    pub sample: Option<f64>,
+    /// How a continuous controller becomes C(z) in front of a discrete-time plant (--dt or
+    /// --sample): tustin (default), zoh, foh, matched or impulse.
+    #[arg(long, value_name = "METHOD")]
+    pub controller_method: Option<String>,
     /// The channel of a MIMO plant to analyse: INPUT,OUTPUT (1-based), e.g. --channel 1,2.
     #[arg(long, value_name = "INPUT,OUTPUT")]
     pub channel: Option<String>,
@@ -102,7 +116,22 @@ impl PlantArgs {
     /// a controller is given, on the command line or in a plant file, and no loop option).
     pub fn resolve_for(&self, default: LoopSystem) -> Result<Vec<Plant>> {
         let mut out = self.plants()?;
-        super::output::set_document_dt(out.first().and_then(|p| p.domain().dt()));
+        if let Some(t) = self.sample {
+            crate::lti::Domain::discrete(t)?;
+            for p in &out {
+                p.domain()
+                    .require_continuous("--sample (a zero-order hold of a continuous plant)")?;
+            }
+        }
+        super::output::set_document_dt(
+            self.sample
+                .or_else(|| out.first().and_then(|p| p.domain().dt())),
+        );
+        let method = self
+            .controller_method
+            .as_deref()
+            .map(|m| crate::lti::Discretization::parse(m, None))
+            .transpose()?;
         let controller = self
             .controller
             .as_deref()
@@ -112,14 +141,33 @@ impl PlantArgs {
             if let Some(c) = &controller {
                 p.controller = Some(c.clone());
             }
+            if let Some(m) = method
+                && let Some(c) = p.controller.take()
+            {
+                p.controller = Some(c.with_method(m));
+            }
+            if let Some(t) = self.sample {
+                p.name = format!(
+                    "{} sampled with a ZOH at T = {} s",
+                    p.name,
+                    crate::fmt::fmt_num(t)
+                );
+            }
             p.selection = self
                 .loop_flag()
                 .or_else(|| p.controller.is_some().then_some(default));
             if let Some(which) = p.selection {
-                let c = p
-                    .controller
-                    .as_ref()
-                    .map_or_else(|| "1".to_string(), |c| c.to_string());
+                let discrete = self.sample.is_some() || p.domain().is_discrete();
+                let c = p.controller.as_ref().map_or_else(
+                    || "1".to_string(),
+                    |c| {
+                        if discrete {
+                            format!("{c} ({}, in z)", c.method().name())
+                        } else {
+                            c.to_string()
+                        }
+                    },
+                );
                 p.name = format!("{} with C = {c}, G = {}", which.formula(), p.name);
             }
         }
@@ -221,6 +269,10 @@ impl PlantArgs {
         let g = match self.channel()? {
             Some((i, o)) => plant.factored_channel(i, o)?,
             None => plant.factored()?,
+        };
+        let g = match self.sample {
+            Some(t) => g.c2d(t, crate::lti::Discretization::Zoh)?,
+            None => g,
         };
         let g = self.minreal(g)?;
         let (f, cl) = crate::analysis::closed_loop::select(plant, g)?;

@@ -32,7 +32,7 @@ use std::fmt;
 
 use crate::error::{LtiError, Result, abbreviate};
 use crate::fmt::fmt_num;
-use crate::lti::TransferFunction;
+use crate::lti::{Discretization, TransferFunction};
 use crate::poly::Poly;
 
 /// Which transfer function of the loop to analyse.
@@ -76,6 +76,8 @@ const KINDS: &[(&str, &[&str])] = &[
 pub struct Controller {
     kind: &'static str,
     params: Vec<(&'static str, f64)>,
+    /// How C(s) becomes C(z) in front of a discrete-time plant (Tustin by default).
+    method: Discretization,
 }
 
 impl Controller {
@@ -141,7 +143,11 @@ impl Controller {
             out.push((n, *value));
         }
         out.sort_by_key(|(n, _)| names.iter().position(|m| m == n));
-        let c = Controller { kind, params: out };
+        let c = Controller {
+            kind,
+            params: out,
+            method: Discretization::Tustin { prewarp: None },
+        };
         c.validate()?;
         Ok(c)
     }
@@ -206,6 +212,23 @@ impl Controller {
             }
         }
         Ok(())
+    }
+
+    /// The same controller, discretised by `method` in front of a discrete-time plant.
+    ///
+    /// ```
+    /// use ltikit::lti::{Controller, Discretization};
+    /// let c = Controller::parse("pi:kp=1,ki=0.5").unwrap().with_method(Discretization::Zoh);
+    /// assert_eq!(c.method(), Discretization::Zoh);
+    /// ```
+    pub fn with_method(mut self, method: Discretization) -> Controller {
+        self.method = method;
+        self
+    }
+
+    /// How C(s) is discretised in front of a discrete-time plant (Tustin unless set).
+    pub fn method(&self) -> Discretization {
+        self.method
     }
 
     /// True when C(s) is improper (a derivative term without a filter).

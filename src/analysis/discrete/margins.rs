@@ -43,6 +43,57 @@ fn theta_grid(f: &Factored) -> Vec<f64> {
     g
 }
 
+/// max over 0 ≤ ω ≤ π/T of |G(e^(jωT))| and where (∞ at the lowest-frequency pole on the
+/// unit circle): the largest sample of the grid refined by golden sections.
+pub(crate) fn peak(f: &Factored, dt: f64) -> (f64, f64) {
+    if let Some(a) = f
+        .reduced_poles()
+        .iter()
+        .filter(|p| circle_side(p.value) == HalfPlane::Axis)
+        .map(|p| p.value.im.atan2(p.value.re).abs())
+        .min_by(f64::total_cmp)
+    {
+        return (f64::INFINITY, a / dt);
+    }
+    let mut grid = theta_grid(f);
+    grid.insert(0, 0.0);
+    let ln_mag = |th: f64| eval(f, th).0;
+    let mags: Vec<f64> = grid.iter().map(|&t| ln_mag(t)).collect();
+    let Some((i, _)) = mags
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| !m.is_nan())
+        .max_by(|a, b| a.1.total_cmp(b.1))
+    else {
+        return (0.0, 0.0);
+    };
+    let (th, lm) = golden_max(&ln_mag, &grid, i);
+    (lm.exp(), th / dt)
+}
+
+/// The maximum of `f` about grid point `i`, by golden sections between its neighbours.
+fn golden_max(f: &impl Fn(f64) -> f64, grid: &[f64], i: usize) -> (f64, f64) {
+    let (mut a, mut b) = (grid[i.saturating_sub(1)], grid[(i + 1).min(grid.len() - 1)]);
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..200 {
+        if b - a <= 1e-15 * b.max(1e-300) {
+            break;
+        }
+        let (c, d) = (b - r * (b - a), a + r * (b - a));
+        if f(c) > f(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    let mid = 0.5 * (a + b);
+    if f(mid) >= f(grid[i]) {
+        (mid, f(mid))
+    } else {
+        (grid[i], f(grid[i]))
+    }
+}
+
 /// Margins, bandwidth and resonance of a discrete-time plant (see the module docs).
 pub(crate) fn margins(f: &Factored, dt: f64) -> Result<Margins> {
     let mut out = Margins::default();
@@ -138,22 +189,8 @@ pub(crate) fn margins(f: &Factored, dt: f64) -> Result<Margins> {
         .max_by(|a, b| a.1.total_cmp(b.1))
         .filter(|(_, m)| m.is_finite())
     {
-        // golden-section refinement between the neighbours of the largest sample
-        let (mut a, mut b) = (grid[i.saturating_sub(1)], grid[(i + 1).min(grid.len() - 1)]);
-        let r = 0.5 * (5f64.sqrt() - 1.0);
-        for _ in 0..200 {
-            if b - a <= 1e-15 * b {
-                break;
-            }
-            let (c, d) = (b - r * (b - a), a + r * (b - a));
-            if ln_mag(c) > ln_mag(d) {
-                b = d;
-            } else {
-                a = c;
-            }
-        }
-        let th = 0.5 * (a + b);
-        let lm = ln_mag(th).max(m);
+        let (th, lm) = golden_max(&ln_mag, &grid, i);
+        let lm = lm.max(m);
         if lm > l0 + 1e-12 && th > 0.0 {
             out.resonant_peak = Some((lm - l0).exp());
             out.resonant_frequency = Some(th / dt);

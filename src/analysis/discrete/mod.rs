@@ -19,7 +19,7 @@ mod margins;
 mod time;
 
 pub(crate) use freq::freq_response;
-pub(crate) use margins::margins;
+pub(crate) use margins::{margins, peak};
 pub use time::MAX_STEP_INFO_SAMPLES;
 pub(crate) use time::{step_info, time_response};
 
