@@ -219,17 +219,39 @@ pub fn step_figure(
 pub fn response_diverges(g: &Factored, input: &Input) -> bool {
     use crate::poly::HalfPlane;
     let mut poles: Vec<crate::Root> = g.reduced_poles().to_vec();
+    let dt = g.domain().dt();
     for (v, m) in input.poles() {
+        // in z the input's pole s = v is e^(vT)
+        let v = dt.map_or(v, |dt| (v * dt).exp());
         match poles.iter_mut().find(|p| p.same_as(v)) {
             Some(p) => p.multiplicity += m,
             None => poles.push(crate::Root::new(v, m)),
         }
     }
-    poles.iter().any(|p| match p.half_plane() {
+    let side = |p: &crate::Root| match dt {
+        Some(_) => crate::analysis::discrete::circle_side(p.value),
+        None => p.half_plane(),
+    };
+    poles.iter().any(|p| match side(p) {
         HalfPlane::Right => true,
         HalfPlane::Axis => p.multiplicity > 1,
         HalfPlane::Left => false,
     })
+}
+
+/// The default title of a picture of one discrete-time plant names G(z) and the period (the
+/// pictures' own default says G(s)); a title given by the user is kept.
+fn discrete_title(opts: &PlotOptions, kind: &str, plants: &[(String, Factored)]) -> PlotOptions {
+    let mut opts = opts.clone();
+    if let ([(label, g)], None) = (plants, &opts.title)
+        && let Some(dt) = g.domain().dt()
+    {
+        opts.title = Some(format!(
+            "{kind} of G(z) = {label}, T = {} s",
+            crate::fmt::fmt_num(dt)
+        ));
+    }
+    opts
 }
 
 /// Pole-zero map of one plant.
@@ -406,6 +428,7 @@ pub fn bode(a: &BodeArgs) -> Result<()> {
         return Ok(());
     }
     let plants = labelled(&a.plant, LoopSystem::Loop)?;
+    let opts = discrete_title(&opts, "Bode diagram", &plants);
     // stability margins belong to a loop: not drawn for T, S or C·S
     let p = &a.plant;
     let margins = !(p.closed_loop || p.sensitivity || p.control_sensitivity);
@@ -445,6 +468,7 @@ pub fn step(a: &StepArgs) -> Result<()> {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
     let plants = labelled(&a.plant, LoopSystem::ClosedLoop)?;
+    let opts = discrete_title(&opts, &format!("{} response", input.title()), &plants);
     let drawn = step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
         .with_context(|| format!("response plot {}", a.plot.output.display()))?;
     if !a.plot.json {
@@ -488,6 +512,11 @@ pub fn pzmap(a: &PzmapArgs) -> Result<()> {
         let Some(ch) = chans.list.first() else {
             bail!("no channel to draw");
         };
+        let opts = discrete_title(
+            &opts,
+            "Pole-zero map",
+            &[(p.name.clone(), ch.factored.clone())],
+        );
         pzmap_figure(&a.plot.output, &p.name, &ch.factored, a.guides, &opts)
             .with_context(|| format!("pole-zero map {}", a.plot.output.display()))?;
         if a.plot.json {
