@@ -51,14 +51,14 @@ pub enum SequenceTerm {
     },
 }
 
-/// p^k for a real p and a sample index k (exact sign; |p|^k by `powf`, 1 for p = 1).
-fn real_power(p: f64, k: f64) -> f64 {
+/// p^k for a real p and a sample index k (exact sign; |p|^k by `powf`, exactly 1 for p = 1).
+#[allow(clippy::float_cmp)] // the pole z = 1 (a step's) is exact
+fn real_power(p: f64, k: u64) -> f64 {
     if p == 1.0 {
         return 1.0;
     }
-    let m = p.abs().powf(k);
-    // k is an integer below 2^53: its parity decides the sign of a negative p
-    if p < 0.0 && k % 2.0 == 1.0 { -m } else { m }
+    let m = p.abs().powf(k as f64);
+    if p < 0.0 && k & 1 == 1 { -m } else { m }
 }
 
 /// Σ cᵢ kⁱ with coefficients ascending.
@@ -79,7 +79,7 @@ impl SequenceTerm {
                 }
             }
             SequenceTerm::Real { pole, coefficients } => {
-                horner(coefficients, kf) * real_power(*pole, kf)
+                horner(coefficients, kf) * real_power(*pole, k)
             }
             SequenceTerm::Oscillatory {
                 pole,
@@ -93,7 +93,7 @@ impl SequenceTerm {
                     acc += a * kk * (theta * kf + ph).cos();
                     kk *= kf;
                 }
-                acc * real_power(rho, kf)
+                acc * real_power(rho, k)
             }
         }
     }
@@ -105,11 +105,11 @@ impl SequenceTerm {
         match self {
             SequenceTerm::Delta { .. } => self.eval(k).abs(),
             SequenceTerm::Real { pole, coefficients } => {
-                abs_horner(coefficients) * real_power(pole.abs(), kf)
+                abs_horner(coefficients) * real_power(pole.abs(), k)
             }
             SequenceTerm::Oscillatory {
                 pole, amplitudes, ..
-            } => abs_horner(amplitudes) * real_power(pole.norm(), kf),
+            } => abs_horner(amplitudes) * real_power(pole.norm(), k),
         }
     }
 
@@ -478,6 +478,7 @@ fn pieces(t: &SequenceTerm, noise: f64) -> Vec<(bool, String)> {
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // exact values are meant: 0 before k = 0
 mod tests {
     use super::*;
     use crate::analysis::pfe::PfTerm;
