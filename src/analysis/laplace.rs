@@ -67,7 +67,7 @@ pub(crate) struct Part {
 }
 
 impl Part {
-    fn is_zero(&self) -> bool {
+    pub(crate) fn is_zero(&self) -> bool {
         match &self.form {
             PartForm::Coeffs { num, .. } => num.is_zero(),
             PartForm::Factors { gain, .. } => *gain == 0.0,
@@ -169,7 +169,7 @@ pub(crate) struct Decomposition {
 }
 
 /// `p` with its last `k` coefficients set to exactly 0 (its k-fold root at s = 0 is exact).
-fn exact_zero_roots(p: &Poly, k: usize) -> Poly {
+pub(crate) fn exact_zero_roots(p: &Poly, k: usize) -> Poly {
     if k == 0 || p.is_zero() {
         return p.clone();
     }
@@ -181,7 +181,7 @@ fn exact_zero_roots(p: &Poly, k: usize) -> Poly {
     Poly::trimmed(c)
 }
 
-fn zero_multiplicity(roots: &[Root]) -> usize {
+pub(crate) fn zero_multiplicity(roots: &[Root]) -> usize {
     roots
         .iter()
         .filter(|r| r.is_origin())
@@ -191,21 +191,27 @@ fn zero_multiplicity(roots: &[Root]) -> usize {
 
 /// How the input meets the plant: which zeros of G cancel input poles, which input poles
 /// remain, and whether the zero of cos:W at s = 0 cancels an integrator of G.
-struct Meeting {
-    zeros_left: Vec<Root>,
-    cancelled_zeros: Vec<Complex64>,
-    input_poles: Vec<(Complex64, usize)>,
-    integrator_cancelled: bool,
+pub(crate) struct Meeting {
+    pub zeros_left: Vec<Root>,
+    pub cancelled_zeros: Vec<Complex64>,
+    pub input_poles: Vec<(Complex64, usize)>,
+    pub integrator_cancelled: bool,
     /// Poles of G·U: the reduced poles with the input poles merged in.
-    poles: Vec<Root>,
+    pub poles: Vec<Root>,
 }
 
-fn meet(f: &Factored, input: &Input) -> Meeting {
+/// How the input with the poles `input_poles` (exact values, multiplicities) meets G; with
+/// `cancel_integrator` (cos:W in s) the input's zero at the origin takes one pole of G there.
+pub(crate) fn meet(
+    f: &Factored,
+    input_poles_given: Vec<(Complex64, usize)>,
+    cancel_integrator: bool,
+) -> Meeting {
     // Input poles against the zeros of G.
     let mut zeros = f.reduced_zeros().to_vec();
     let mut cancelled_zeros: Vec<Complex64> = Vec::new();
     let mut input_poles: Vec<(Complex64, usize)> = Vec::new();
-    for (v, m) in input.poles() {
+    for (v, m) in input_poles_given {
         let mut m = m;
         if let Some(z) = zeros
             .iter_mut()
@@ -224,7 +230,7 @@ fn meet(f: &Factored, input: &Input) -> Meeting {
     // The zero of cos:W at s = 0 against an integrator of G.
     let mut sys = f.reduced_poles().to_vec();
     let mut integrator_cancelled = false;
-    if matches!(input, Input::Cos(_))
+    if cancel_integrator
         && let Some(p) = sys.iter_mut().find(|p| p.is_origin() && p.multiplicity > 0)
     {
         p.multiplicity -= 1;
@@ -259,7 +265,7 @@ impl Decomposition {
             .require_continuous("the closed form y(t) (inverse Laplace transform)")?;
         input.validate()?;
         f.require_proper(&format!("the {input} response"), false)?;
-        let meeting = meet(f, input);
+        let meeting = meet(f, input.poles(), matches!(input, Input::Cos(_)));
         let (forced, ic) = match f.source().coefficients() {
             Some(c) => {
                 let forced = forced_coeffs(f, &c.reduced, input, &meeting)?;

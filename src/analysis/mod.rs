@@ -43,7 +43,7 @@ pub mod summary;
 pub mod time;
 
 pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
-pub use closed_form::{ClosedForm, ClosedFormTerm};
+pub use closed_form::{ClosedForm, ClosedFormTerm, SequenceForm, SequenceTerm};
 pub use closed_loop::{ClosedLoop, InternalStability, LoopSystem, Peak, Robustness};
 pub use factored::{
     Factored, Feedback, MAX_FACTORED_ORDER, NEAR_PAIR_REL, NearPair, PoleZero, StructurePath,

@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::analysis::closed_form::ClosedForm;
 use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
-use crate::analysis::laplace::Decomposition;
+use crate::analysis::laplace::{ClosedParts, Decomposition};
 use crate::analysis::time::{check_times, simulate};
 use crate::error::Result;
 use crate::lti::TransferFunction;
@@ -62,6 +62,12 @@ impl Factored {
     /// order (or any, for a plant without ODE coefficients), NaN/∞ values, an invalid input
     /// parameter, a negative or non-finite time, values that overflow.
     ///
+    /// A **discrete-time** plant answers in z: the closed form is the sequence y[k]
+    /// ([`crate::analysis::SequenceForm`] inside the [`ClosedForm`], from the partial fractions
+    /// of Y(z)/z; see `analysis::discrete`), `ics` are y[−1], y[−2], … of the difference
+    /// equation, the inputs are sampled at t = kT, a time reads the sample at or before it,
+    /// and the exact values come from the one marcher ([`Factored::time_response`]).
+    ///
     /// ```
     /// use ltikit::TransferFunction;
     /// use ltikit::analysis::Input;
@@ -73,33 +79,15 @@ impl Factored {
     /// ```
     pub fn response(&self, input: &Input, ics: &[f64], t: &[f64]) -> Result<Response> {
         check_times(t)?;
+        if self.domain().is_discrete() {
+            let parts = crate::analysis::discrete::closed_parts(self, input, ics)?;
+            let y = self.time_response(input, ics, t)?.y;
+            return Ok(assemble(parts, t, y));
+        }
         let dec = Decomposition::new(self, input, ics)?;
         let parts = dec.closed_form()?;
         let y = simulate(&dec, t)?;
-        let closed: Vec<f64> = t.iter().map(|&x| parts.closed_form.eval(x)).collect();
-        let steady: Vec<f64> = t.iter().map(|&x| parts.steady_state.eval(x)).collect();
-        let transient = y.iter().zip(&steady).map(|(a, b)| a - b).collect();
-        let closed_form_error = closed
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        let max_abs_y = y.iter().map(|v| v.abs()).fold(0.0, f64::max);
-        Ok(Response {
-            closed_form: parts.closed_form,
-            transient: parts.transient,
-            steady_state: parts.steady_state,
-            final_value: parts.final_value,
-            samples: ResponseSamples {
-                t: t.to_vec(),
-                y,
-                transient,
-                steady_state: steady,
-                closed_form: closed,
-                closed_form_error,
-                max_abs_y,
-            },
-        })
+        Ok(assemble(parts, t, y))
     }
 
     /// The closed form alone ([`Factored::response`] without samples).
@@ -117,6 +105,35 @@ impl Factored {
     /// assert_eq!(r.final_value, Some(2.0));
     /// ```
     pub fn inverse_laplace(&self, input: &Input, ics: &[f64]) -> Result<Response> {
+        self.domain().require_continuous(
+            "the inverse Laplace transform (for a discrete-time plant: `inverse_z`)",
+        )?;
+        self.response(input, ics, &[])
+    }
+
+    /// The closed-form sequence y[k] of a discrete-time plant alone ([`Factored::response`]
+    /// without samples): the inverse z-transform of Y(z) = G(z)U(z) + Y_ic(z), with `ics` =
+    /// [y[−1], y[−2], …] of the difference equation. Errors in continuous time.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// use ltikit::analysis::Input;
+    /// use ltikit::lti::Domain;
+    /// // y[k] − 0.5 y[k−1] = 0.5 u[k−1] (G = 0.5/(z − 0.5)), y[−1] = 4, step input:
+    /// // y[k] = 1 + 0.5^k (the free part 4·0.5^(k+1) = 2·0.5^k, the forced 1 − 0.5^k)
+    /// let f = TransferFunction::from_descending(&[0.5], &[1.0, -0.5]).unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap())
+    ///     .factored().unwrap();
+    /// let r = f.inverse_z(&Input::Step, &[4.0]).unwrap();
+    /// assert_eq!(r.closed_form.to_string(), "y[k] = 1 + 0.5^k");
+    /// assert_eq!(r.steady_state.expression(), "1");
+    /// assert_eq!(r.transient.expression(), "0.5^k");
+    /// assert_eq!(r.final_value, Some(1.0));
+    /// ```
+    pub fn inverse_z(&self, input: &Input, ics: &[f64]) -> Result<Response> {
+        self.domain().require_discrete(
+            "the inverse z-transform (for a continuous-time plant: `inverse_laplace`)",
+        )?;
         self.response(input, ics, &[])
     }
 }
@@ -138,5 +155,33 @@ impl TransferFunction {
     /// ```
     pub fn inverse_laplace(&self, input: &Input, ics: &[f64]) -> Result<Response> {
         self.factored()?.inverse_laplace(input, ics)
+    }
+}
+
+/// The response from its closed-form parts and the exact values `y` at the times `t`.
+fn assemble(parts: ClosedParts, t: &[f64], y: Vec<f64>) -> Response {
+    let closed: Vec<f64> = t.iter().map(|&x| parts.closed_form.eval(x)).collect();
+    let steady: Vec<f64> = t.iter().map(|&x| parts.steady_state.eval(x)).collect();
+    let transient = y.iter().zip(&steady).map(|(a, b)| a - b).collect();
+    let closed_form_error = closed
+        .iter()
+        .zip(&y)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let max_abs_y = y.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    Response {
+        closed_form: parts.closed_form,
+        transient: parts.transient,
+        steady_state: parts.steady_state,
+        final_value: parts.final_value,
+        samples: ResponseSamples {
+            t: t.to_vec(),
+            y,
+            transient,
+            steady_state: steady,
+            closed_form: closed,
+            closed_form_error,
+            max_abs_y,
+        },
     }
 }

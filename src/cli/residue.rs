@@ -1,4 +1,5 @@
-//! `ltikit residue`: partial fractions with repeated and complex poles.
+//! `ltikit residue`: partial fractions with repeated and complex poles, in s or — for a
+//! discrete-time plant — in z (G(z) = Σ r/(z − p)^k + direct: the same algebra).
 
 use anyhow::Result;
 use clap::Args;
@@ -20,11 +21,15 @@ pub struct ResidueArgs {
 
 pub fn run(a: &ResidueArgs) -> Result<()> {
     let plant = a.plant.single()?;
-    plant.domain().require_continuous(
-        "`residue` (partial fractions in s for the inverse Laplace transform)",
-    )?;
+    let var = plant.domain().variable();
     let chans = a.plant.channels(&plant)?;
-    super::channels::print_each(&plant, &chans, a.json, |f| f.partial_fractions(), report)
+    super::channels::print_each(
+        &plant,
+        &chans,
+        a.json,
+        |f| f.partial_fractions(),
+        |pf| report(pf, var),
+    )
 }
 
 /// `a ± bj` with 7 significant digits.
@@ -44,27 +49,28 @@ fn complex(z: Complex64) -> String {
     }
 }
 
-/// `(s - p)` written naturally: `s + 2`, `s`, `(s + 1 - 2j)`.
-fn factor(p: Complex64) -> String {
+/// `(v - p)` for the variable `v` (s or z) written naturally: `(s + 2)`, `s`, `(z - 0.5)`,
+/// `(s + 1 - 2j)`.
+fn factor(p: Complex64, v: &str) -> String {
     if p.re == 0.0 && p.im == 0.0 {
-        return "s".into();
+        return v.into();
     }
     let neg = -p;
     if neg.im == 0.0 {
         let sign = if neg.re < 0.0 { "-" } else { "+" };
-        return format!("(s {sign} {})", fmt_sig(neg.re.abs(), 7));
+        return format!("({v} {sign} {})", fmt_sig(neg.re.abs(), 7));
     }
     let c = complex(neg);
     if let Some(rest) = c.strip_prefix('-') {
-        format!("(s - {rest})")
+        format!("({v} - {rest})")
     } else {
-        format!("(s + {c})")
+        format!("({v} + {c})")
     }
 }
 
-/// The expansion as text, one term per line.
-pub fn report(pf: &PartialFractions) -> String {
-    let mut s = String::from("G(s) =\n");
+/// The expansion in the variable `v` (s or z) as text, one term per line.
+pub fn report(pf: &PartialFractions, v: &str) -> String {
+    let mut s = format!("G({v}) =\n");
     // Terms with an exactly zero coefficient are listed in JSON (every power up to the
     // multiplicity) but not in the text.
     for t in pf.terms.iter().filter(|t| t.residue.norm() != 0.0) {
@@ -78,11 +84,11 @@ pub fn report(pf: &PartialFractions) -> String {
         } else {
             format!("({})", complex(t.residue))
         };
-        s.push_str(&format!("    {r} / {}{pow}\n", factor(t.pole)));
+        s.push_str(&format!("    {r} / {}{pow}\n", factor(t.pole, v)));
     }
     if !pf.direct.is_empty() {
         let d = Poly::from_descending(&pf.direct)
-            .map(|p| p.to_string())
+            .map(|p| crate::poly::format_poly(&p, v))
             .unwrap_or_default();
         s.push_str(&format!("  + {d}   (direct part)\n"));
     }

@@ -88,8 +88,14 @@ impl<'a> StepSeries<'a> {
     }
 }
 
-/// y at time `t` by linear interpolation of the samples.
+/// y at time `t` by linear interpolation of the samples; at a time sampled exactly, its last
+/// sample (a staircase — a discrete-time response — has two there: the value held until t and
+/// the value from t on, which is the response at t).
+#[allow(clippy::float_cmp)] // the metric times are the sample times, bit for bit
 fn y_at(r: &TimeResponse, t: f64) -> Option<f64> {
+    if let Some(i) = r.t.iter().rposition(|&x| x == t) {
+        return Some(r.y[i]);
+    }
     let k = r.t.windows(2).position(|p| p[0] <= t && t <= p[1])?;
     let (t0, t1) = (r.t[k], r.t[k + 1]);
     let (y0, y1) = (r.y[k], r.y[k + 1]);

@@ -4,10 +4,14 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
+use super::sequence::SequenceForm;
 use super::term::{ClosedFormTerm, group_term};
 use crate::analysis::pfe::PartialFractions;
 
-/// A closed-form time function: a sum of [`ClosedFormTerm`]s.
+/// A closed-form time function: a sum of [`ClosedFormTerm`]s — or, for a discrete-time
+/// plant, a closed-form sequence y[k] ([`SequenceForm`], [`ClosedForm::sequence`]), which
+/// every method then answers for: [`ClosedForm::eval`] reads the sample at or before t and
+/// the text says `y[k] = …`.
 ///
 /// ```
 /// use ltikit::TransferFunction;
@@ -22,6 +26,9 @@ use crate::analysis::pfe::PartialFractions;
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct ClosedForm {
     pub(super) terms: Vec<ClosedFormTerm>,
+    /// The sequence of a discrete-time response (then `terms` is empty).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) sequence: Option<SequenceForm>,
 }
 
 impl ClosedForm {
@@ -29,7 +36,32 @@ impl ClosedForm {
     pub fn new(terms: Vec<ClosedFormTerm>) -> ClosedForm {
         ClosedForm {
             terms: terms.into_iter().filter(|t| !t.is_zero()).collect(),
+            sequence: None,
         }
+    }
+
+    /// A closed-form sequence y[k] of a discrete-time response as a closed form.
+    ///
+    /// ```
+    /// use ltikit::analysis::{ClosedForm, SequenceForm, SequenceTerm};
+    /// let y = ClosedForm::from_sequence(SequenceForm::new(0.5, vec![SequenceTerm::Real {
+    ///     pole: 0.5,
+    ///     coefficients: vec![2.0],
+    /// }]));
+    /// assert_eq!(y.to_string(), "y[k] = 2·0.5^k");
+    /// assert_eq!(y.eval(1.2), 0.5); // t = 1.2 s reads k = 2
+    /// assert!(y.terms().is_empty() && y.sequence().is_some());
+    /// ```
+    pub fn from_sequence(sequence: SequenceForm) -> ClosedForm {
+        ClosedForm {
+            terms: Vec::new(),
+            sequence: Some(sequence),
+        }
+    }
+
+    /// The closed-form sequence of a discrete-time response (`None` in continuous time).
+    pub fn sequence(&self) -> Option<&SequenceForm> {
+        self.sequence.as_ref()
     }
 
     /// The inverse Laplace transform of a partial-fraction expansion. Terms of the same pole
@@ -78,26 +110,36 @@ impl ClosedForm {
         ClosedForm::new(terms)
     }
 
-    /// The terms.
+    /// The terms of a continuous-time closed form (empty for a sequence: see
+    /// [`ClosedForm::sequence`]).
     pub fn terms(&self) -> &[ClosedFormTerm] {
         &self.terms
     }
 
     /// True when the function is identically zero.
     pub fn is_zero(&self) -> bool {
-        self.terms.is_empty()
+        self.terms.is_empty() && self.sequence.as_ref().is_none_or(SequenceForm::is_zero)
     }
 
     /// y(t) for t ≥ 0, δ terms excluded (at t = 0 this is y(0⁺)); 0 for t < 0; NaN for NaN.
+    /// For a sequence: the sample y[k] at or before t ([`SequenceForm::eval_at`], δ terms
+    /// included: they are samples).
     pub fn eval(&self, t: f64) -> f64 {
+        if let Some(s) = &self.sequence {
+            return s.eval_at(t);
+        }
         if t < 0.0 {
             return 0.0;
         }
         self.terms.iter().map(|x| x.eval(t)).sum()
     }
 
-    /// y′(t) for t ≥ 0 (the smooth part; δ terms excluded).
+    /// y′(t) for t ≥ 0 (the smooth part; δ terms excluded); NaN for a sequence, which has no
+    /// derivative.
     pub fn eval_derivative(&self, t: f64) -> f64 {
+        if self.sequence.is_some() {
+            return f64::NAN;
+        }
         if t < 0.0 {
             return 0.0;
         }
@@ -105,8 +147,16 @@ impl ClosedForm {
     }
 
     /// Σ over terms of their envelopes Σ|cₖ|tᵏe^(σt): a bound on |y(t)| and the scale of the
-    /// rounding error of [`ClosedForm::eval`] (≈ a few eps times this).
+    /// rounding error of [`ClosedForm::eval`] (≈ a few eps times this); for a sequence the
+    /// envelope of the sample at or before t.
     pub fn envelope(&self, t: f64) -> f64 {
+        if let Some(s) = &self.sequence {
+            return if t < 0.0 {
+                0.0
+            } else {
+                s.envelope(super::sequence::sample_of(t, s.dt))
+            };
+        }
         self.terms.iter().map(|x| x.envelope(t)).sum()
     }
 
@@ -116,7 +166,11 @@ impl ClosedForm {
         keep: impl Fn(Complex64) -> bool,
         keep_impulses: bool,
     ) -> ClosedForm {
+        if let Some(s) = &self.sequence {
+            return ClosedForm::from_sequence(s.filtered(keep, keep_impulses));
+        }
         ClosedForm {
+            sequence: None,
             terms: self
                 .terms
                 .iter()

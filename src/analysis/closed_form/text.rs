@@ -9,6 +9,9 @@ use crate::fmt::fmt_num;
 impl ClosedForm {
     /// The right-hand side as text, e.g. `1 - (1 + t) e^(-t)`; `0` when empty.
     pub fn expression(&self) -> String {
+        if let Some(s) = &self.sequence {
+            return s.expression();
+        }
         let scale = self
             .terms
             .iter()
@@ -43,14 +46,18 @@ impl ClosedForm {
         out
     }
 
-    /// `lhs = expression`, e.g. `formula("y_ss(t)")`.
+    /// `lhs = expression`, e.g. `formula("y_ss(t)")`; for a sequence the argument `(t)` of
+    /// `lhs` reads `[k]` (`y(t)` becomes `y[k]`).
     pub fn formula(&self, lhs: &str) -> String {
+        if self.sequence.is_some() {
+            return format!("{} = {}", lhs.replace("(t)", "[k]"), self.expression());
+        }
         format!("{lhs} = {}", self.expression())
     }
 }
 
 impl fmt::Display for ClosedForm {
-    /// `y(t) = …` (see [`ClosedForm::expression`]).
+    /// `y(t) = …`, or `y[k] = …` for a sequence (see [`ClosedForm::expression`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.formula("y(t)"))
     }
@@ -58,10 +65,15 @@ impl fmt::Display for ClosedForm {
 
 /// `t`, `t^2`, … for the power k (empty for k = 0).
 fn t_power(k: usize) -> String {
+    var_power("t", k)
+}
+
+/// `v`, `v^2`, … for the power k of the variable `v` (empty for k = 0).
+pub(super) fn var_power(v: &str, k: usize) -> String {
     match k {
         0 => String::new(),
-        1 => "t".into(),
-        _ => format!("t^{k}"),
+        1 => v.into(),
+        _ => format!("{v}^{k}"),
     }
 }
 
@@ -80,9 +92,14 @@ fn exp_factor(rate: f64) -> String {
 
 /// `cos(0.866025 t - 0.523599)`, `cos(t)`.
 fn cos_factor(omega: f64, phase: f64) -> String {
+    cos_of(omega, phase, "t")
+}
+
+/// `cos(0.5 k + 0.3)`, `cos(k)`: the cosine of ω·v + φ for the variable `v`.
+pub(super) fn cos_of(omega: f64, phase: f64, v: &str) -> String {
     let wt = match fmt_num(omega).as_str() {
-        "1" => "t".to_string(),
-        w => format!("{w} t"),
+        "1" => v.to_string(),
+        w => format!("{w} {v}"),
     };
     let ph = fmt_num(phase);
     if ph == "0" {
@@ -95,7 +112,7 @@ fn cos_factor(omega: f64, phase: f64) -> String {
 }
 
 /// Joins non-empty factors with spaces; a magnitude of 1 is dropped when other factors follow.
-fn product(mag: f64, factors: &[String]) -> String {
+pub(super) fn product(mag: f64, factors: &[String]) -> String {
     let factors: Vec<&String> = factors.iter().filter(|f| !f.is_empty()).collect();
     let m = fmt_num(mag);
     let mut parts: Vec<String> = Vec::new();
@@ -194,7 +211,7 @@ fn term_pieces(t: &ClosedFormTerm, noise: f64) -> Vec<(bool, String)> {
     }
 }
 
-fn signed_sum(pieces: Vec<(bool, String)>) -> String {
+pub(super) fn signed_sum(pieces: Vec<(bool, String)>) -> String {
     let mut s = String::new();
     for (i, (neg, body)) in pieces.iter().enumerate() {
         match (i, neg) {

@@ -15,6 +15,7 @@ use crate::analysis::{Factored, Input, MetricNote, StepInfo, StepInfoOptions, Ti
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
 use crate::numeric::march::march;
+use crate::poly::Poly;
 
 /// Samples beyond this index are not reached by step metrics (the response has settled to
 /// rounding long before for any pole not within ~1e-5 of the unit circle).
@@ -151,7 +152,20 @@ fn samples(
     Ok(y)
 }
 
-/// The response of a discrete-time plant to `input` at the times `t` (zero initial state).
+/// y[0] = D, y[k] = C A^(k−1) B at the sample indices `k`: the unit-sample response.
+fn impulse_samples(ss: &StateSpace, k: &[u64], dt: f64) -> Result<Vec<f64>> {
+    let later: Vec<u64> = k.iter().map(|&k| k.saturating_sub(1)).collect();
+    let z0 = ss.b.column(0).into_owned();
+    let y = samples(&ss.a, &ss.c, &z0, &later, dt)?;
+    Ok(y.into_iter()
+        .zip(k)
+        .map(|(v, &k)| if k == 0 { ss.d[(0, 0)] } else { v })
+        .collect())
+}
+
+/// The response of a discrete-time plant to `input` at the times `t`, with the initial
+/// conditions `ics` = [y[−1], y[−2], …] of its difference equation (see
+/// `inverse_z`; a plant without coefficients takes none).
 pub(crate) fn time_response(
     f: &Factored,
     dt: f64,
@@ -160,34 +174,43 @@ pub(crate) fn time_response(
     t: &[f64],
 ) -> Result<TimeResponse> {
     crate::analysis::time::check_times(t)?;
-    if !ics.is_empty() {
-        return Err(LtiError::invalid(
-            "initial conditions of a discrete-time transfer function are not supported \
-             (give the plant as state space with an initial state)",
-        ));
-    }
     let k: Vec<u64> = t
         .iter()
         .map(|&x| sample_index(x, dt))
         .collect::<Result<_>>()?;
+    // the initial conditions y[−1], y[−2], …: the impulse response of N_ic(z)/D(z)
+    let free = if ics.is_empty() {
+        None
+    } else {
+        let Some(c) = f.source().coefficients() else {
+            return Err(LtiError::invalid(
+                "initial conditions y[-1], y[-2], … are those of a difference equation: this \
+                 plant is given by its zeros and poles or as state space, not by its \
+                 coefficients (give a state-space plant an initial state)",
+            ));
+        };
+        let num = &super::inverse_z::ic_numerator_over_z(c.tf.den(), ics)? * &Poly::s();
+        let g = crate::lti::TransferFunction::new(num, c.tf.den().clone())?;
+        Some(impulse_samples(
+            &StateSpace::from_tf(&g)?.balanced(),
+            &k,
+            dt,
+        )?)
+    };
     let ss = realisation(f)?;
-    let y = match input {
+    let mut y = match input {
         Input::None => vec![0.0; t.len()],
-        Input::Impulse => {
-            // y[0] = D, y[k] = C A^(k−1) B
-            let later: Vec<u64> = k.iter().map(|&k| k.saturating_sub(1)).collect();
-            let z0 = ss.b.column(0).into_owned();
-            let y = samples(&ss.a, &ss.c, &z0, &later, dt)?;
-            y.into_iter()
-                .zip(&k)
-                .map(|(v, &k)| if k == 0 { ss.d[(0, 0)] } else { v })
-                .collect()
-        }
+        Input::Impulse => impulse_samples(&ss, &k, dt)?,
         _ => {
             let (ff, h, z0) = augmented(&ss, input, dt);
             samples(&ff, &h, &z0, &k, dt)?
         }
     };
+    if let Some(free) = free {
+        for (a, b) in y.iter_mut().zip(free) {
+            *a += b;
+        }
+    }
     let stable = !f.has_unstable_pole();
     let final_value = match input {
         Input::Step if stable => f.dc_gain(),
@@ -330,8 +353,11 @@ mod tests {
         }
         assert_eq!(s.final_value, Some(1.0));
         // far away in one map: k = 10⁹
-        let far = time_response(&f, dt, &Input::Step, &[1e9 * dt], &[]).ok();
-        assert!(far.is_none()); // (ics and t swapped: nothing to check)
+        // y[−1] = 2 and no input: y[k] = 2·a^(k+1) (y[k] = a·y[k−1])
+        let free = time_response(&f, dt, &Input::None, &[2.0], &k[..5]).unwrap();
+        for (j, y) in free.y.iter().enumerate() {
+            assert!((y - 2.0 * a.powi(j as i32 + 1)).abs() < 1e-15, "{j}");
+        }
         let far = time_response(&f, dt, &Input::Step, &[], &[1e9 * dt]).unwrap();
         assert!((far.y[0] - 1.0).abs() < 1e-15);
     }

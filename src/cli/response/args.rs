@@ -14,11 +14,12 @@ pub struct ResponseArgs {
     /// only).
     #[arg(long, default_value = "step", allow_hyphen_values = true)]
     pub input: String,
-    /// ODE initial conditions "y(0) y'(0) …" (input zero for t < 0; missing ones are 0).
+    /// ODE initial conditions "y(0) y'(0) …" (input zero for t < 0; missing ones are 0); for a
+    /// discrete-time plant (--dt) those of its difference equation, "y[-1] y[-2] …".
     #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
     pub ic: Option<String>,
-    /// Times (s, ≥ 0) at which to report values, e.g. --t "0 0.5 1 2". Default: 11 points
-    /// over an automatic window.
+    /// Times (s, ≥ 0) at which to report values, e.g. --t "0 0.5 1 2" (a discrete-time plant:
+    /// the sample at or before each time). Default: 11 points over an automatic window.
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub t: Option<String>,
     /// Print one JSON document: {"closed_form", "t", "y", "transient", "steady_state"} (a
