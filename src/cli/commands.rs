@@ -44,7 +44,8 @@ pub(crate) enum Command {
     /// the exact set of stabilising gains with --gain-range.
     Jury(routh::RouthArgs),
     /// Root locus of 1 + K·L (L = G, or C·G with --controller): asymptotes, break points,
-    /// imaginary-axis crossings, departure/arrival angles, stable gains; PNG with -o.
+    /// imaginary-axis crossings (unit-circle crossings for a discrete plant, --dt T),
+    /// departure/arrival angles, stable gains; PNG with -o.
     Rlocus(rlocus::RlocusArgs),
     /// Bode diagram PNG (magnitude and continuous phase, margins marked); several plants with
     /// repeated --num/--den or --plant.
