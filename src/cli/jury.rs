@@ -192,5 +192,6 @@ fn report(p: &crate::Poly, t: &JuryTable, gains: Option<&[(f64, f64)]>) -> Strin
             }
         ));
     }
+    s.push('\n');
     s
 }

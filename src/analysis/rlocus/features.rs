@@ -271,7 +271,9 @@ pub(super) fn circle_crossings(
                 let at_pole = den.eval_complex(z).norm() <= ZERO_REL_TOL * den.eval_abs(1.0);
                 *k * sign > 0.0 && !at_pole
             })
+            // θ = π is set exactly for z = −1 (not computed)
             .map(|(th, gain)| {
+                #[allow(clippy::float_cmp)]
                 let z = if th == 0.0 {
                     Complex64::new(1.0, 0.0)
                 } else if th == std::f64::consts::PI {
