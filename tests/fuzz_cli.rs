@@ -79,6 +79,7 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
     ),
     ("margins", &[PLANT, &["--json"]]),
     ("routh", &[PLANT, &["--gain", "--gain-range", "--json"]]),
+    ("jury", &[PLANT, &["--gain", "--gain-range", "--json"]]),
     (
         "rlocus",
         &[

@@ -16,6 +16,7 @@
 //! | | closed loops, root locus | [`ClosedLoop::new`], [`Factored::feedback`], [`Factored::root_locus`] |
 //! | a state-space model | its whole analysis (eigen structure, minimal realisation, zeros) | [`crate::StateSpace::analysis`] |
 //! | | MIMO responses | [`crate::StateSpace::step_response_from`], [`crate::StateSpace::freq_response_mimo`] |
+//! | a polynomial in z, a sampled loop | Jury table, exact unit-circle counts, stable gains | [`jury`], [`jury_exact`], [`discrete_stable_gains`] |
 //!
 //! The numerical kernels underneath (`crate::numeric`) are building blocks; an analysis needs
 //! none of them directly.
@@ -28,6 +29,7 @@ pub mod factored;
 pub mod freq;
 pub mod grid;
 pub mod input;
+pub mod jury;
 pub mod laplace;
 pub mod margins;
 pub mod modes;
@@ -52,6 +54,7 @@ pub use factored::{
 pub use freq::FrequencyResponse;
 pub use grid::{TimeSpan, auto_frequency_grid, auto_time_grid, auto_time_span};
 pub use input::Input;
+pub use jury::{JuryTable, circle_crossings, discrete_stable_gains, jury, jury_exact};
 pub use margins::{GainCrossing, Margins, PhaseCrossing};
 pub use modes::{DampingClass, Mode, SecondOrder, modes, second_order};
 pub use nyquist::{ContourPart, NyquistContour, NyquistPoint, nyquist_contour};

@@ -214,29 +214,26 @@ impl Factored {
     /// BIBO stability of the reduced transfer function and internal stability of the
     /// characteristic roots, with the reasons.
     ///
-    /// On the exact path (coefficients typed as text) the half planes come from the exact
-    /// counts, with no tolerance about the axis, and every reason ends "(decided exactly)".
+    /// On the exact path (coefficients typed as text) the half planes — for a discrete plant
+    /// the sides of the unit circle — come from the exact counts, with no tolerance about the
+    /// axis or the circle, and every reason ends "(decided exactly)".
     pub fn stability(&self) -> Stability {
         let pz = self.pole_zero();
-        if self.domain().is_discrete() {
-            return stability_by(
-                &pz.poles,
-                &pz.reduced_poles,
-                &pz.cancelled,
-                &|v| self.side_of(v),
-                Plane::Z,
-            );
-        }
-        if !self.decided_exactly() {
-            return stability_of(&pz.poles, &pz.reduced_poles, &pz.cancelled);
-        }
+        let plane = if self.domain().is_discrete() {
+            Plane::Z
+        } else {
+            Plane::S
+        };
         let mut st = stability_by(
             &pz.poles,
             &pz.reduced_poles,
             &pz.cancelled,
             &|v| self.side_of(v),
-            Plane::S,
+            plane,
         );
+        if !self.decided_exactly() {
+            return st;
+        }
         for r in [&mut st.bibo_reason, &mut st.internal_reason, &mut st.reason] {
             r.push_str(" (decided exactly)");
         }

@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, demo, freq, help, linearize, margins, plots, pullin, residue, response, rlocus,
-    routh, simulate,
+    analyze, c2d, demo, freq, help, jury, linearize, margins, plots, pullin, residue, response,
+    rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -37,9 +37,15 @@ pub(crate) enum Command {
     Margins(margins::MarginsArgs),
     /// Routh–Hurwitz table of the characteristic polynomial (or of D + K·N with --gain K):
     /// right-half-plane and imaginary-axis root counts, zero-first-element and zero-row cases.
+    /// A discrete plant (--dt T) gets the Jury table (as `ltikit jury`).
     Routh(routh::RouthArgs),
+    /// Jury table of a discrete plant's characteristic polynomial in z (or of D + K·N with
+    /// --gain K): roots inside, on and outside the unit circle, exact for typed coefficients;
+    /// the exact set of stabilising gains with --gain-range.
+    Jury(routh::RouthArgs),
     /// Root locus of 1 + K·L (L = G, or C·G with --controller): asymptotes, break points,
-    /// imaginary-axis crossings, departure/arrival angles, stable gains; PNG with -o.
+    /// imaginary-axis crossings (unit-circle crossings for a discrete plant, --dt T),
+    /// departure/arrival angles, stable gains; PNG with -o.
     Rlocus(rlocus::RlocusArgs),
     /// Bode diagram PNG (magnitude and continuous phase, margins marked); several plants with
     /// repeated --num/--den or --plant.
@@ -153,6 +159,7 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Freq(a) => freq::run(&a),
         Command::Margins(a) => margins::run(&a),
         Command::Routh(a) => routh::run(&a),
+        Command::Jury(a) => jury::run_jury(&a),
         Command::Rlocus(a) => rlocus::run(&a),
         Command::Bode(a) => plots::bode(&a),
         Command::Step(a) => plots::step(&a),

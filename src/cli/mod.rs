@@ -11,6 +11,7 @@ mod exit;
 mod freq;
 mod help;
 mod input_file;
+mod jury;
 mod linearize;
 mod margins;
 mod output;

@@ -266,7 +266,8 @@ pub fn pzmap_figure(
         path,
         &PzMap::new(g.pole_zero())
             .label(label)
-            .damping_guides(guides),
+            .damping_guides(guides)
+            .unit_circle(g.domain().is_discrete()),
         opts,
     )?;
     Ok(())

@@ -1,7 +1,7 @@
 //! `ltikit rlocus`: the root locus of unity negative feedback around K·L (L = G, or C·G with a
-//! controller): asymptotes, break points, imaginary-axis crossings, departure and arrival
-//! angles, the stable gains, the closed-loop poles at --gain K; a PNG with -o, JSON with
-//! --json.
+//! controller): asymptotes, break points, imaginary-axis crossings (unit-circle crossings for
+//! a discrete plant), departure and arrival angles, the stable gains, the closed-loop poles
+//! at --gain K; a PNG with -o, JSON with --json.
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -12,7 +12,7 @@ use super::PlantArgs;
 use super::output::{json_value, print, print_json};
 use super::text::{g_text, roots_text};
 use crate::analysis::rlocus::{BreakKind, RootLocus, RootLocusOptions};
-use crate::analysis::stable_gains;
+use crate::analysis::{discrete_stable_gains, stable_gains};
 use crate::fmt::{fmt_root, fmt_sig};
 use crate::lti::controller::LoopSystem;
 use crate::plot::{PlotOptions, RootLocusPlot, parse_size, rlocus_png};
@@ -108,8 +108,17 @@ pub fn run(a: &RlocusArgs) -> Result<()> {
         Some(k) => bail!("--gain must be finite, got {}", crate::error::number(k)),
     };
     // the stable-gain set needs the crossing polynomial (degree ≤ deg N + deg D)
-    let gains = (num.degree() + den.degree() <= crate::poly::MAX_ORDER)
-        .then(|| stable_gains(&num, &den).map(|g| on_locus(g, a.negative)))
+    let discrete = f.domain().is_discrete();
+    let gains = (2 * num.degree().max(den.degree()) <= crate::poly::MAX_ORDER)
+        .then(|| {
+            if discrete {
+                // every interval decided exactly (the f64 coefficients' binary values)
+                discrete_stable_gains(&num, &den)
+            } else {
+                stable_gains(&num, &den)
+            }
+            .map(|g| on_locus(g, a.negative))
+        })
         .transpose()?;
     if let (Some(path), Some(o)) = (&a.output, &opts) {
         let label = plant.name.clone();
@@ -144,7 +153,7 @@ pub fn run(a: &RlocusArgs) -> Result<()> {
             .iter()
             .map(|x| {
                 let mut x = *x;
-                if x.half_plane() == HalfPlane::Axis {
+                if !discrete && x.half_plane() == HalfPlane::Axis {
                     x.value.re = 0.0;
                 }
                 x
@@ -196,11 +205,12 @@ fn angles_text(v: &[f64]) -> String {
 
 /// The text report of the features.
 fn report(l: &RootLocus, gains: Option<&[(f64, f64)]>, num: &Poly, den: &Poly) -> String {
+    let v = if l.dt.is_some() { "z" } else { "s" };
     let mut s = format!(
-        "Root locus of D(s) + K·N(s) = 0 (unity negative feedback around K·L), K from 0 to {}\n  D(s) = {}\n  N(s) = {}\n",
+        "Root locus of D({v}) + K·N({v}) = 0 (unity negative feedback around K·L), K from 0 to {}\n  D({v}) = {}\n  N({v}) = {}\n",
         if l.negative { "−∞" } else { "∞" },
-        crate::poly::format_poly(den, "s"),
-        crate::poly::format_poly(num, "s"),
+        crate::poly::format_poly(den, v),
+        crate::poly::format_poly(num, v),
     );
     s.push_str(&format!(
         "Open-loop poles: {}\nOpen-loop zeros: {}\n",
@@ -240,23 +250,35 @@ fn report(l: &RootLocus, gains: Option<&[(f64, f64)]>, num: &Poly, den: &Poly) -
                 BreakKind::Crossing => "branches cross",
             };
             s.push_str(&format!(
-                "  σ = {} ({kind}, {} branches) at K = {}\n",
+                "  {} = {} ({kind}, {} branches) at K = {}\n",
+                if l.dt.is_some() { "z" } else { "σ" },
                 fmt_sig(b.s, 10),
                 b.branches,
                 k_text(b.gain)
             ));
         }
     }
-    s.push_str("Imaginary-axis crossings:");
+    s.push_str(if l.dt.is_some() {
+        "Unit-circle crossings:"
+    } else {
+        "Imaginary-axis crossings:"
+    });
     if l.crossings.is_empty() {
         s.push_str(" none\n");
     } else {
         s.push('\n');
         for c in &l.crossings {
-            let at = if c.omega == 0.0 {
-                "s = 0".to_string()
-            } else {
-                format!("s = ±{}j", fmt_sig(c.omega, 10))
+            let at = match c.z {
+                Some(z) if z.im == 0.0 => format!("z = {}", fmt_sig(z.re, 10)),
+                Some(z) => format!(
+                    "z = {} ± {}j (ωT = {} rad, ω = {} rad/s)",
+                    fmt_sig(z.re, 10),
+                    fmt_sig(z.im, 10),
+                    fmt_sig(z.im.atan2(z.re), 10),
+                    fmt_sig(c.omega, 10)
+                ),
+                None if c.omega == 0.0 => "s = 0".to_string(),
+                None => format!("s = ±{}j", fmt_sig(c.omega, 10)),
             };
             s.push_str(&format!("  {at} at K = {}\n", k_text(c.gain)));
         }
@@ -294,11 +316,16 @@ fn report(l: &RootLocus, gains: Option<&[(f64, f64)]>, num: &Poly, den: &Poly) -
             .map(|(lo, hi)| format!("{} < K < {}", k_text(*lo), k_text(*hi)))
             .collect();
         s.push_str(&format!(
-            "Closed loop stable for: {} (Routh–Hurwitz)\n",
+            "Closed loop stable for: {} ({})\n",
             if text.is_empty() {
                 "no gain on this locus".to_string()
             } else {
                 text.join(", ")
+            },
+            if l.dt.is_some() {
+                "every root strictly inside the unit circle; Jury, each interval decided exactly"
+            } else {
+                "Routh–Hurwitz"
             }
         ));
     }

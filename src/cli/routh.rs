@@ -1,5 +1,6 @@
 //! `ltikit routh`: the Routh–Hurwitz table of the characteristic polynomial, or of the
-//! closed loop D + K·N with a gain K in unity negative feedback.
+//! closed loop D + K·N with a gain K in unity negative feedback. A discrete plant (`--dt`)
+//! gets the Jury table instead (`jury.rs`).
 
 use anyhow::{Result, bail};
 use clap::Args;
@@ -20,11 +21,16 @@ pub struct RouthArgs {
     /// A gain K in unity negative feedback: the table of the closed loop's D + K·N.
     #[arg(long, value_name = "K", allow_hyphen_values = true)]
     pub gain: Option<f64>,
-    /// Also the gains K for which the unity-feedback loop D + K·N is stable (open intervals).
+    /// Also the gains K for which the unity-feedback loop D + K·N is stable (open intervals;
+    /// for a discrete plant: every root strictly inside the unit circle, each interval decided
+    /// exactly).
     #[arg(long)]
     pub gain_range: bool,
-    /// Print one JSON document: {"polynomial", "rows", "powers", "events", "rhp", "axis", "lhp"}
-    /// (and "stable_gains": [[lo, hi], …] with --gain-range; null for an infinite end).
+    /// Print one JSON document: {"polynomial", "rows", "powers", "events", "rhp", "axis", "lhp",
+    /// "exact"} (and "stable_gains": [[lo, hi], …] with --gain-range; null for an infinite end).
+    /// For a discrete plant (the Jury table): {"polynomial", "rows", "alphas", "first",
+    /// "singular_at", "inside", "on", "outside", "exact": {"inside", "on", "outside"}} and
+    /// "stable_gains".
     #[arg(long)]
     pub json: bool,
 }
@@ -51,6 +57,10 @@ struct Doc<'a> {
 
 pub fn run(a: &RouthArgs) -> Result<()> {
     let plant = a.plant.single()?;
+    if plant.domain().is_discrete() {
+        // in z the stability boundary is the unit circle: the Jury table
+        return super::jury::run(a, &plant);
+    }
     if plant.selection.is_some() {
         bail!("routh takes the plant itself: give the loop gain with --gain K (no --controller)");
     }
@@ -59,9 +69,6 @@ pub fn run(a: &RouthArgs) -> Result<()> {
             "routh needs a transfer function (its characteristic polynomial); this plant is a state-space model"
         );
     };
-    g.domain().require_continuous(
-        "the Routh–Hurwitz table (it counts roots in the right half plane, not outside the unit circle)",
-    )?;
     let p = match a.gain {
         None => g.den().clone(),
         Some(k) if k.is_finite() => &g.den().clone() + &g.num().scale(k),

@@ -1,4 +1,5 @@
-//! Pole-zero map in the s-plane, with equal scales on both axes.
+//! Pole-zero map in the s-plane (the stable left half plane shaded) or the z-plane (the unit
+//! circle drawn and the stable unit disc shaded), with equal scales on both axes.
 
 use std::path::Path;
 
@@ -34,8 +35,12 @@ pub struct PzMap<'a> {
     pub pz: &'a PoleZero,
     /// The plant's name or transfer function, for the title.
     pub label: Option<&'a str>,
-    /// Draw lines of constant damping ζ and circles of constant natural frequency ωₙ.
+    /// Draw lines of constant damping ζ and circles of constant natural frequency ωₙ
+    /// (s-plane only).
     pub damping_guides: bool,
+    /// A z-plane map (discrete time): the unit circle is the stability boundary, the unit disc
+    /// is shaded as the stable region, the axes read Re z and Im z.
+    pub unit_circle: bool,
 }
 
 impl<'a> PzMap<'a> {
@@ -45,7 +50,22 @@ impl<'a> PzMap<'a> {
             pz,
             label: None,
             damping_guides: false,
+            unit_circle: false,
         }
+    }
+
+    /// A z-plane map (see [`PzMap::unit_circle`]).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// use ltikit::plot::PzMap;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, -0.5]).unwrap();
+    /// let pz = g.pole_zero().unwrap();
+    /// assert!(PzMap::new(&pz).unit_circle(true).unit_circle);
+    /// ```
+    pub fn unit_circle(mut self, on: bool) -> Self {
+        self.unit_circle = on;
+        self
     }
 
     /// Sets the label.
@@ -89,8 +109,9 @@ pub fn pzmap_png(path: impl AsRef<Path>, map: &PzMap, opts: &PlotOptions) -> Res
     if let Some(l) = map.label {
         check_text("the label", l)?;
     }
+    let v = if map.unit_circle { "z" } else { "s" };
     let title = opts.title_or(|| match map.label {
-        Some(l) => format!("Pole-zero map of G(s) = {l}"),
+        Some(l) => format!("Pole-zero map of G({v}) = {l}"),
         None => "Pole-zero map".into(),
     });
     render(path.as_ref(), opts, |c, th| {
@@ -103,8 +124,11 @@ fn finite(r: &Root) -> bool {
 }
 
 /// Equal-aspect axes around every finite root and the origin, with room around them.
-fn layout(c: &Canvas, th: &Theme, pz: &PoleZero, has_title: bool) -> Result<Frame> {
-    let all = finite_roots(pz);
+fn layout(c: &Canvas, th: &Theme, pz: &PoleZero, has_title: bool, circle: bool) -> Result<Frame> {
+    let mut all = finite_roots(pz);
+    if circle {
+        all.extend([Complex64::new(-1.0, -1.0), Complex64::new(1.0, 1.0)]);
+    }
     let (xlo, xhi) = bounds(all.iter().map(|z| z.re).chain([0.0])).unwrap_or((0.0, 0.0));
     let (ylo, yhi) = bounds(all.iter().map(|z| z.im).chain([0.0])).unwrap_or((0.0, 0.0));
     let span = (xhi - xlo).max(yhi - ylo);
@@ -130,10 +154,26 @@ fn finite_roots(pz: &PoleZero) -> Vec<Complex64> {
         .collect()
 }
 
-/// The stable half plane shaded, then the grid.
-fn draw_background(c: &mut Canvas, th: &Theme, frame: &Frame, grid: bool) {
+/// The unit circle as a polyline of `n` segments.
+fn unit_circle_points(n: usize) -> Vec<(f64, f64)> {
+    (0..=n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            (a.cos(), a.sin())
+        })
+        .collect()
+}
+
+/// The stable half plane (or unit disc) shaded, then the grid.
+fn draw_background(c: &mut Canvas, th: &Theme, frame: &Frame, grid: bool, circle: bool) {
     let (x0, x1, y0, y1) = (frame.x.lo, frame.x.hi, frame.y.lo, frame.y.hi);
-    if x0 < 0.0 {
+    if circle {
+        let disc: Vec<(f64, f64)> = unit_circle_points(256)
+            .into_iter()
+            .map(|p| frame.px(p))
+            .collect();
+        c.fill_polygon(&disc, STABLE_SHADE, 0.08);
+    } else if x0 < 0.0 {
         let p = frame.px((x0, y0));
         let q = frame.px((0.0f64.min(x1), y1));
         c.fill_rect(p.0, p.1, q.0, q.1, STABLE_SHADE, 0.08);
@@ -276,7 +316,7 @@ fn draw_roots(c: &mut Canvas, th: &Theme, frame: &Frame, pz: &PoleZero) -> Resul
 }
 
 /// The legend rows: the marker kinds present, notes, the shaded half plane.
-fn legend_rows(pz: &PoleZero) -> Vec<LegendEntry> {
+fn legend_rows(pz: &PoleZero, circle: bool) -> Vec<LegendEntry> {
     let mut legend = vec![LegendEntry::marker("pole", MarkerShape::Cross, ROOT_COLOR)];
     if !pz.reduced_zeros.is_empty() {
         legend.push(LegendEntry::marker("zero", MarkerShape::Circle, ROOT_COLOR));
@@ -302,7 +342,11 @@ fn legend_rows(pz: &PoleZero) -> Vec<LegendEntry> {
             color: STABLE_SHADE,
             alpha: 0.25,
         },
-        text: "stable half plane".into(),
+        text: if circle {
+            "stable region |z| < 1".into()
+        } else {
+            "stable half plane".into()
+        },
         color: Color::BLACK,
     });
     legend
@@ -316,30 +360,42 @@ fn draw(
     title: Option<&str>,
 ) -> Result<()> {
     let pz = map.pz;
-    let frame = layout(c, th, pz, title.is_some())?;
-    draw_background(c, th, &frame, opts.grid);
-    if map.damping_guides {
+    let circle = map.unit_circle;
+    let frame = layout(c, th, pz, title.is_some(), circle)?;
+    draw_background(c, th, &frame, opts.grid, circle);
+    if map.damping_guides && !circle {
         draw_zeta_rays(c, th, &frame)?;
         draw_wn_circles(c, th, &frame)?;
     }
-    // Axes through the origin: the imaginary axis is the stability boundary.
+    // Axes through the origin; the stability boundary: the imaginary axis or the unit circle.
     let thin = (th.line * 0.6).max(1.0);
-    frame.vline(c, 0.0, th.line * 0.75, Color(60, 60, 60), LineStyle::Solid);
+    let dark = Color(60, 60, 60);
+    if circle {
+        frame.vline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
+        frame.plot_line(
+            c,
+            unit_circle_points(256),
+            th.line * 0.75,
+            dark,
+            LineStyle::Solid,
+        );
+    } else {
+        frame.vline(c, 0.0, th.line * 0.75, dark, LineStyle::Solid);
+    }
     frame.hline(c, 0.0, thin, Color(120, 120, 120), LineStyle::Solid);
     let avoid = draw_roots(c, th, &frame, pz)?;
     frame.draw_axes(c, th, true, true)?;
-    frame.draw_axis_titles(
-        c,
-        th,
-        Some("Real axis σ (1/s)"),
-        Some("Imaginary axis ω (rad/s)"),
-        th.pad,
-    )?;
+    let (xt, yt) = if circle {
+        ("Re z", "Im z")
+    } else {
+        ("Real axis σ (1/s)", "Imaginary axis ω (rad/s)")
+    };
+    frame.draw_axis_titles(c, th, Some(xt), Some(yt), th.pad)?;
     draw_legend(
         c,
         &frame,
         th,
-        &legend_rows(pz),
+        &legend_rows(pz, circle),
         &avoid,
         &[
             Corner::TopRight,

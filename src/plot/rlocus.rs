@@ -1,6 +1,7 @@
 //! Root locus PNG: the branches with direction arrows, the asymptotes, the open-loop poles and
 //! zeros, break points and imaginary-axis crossings with their gains, and the closed-loop
-//! poles at a chosen gain. Equal scales on both axes.
+//! poles at a chosen gain. Equal scales on both axes. A discrete-time locus draws the unit
+//! circle (its stability boundary) and marks the unit-circle crossings instead.
 
 use std::path::Path;
 
@@ -50,7 +51,15 @@ impl RootLocusPlot<'_> {
         let mut v: Vec<Complex64> = l.poles.iter().map(|r| r.value).collect();
         v.extend(l.zeros.iter().map(|r| r.value));
         v.extend(l.break_points.iter().map(|b| Complex64::new(b.s, 0.0)));
-        v.extend(l.crossings.iter().map(|c| Complex64::new(0.0, c.omega)));
+        v.extend(
+            l.crossings
+                .iter()
+                .map(|c| c.z.unwrap_or(Complex64::new(0.0, c.omega))),
+        );
+        if l.dt.is_some() {
+            // the whole unit circle in view
+            v.extend([Complex64::new(-1.0, 1.0), Complex64::new(1.0, -1.0)]);
+        }
         if let Some(a) = &l.asymptotes {
             v.push(Complex64::new(a.centroid, 0.0));
         }
@@ -154,7 +163,11 @@ fn legend(p: &RootLocusPlot) -> Vec<LegendEntry> {
     }
     if !l.crossings.is_empty() {
         v.push(LegendEntry::marker(
-            "imaginary-axis crossings",
+            if l.dt.is_some() {
+                "unit-circle crossings"
+            } else {
+                "imaginary-axis crossings"
+            },
             MarkerShape::Square,
             black,
         ));
@@ -174,11 +187,20 @@ fn xy(p: &RootLocusPlot) -> XyPlot {
     let l = p.locus;
     let view = p.view();
     let far = 10.0 * ((view.0.1 - view.0.0).abs() + (view.1.1 - view.1.0).abs());
-    let mut curves = vec![
+    let discrete = l.dt.is_some();
+    let mut curves = vec![if discrete {
+        Curve::new((0..=256).map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / 256.0;
+            (a.cos(), a.sin())
+        }))
+        .color(GUIDE)
+        .width(0.9)
+        .label("unit circle".to_string())
+    } else {
         Curve::new([(0.0, view.1.0 - far), (0.0, view.1.1 + far)])
             .color(GUIDE)
-            .width(0.6),
-    ];
+            .width(0.6)
+    }];
     for (i, path) in l.branches.paths.iter().enumerate() {
         let mut rs = runs(path, view);
         rs.sort_by_key(|r| std::cmp::Reverse(r.len()));
@@ -220,9 +242,10 @@ fn xy(p: &RootLocusPlot) -> XyPlot {
         markers.push(Marker::new((b.s, 0.0), MarkerShape::Diamond).label(gain_text(b.gain)));
     }
     for c in &l.crossings {
-        markers.push(Marker::new((0.0, c.omega), MarkerShape::Square).label(gain_text(c.gain)));
-        if c.omega > 0.0 {
-            markers.push(Marker::new((0.0, -c.omega), MarkerShape::Square));
+        let at = c.z.unwrap_or(Complex64::new(0.0, c.omega));
+        markers.push(Marker::new((at.re, at.im), MarkerShape::Square).label(gain_text(c.gain)));
+        if at.im > 0.0 {
+            markers.push(Marker::new((at.re, -at.im), MarkerShape::Square));
         }
     }
     if let Some((k, roots)) = p.marked {
@@ -234,8 +257,8 @@ fn xy(p: &RootLocusPlot) -> XyPlot {
     XyPlot {
         curves,
         markers,
-        x_label: "Re s (1/s)".into(),
-        y_label: "Im s (rad/s)".into(),
+        x_label: if discrete { "Re z" } else { "Re s (1/s)" }.into(),
+        y_label: if discrete { "Im z" } else { "Im s (rad/s)" }.into(),
         equal_aspect: true,
         x_range: Some(view.0),
         y_range: Some(view.1),

@@ -134,3 +134,14 @@ pub fn json(args: &[&str]) -> serde_json::Value {
     let text = stdout(args);
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("invalid JSON ({e}): {text}"))
 }
+
+/// The factored form of a discrete plant typed as text (`num`/`den` in descending powers of
+/// z, sampling period `dt`): the exact path, as `ltikit … --dt` reads it.
+pub fn discrete_text(num: &str, den: &str, dt: f64) -> ltikit::analysis::Factored {
+    ltikit::lti::Plant::from_text(Some(num), den)
+        .unwrap()
+        .with_domain(ltikit::lti::Domain::discrete(dt).unwrap())
+        .unwrap()
+        .factored()
+        .unwrap()
+}

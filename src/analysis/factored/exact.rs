@@ -12,7 +12,7 @@ use super::pole_zero::PoleZero;
 use super::source::Source;
 use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
-use crate::poly::exact::{ExactPoly, Side, Structure, certify};
+use crate::poly::exact::{CircleSide, ExactPoly, Side, Structure, certify};
 use crate::poly::{HalfPlane, half_plane};
 
 impl Factored {
@@ -64,8 +64,21 @@ impl Factored {
 
     fn from_structure(tf: &TransferFunction, s: &Structure) -> Result<Factored> {
         let zero = tf.num().is_zero();
+        let discrete = tf.domain().is_discrete();
         let mut sides = Vec::new();
         for f in s.factors() {
+            if discrete {
+                // the unit circle, in the words of the half plane (as `circle_side`)
+                for (r, c) in f.roots.iter().zip(f.circle_sides()?) {
+                    let side = match c {
+                        CircleSide::Inside => HalfPlane::Left,
+                        CircleSide::On => HalfPlane::Axis,
+                        CircleSide::Outside => HalfPlane::Right,
+                    };
+                    sides.push((r.value, side));
+                }
+                continue;
+            }
             for r in &f.roots {
                 let side = match r.side {
                     Side::Left => HalfPlane::Left,
@@ -164,22 +177,27 @@ impl Factored {
         }
     }
 
-    /// The half plane of a root of this plant: decided exactly on the exact path, else by
-    /// [`half_plane`] (a relative tolerance about the axis).
+    /// The half plane of a root of this plant — for a discrete plant the side of the unit
+    /// circle (`Left` inside, `Axis` on, `Right` outside): decided exactly on the exact path,
+    /// else by [`half_plane`] or [`circle_side`](crate::analysis::discrete::circle_side) (a
+    /// relative tolerance about the axis or the circle).
     pub(crate) fn side_of(&self, v: Complex64) -> HalfPlane {
-        if self.domain().is_discrete() {
-            return crate::analysis::discrete::circle_side(v);
-        }
-        self.decision()
+        let exact = self
+            .decision()
             .sides
             .as_ref()
-            .and_then(|s| s.iter().find(|(r, _)| *r == v).map(|(_, h)| *h))
-            .unwrap_or_else(|| half_plane(v))
+            .and_then(|s| s.iter().find(|(r, _)| *r == v).map(|(_, h)| *h));
+        match exact {
+            Some(h) => h,
+            None if self.domain().is_discrete() => crate::analysis::discrete::circle_side(v),
+            None => half_plane(v),
+        }
     }
 
-    /// True when the structure was decided exactly.
+    /// True when the structure (and the side of every root: of the imaginary axis, or of the
+    /// unit circle for a discrete plant) was decided exactly.
     pub(crate) fn decided_exactly(&self) -> bool {
-        self.decision().sides.is_some() && !self.domain().is_discrete()
+        self.decision().sides.is_some()
     }
 }
 

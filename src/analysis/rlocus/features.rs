@@ -45,13 +45,18 @@ pub struct BreakPoint {
     pub kind: BreakKind,
 }
 
-/// A crossing of the imaginary axis: closed-loop poles at ±jω for the gain K.
+/// A crossing of the stability boundary: closed-loop poles at ±jω (continuous time) or at
+/// z = e^(±jωT) on the unit circle (discrete time) for the gain K.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LocusCrossing {
-    /// ω ≥ 0 (rad/s).
+    /// ω ≥ 0 (rad/s; in discrete time 0 ≤ ω ≤ π/T, the angle of z over T).
     pub omega: f64,
     /// The gain.
     pub gain: f64,
+    /// Discrete time: the crossing point e^(jωT) on the unit circle (upper half; its conjugate
+    /// too). `None` (absent from JSON) in continuous time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub z: Option<Complex64>,
 }
 
 /// The directions in which the branches leave a pole (or arrive at a zero).
@@ -237,7 +242,51 @@ pub(super) fn crossings(num: &Poly, den: &Poly, sign: f64) -> Result<Option<Vec<
                 };
                 *k * sign > 0.0 && !at_pole
             })
-            .map(|(omega, gain)| LocusCrossing { omega, gain })
+            .map(|(omega, gain)| LocusCrossing {
+                omega,
+                gain,
+                z: None,
+            })
+            .collect(),
+    ))
+}
+
+/// The unit-circle crossings on this locus (discrete time, period `dt`): K of the locus's
+/// sign, K ≠ 0 and not at an open-loop pole. `None` when the crossing polynomial could be of
+/// degree above [`MAX_ORDER`].
+pub(super) fn circle_crossings(
+    num: &Poly,
+    den: &Poly,
+    sign: f64,
+    dt: f64,
+) -> Result<Option<Vec<LocusCrossing>>> {
+    if 2 * den.degree().max(num.degree()) > MAX_ORDER {
+        return Ok(None);
+    }
+    Ok(Some(
+        crate::analysis::jury::circle_crossings(num, den)?
+            .into_iter()
+            .filter(|(th, k)| {
+                let z = Complex64::from_polar(1.0, *th);
+                let at_pole = den.eval_complex(z).norm() <= ZERO_REL_TOL * den.eval_abs(1.0);
+                *k * sign > 0.0 && !at_pole
+            })
+            // θ = π is set exactly for z = −1 (not computed)
+            .map(|(th, gain)| {
+                #[allow(clippy::float_cmp)]
+                let z = if th == 0.0 {
+                    Complex64::new(1.0, 0.0)
+                } else if th == std::f64::consts::PI {
+                    Complex64::new(-1.0, 0.0)
+                } else {
+                    Complex64::from_polar(1.0, th)
+                };
+                LocusCrossing {
+                    omega: th / dt,
+                    gain,
+                    z: Some(z),
+                }
+            })
             .collect(),
     ))
 }

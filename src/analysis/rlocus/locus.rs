@@ -46,7 +46,8 @@ pub struct RootLocus {
     pub asymptotes: Option<Asymptotes>,
     /// Break-away and break-in points on the real axis, by increasing σ.
     pub break_points: Vec<BreakPoint>,
-    /// Imaginary-axis crossings at K ≠ 0 on this locus, by increasing ω.
+    /// Crossings of the stability boundary at K ≠ 0 on this locus, by increasing ω: the
+    /// imaginary axis, or in discrete time the unit circle.
     pub crossings: Vec<LocusCrossing>,
     /// Departure angles at the poles of G in lowest terms.
     pub departures: Vec<LocusAngle>,
@@ -55,6 +56,10 @@ pub struct RootLocus {
     /// When deg N = deg D: the gain −d/n (ratio of the leading coefficients) at which a
     /// branch leaves through infinity, if it is on this locus.
     pub escape_gain: Option<f64>,
+    /// The sampling period of a discrete-time locus (in z: crossings of the unit circle);
+    /// `None` in continuous time. (Not in JSON: the command's document carries `"dt"`.)
+    #[serde(skip)]
+    pub dt: Option<f64>,
     /// What was not computed and why.
     pub notes: Vec<String>,
     /// The traced branches.
@@ -85,6 +90,33 @@ pub struct RootLocus {
 /// assert_eq!(l.branches.paths.len(), 3);
 /// ```
 pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<RootLocus> {
+    locus_in(num, den, opts, None)
+}
+
+/// The root locus of D(z) + K·N(z) = 0 in discrete time (period `dt`): the same algebra as
+/// [`root_locus`] (asymptotes, break points and angles are properties of the polynomials),
+/// with the crossings of the unit circle — z = 1, z = −1, pairs e^(±jωT) — instead of the
+/// imaginary axis.
+///
+/// Errors: those of [`root_locus`]; `dt` not finite and > 0.
+///
+/// ```
+/// use ltikit::Poly;
+/// use ltikit::analysis::rlocus::{root_locus_z, RootLocusOptions};
+/// // K(z + 0.5)/(z(z − 1)): z² + (K − 1)z + 0.5K leaves the circle at e^(±j2π/3), K = 2.
+/// let n = Poly::from_descending(&[1.0, 0.5]).unwrap();
+/// let d = Poly::from_descending(&[1.0, -1.0, 0.0]).unwrap();
+/// let l = root_locus_z(&n, &d, 0.1, &RootLocusOptions::default()).unwrap();
+/// let c = l.crossings.iter().find(|c| c.omega > 0.0).unwrap();
+/// assert!((c.gain - 2.0).abs() < 1e-13);
+/// assert!((c.omega * 0.1 - 2.0 * std::f64::consts::FRAC_PI_3).abs() < 1e-13);
+/// ```
+pub fn root_locus_z(num: &Poly, den: &Poly, dt: f64, opts: &RootLocusOptions) -> Result<RootLocus> {
+    crate::lti::Domain::discrete(dt)?;
+    locus_in(num, den, opts, Some(dt))
+}
+
+fn locus_in(num: &Poly, den: &Poly, opts: &RootLocusOptions, dt: Option<f64>) -> Result<RootLocus> {
     check(num, den)?;
     let poles = den.roots()?;
     let zeros = num.roots()?;
@@ -106,12 +138,21 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
             Vec::new()
         }
     };
-    let crossings = match super::features::crossings(num, den, sign)? {
+    let found = match dt {
+        None => super::features::crossings(num, den, sign)?,
+        Some(dt) => super::features::circle_crossings(num, den, sign, dt)?,
+    };
+    let crossings = match found {
         Some(c) => c,
         None => {
             notes.push(format!(
-                "imaginary-axis crossings not computed: their polynomial has degree up to {} > {}",
-                num.degree() + den.degree(),
+                "{} crossings not computed: their polynomial has degree up to {} > {}",
+                if dt.is_some() {
+                    "unit-circle"
+                } else {
+                    "imaginary-axis"
+                },
+                2 * num.degree().max(den.degree()),
                 crate::poly::MAX_ORDER
             ));
             Vec::new()
@@ -127,7 +168,11 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
     let mut scale_points: Vec<Complex64> = poles.iter().map(|r| r.value).collect();
     scale_points.extend(zeros.iter().map(|r| r.value));
     scale_points.extend(break_points.iter().map(|b| Complex64::new(b.s, 0.0)));
-    scale_points.extend(crossings.iter().map(|c| Complex64::new(0.0, c.omega)));
+    scale_points.extend(
+        crossings
+            .iter()
+            .map(|c| c.z.unwrap_or(Complex64::new(0.0, c.omega))),
+    );
     if let Some(a) = &asymptotes {
         scale_points.push(Complex64::new(a.centroid, 0.0));
     }
@@ -157,6 +202,7 @@ pub fn root_locus(num: &Poly, den: &Poly, opts: &RootLocusOptions) -> Result<Roo
         departures,
         arrivals,
         escape_gain,
+        dt,
         notes,
         branches,
     })
@@ -187,8 +233,9 @@ fn check(num: &Poly, den: &Poly) -> Result<()> {
 }
 
 impl Factored {
-    /// The root locus of unity negative feedback around K·G (see [`root_locus`]), on G's
-    /// coefficients as given (a plant without coefficients is expanded from its factors).
+    /// The root locus of unity negative feedback around K·G (see [`root_locus`]; for a
+    /// discrete plant [`root_locus_z`], with the unit-circle crossings), on G's coefficients
+    /// as given (a plant without coefficients is expanded from its factors).
     ///
     /// ```
     /// use ltikit::TransferFunction;
@@ -198,11 +245,11 @@ impl Factored {
     /// assert_eq!(l.poles.len(), 3);
     /// ```
     pub fn root_locus(&self, opts: &RootLocusOptions) -> Result<RootLocus> {
-        self.domain().require_continuous(
-            "the root locus (its stable gains are read on the imaginary axis)",
-        )?;
         let (num, den) = self.locus_polys()?;
-        root_locus(&num, &den, opts)
+        match self.domain().dt() {
+            None => root_locus(&num, &den, opts),
+            Some(dt) => root_locus_z(&num, &den, dt, opts),
+        }
     }
 
     /// N and D as given (expanded from the factors when the plant has no coefficients).

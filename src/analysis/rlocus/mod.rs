@@ -11,7 +11,10 @@
 //!   real axis, break-in at a local minimum (decided by the sign of the first non-vanishing
 //!   derivative of N·D′ − N′·D);
 //! - **imaginary-axis crossings**: [`axis_crossings`](super::routh::axis_crossings), the same
-//!   polynomial the Routh stable-gain set is built on;
+//!   polynomial the Routh stable-gain set is built on; in discrete time ([`root_locus_z`]) the
+//!   **unit-circle crossings** instead ([`circle_crossings`](super::jury::circle_crossings):
+//!   z = ±1 and the axis crossings of the bilinear images, the ends of the Jury stable-gain
+//!   set);
 //! - **departure and arrival angles** at every pole and zero of G in lowest terms from the
 //!   angle condition (with multiplicity μ: μ angles 360°/μ apart); roots that N and D share
 //!   are closed-loop poles for every K and listed as fixed.
@@ -24,5 +27,5 @@ mod locus;
 mod trace;
 
 pub use features::{Asymptotes, BreakKind, BreakPoint, LocusAngle, LocusCrossing};
-pub use locus::{DEFAULT_MAX_GAINS, RootLocus, RootLocusOptions, root_locus};
+pub use locus::{DEFAULT_MAX_GAINS, RootLocus, RootLocusOptions, root_locus, root_locus_z};
 pub use trace::{Branches, locus_roots, trace_at_gains};

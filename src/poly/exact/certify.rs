@@ -159,7 +159,7 @@ fn gcd_budget() -> LtiError {
 }
 
 /// Roots and half-plane counts of one square-free basis factor.
-fn factor_roots(b: &ZPoly) -> Result<(Vec<CertifiedRoot>, HalfPlaneCounts)> {
+pub(super) fn factor_roots(b: &ZPoly) -> Result<(Vec<CertifiedRoot>, HalfPlaneCounts)> {
     if *b == ZPoly::x() {
         let root = CertifiedRoot {
             value: Complex64::new(0.0, 0.0),

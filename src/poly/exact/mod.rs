@@ -8,6 +8,8 @@
 //! - [`certify`]: the certified structure of N/D — a coprime basis of square-free factors with
 //!   exact multiplicities in N and D, the exact gcd (cancellations), the reduced N and D, exact
 //!   half-plane counts, and every root to full double precision.
+//! - [`ExactPoly::unit_circle_counts`] and [`Factor::circle_sides`]: the same decided against
+//!   the unit circle (discrete time), by the bilinear map z = (1 + w)/(1 − w).
 //!
 //! # Methods
 //! - **gcd**: modular (Brown): gcds modulo 31-bit primes, Chinese remaindering, certified by
@@ -36,6 +38,7 @@
 mod budget;
 mod cdd;
 mod certify;
+mod circle;
 mod disk;
 mod modular;
 mod mp;
@@ -48,6 +51,7 @@ mod zpoly;
 
 pub use budget::{MAX_EXACT_BITS, MAX_EXACT_DEGREE, MAX_EXACT_WORK};
 pub use certify::{CertifiedRoot, Factor, Side, Structure, certify};
+pub use circle::{CircleCounts, CircleSide};
 pub use number::{MAX_DIGITS, MAX_EXPONENT, Rational};
 pub use qpoly::ExactPoly;
 pub use sturm::HalfPlaneCounts;
