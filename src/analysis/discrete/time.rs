@@ -292,9 +292,18 @@ pub(crate) fn step_info(f: &Factored, dt: f64, opts: &StepInfoOptions) -> Result
         );
     let ymax = yn.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let ymin = yn.iter().copied().fold(f64::INFINITY, f64::min);
-    let noise = 64.0 * f64::EPSILON * a * (n as f64).sqrt();
+    // what the samples cannot tell from y∞: rounding, and the distance between the settled
+    // end of the march and G(1) (the dc gain's own rounding, large when D(1) is small)
+    let settled = yn.last().map_or(0.0, |v| (v - a).abs());
+    let noise = (64.0 * f64::EPSILON * a * (n as f64).sqrt()).max(4.0 * settled);
     let over = ((ymax - a).max(0.0) > noise).then(|| (ymax - a) / a * 100.0);
     let under = ((-ymin).max(0.0) > noise).then(|| -ymin / a * 100.0);
+    // a response that stays below y∞ only approaches its supremum |y∞| (as in s: peak time ∞)
+    let (pk, peak_time) = if over.is_none() && ymax <= a + noise {
+        (a, f64::INFINITY)
+    } else {
+        (pk, t(ipk))
+    };
     Ok(Some(StepInfo {
         rise_time: rise_start.zip(rise_end).map(|(a, b)| t(b) - t(a)),
         settling_time: Some(settling),
@@ -304,7 +313,7 @@ pub(crate) fn step_info(f: &Factored, dt: f64, opts: &StepInfoOptions) -> Result
         overshoot_percent: Some(over.unwrap_or(0.0)),
         undershoot_percent: Some(under.unwrap_or(0.0)),
         peak: Some(pk),
-        peak_time: Some(t(ipk)),
+        peak_time: Some(peak_time),
         steady_state: yf,
         rise_start: rise_start.map(t),
         rise_end: rise_end.map(t),

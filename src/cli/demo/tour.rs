@@ -11,7 +11,7 @@ use std::time::Instant;
 use super::context::Ctx;
 use super::md::Md;
 use super::verify::Checks;
-use super::{closed_loop, lattice, linear, mechanics, nonlinear, seed};
+use super::{closed_loop, digital, lattice, linear, mechanics, nonlinear, seed};
 use crate::fmt::fmt_sig;
 
 #[derive(Args, Debug)]
@@ -63,7 +63,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         figures: Vec::new(),
         checks: Checks::default(),
         step: 0,
-        steps: plants.len() + 13,
+        steps: plants.len() + 14,
         tty: std::io::stderr().is_terminal() && !a.json,
     };
     let mut md = Md::default();
@@ -93,6 +93,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         plants.len() + 4
     ));
     toc.push(format!("{}. Closing the loop", plants.len() + 5));
+    toc.push(format!("{}. Digital control", plants.len() + 6));
     toc.push("Verification".into());
     md.bullets(&toc);
 
@@ -130,6 +131,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     lattice::section(&mut ctx, &mut md, plants.len() + 4)?;
     ctx.progress("closed loop");
     closed_loop::section(&mut ctx, &mut md, plants.len() + 5)?;
+    ctx.progress("digital control");
+    digital::section(&mut ctx, &mut md, plants.len() + 6)?;
 
     ctx.progress("verification");
     ctx.checks.render(&mut md);
