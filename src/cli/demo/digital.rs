@@ -181,7 +181,7 @@ fn digital_pid(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         if dt <= 0.3 {
             series.push((format!("T = {dt} s"), cl.system(LoopSystem::ClosedLoop)?));
         }
-        if dt == 0.1 {
+        if (dt - 0.1f64).abs() < 1e-12 {
             // the closed form y[k] of the sampled loop against the recursion, 2000 samples
             let t: Vec<f64> = (0..2000).map(|k| k as f64 * dt).collect();
             let r = cl
