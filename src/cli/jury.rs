@@ -6,7 +6,7 @@ use anyhow::{Result, bail};
 use serde::Serialize;
 
 use super::output::{print, print_json};
-use super::routh::RouthArgs;
+use super::table_args::RouthArgs;
 use crate::analysis::jury::{JuryTable, discrete_stable_gains_exact, jury_exact};
 use crate::fmt::fmt_sig;
 use crate::lti::{Model, Plant};

@@ -24,6 +24,7 @@ mod response;
 mod rlocus;
 mod routh;
 mod simulate;
+mod table_args;
 mod text;
 
 pub use crate::lti::Plant;

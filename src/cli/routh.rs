@@ -3,37 +3,15 @@
 //! gets the Jury table instead (`jury.rs`).
 
 use anyhow::{Result, bail};
-use clap::Args;
 use serde::Serialize;
 
-use super::PlantArgs;
 use super::output::{print, print_json};
+pub use super::table_args::RouthArgs;
 use crate::analysis::{RouthEvent, RouthTable, routh};
 use crate::error::LtiError;
 use crate::fmt::fmt_sig;
 use crate::lti::Model;
 use crate::poly::{Poly, format_poly};
-
-#[derive(Args, Debug)]
-pub struct RouthArgs {
-    #[command(flatten)]
-    pub plant: PlantArgs,
-    /// A gain K in unity negative feedback: the table of the closed loop's D + K·N.
-    #[arg(long, value_name = "K", allow_hyphen_values = true)]
-    pub gain: Option<f64>,
-    /// Also the gains K for which the unity-feedback loop D + K·N is stable (open intervals;
-    /// for a discrete plant: every root strictly inside the unit circle, each interval decided
-    /// exactly).
-    #[arg(long)]
-    pub gain_range: bool,
-    /// Print one JSON document: {"polynomial", "rows", "powers", "events", "rhp", "axis", "lhp",
-    /// "exact"} (and "stable_gains": [[lo, hi], …] with --gain-range; null for an infinite end).
-    /// For a discrete plant (the Jury table): {"polynomial", "rows", "alphas", "first",
-    /// "singular_at", "inside", "on", "outside", "exact": {"inside", "on", "outside"}} and
-    /// "stable_gains".
-    #[arg(long)]
-    pub json: bool,
-}
 
 /// Root counts decided in exact rational arithmetic.
 #[derive(Serialize, Debug, Clone, Copy, PartialEq, Eq)]

@@ -21,6 +21,7 @@ mod form;
 mod sequence;
 mod term;
 mod text;
+mod words;
 
 pub use form::ClosedForm;
 pub use sequence::{SequenceForm, SequenceTerm};

@@ -18,7 +18,7 @@ use std::fmt;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::text::{cos_of, product, signed_sum, var_power};
+use super::words::{cos_of, product, signed_sum, var_power};
 use crate::analysis::pfe::PartialFractions;
 use crate::fmt::fmt_num;
 

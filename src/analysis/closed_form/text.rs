@@ -4,6 +4,7 @@ use std::fmt;
 
 use super::form::ClosedForm;
 use super::term::ClosedFormTerm;
+use super::words::{cos_of, product, signed_sum, var_power};
 use crate::fmt::fmt_num;
 
 impl ClosedForm {
@@ -68,15 +69,6 @@ fn t_power(k: usize) -> String {
     var_power("t", k)
 }
 
-/// `v`, `v^2`, … for the power k of the variable `v` (empty for k = 0).
-pub(super) fn var_power(v: &str, k: usize) -> String {
-    match k {
-        0 => String::new(),
-        1 => v.into(),
-        _ => format!("{v}^{k}"),
-    }
-}
-
 /// `e^(-0.5 t)`, `e^(-t)`, `e^(2 t)`; empty for rate 0.
 fn exp_factor(rate: f64) -> String {
     if rate == 0.0 {
@@ -93,34 +85,6 @@ fn exp_factor(rate: f64) -> String {
 /// `cos(0.866025 t - 0.523599)`, `cos(t)`.
 fn cos_factor(omega: f64, phase: f64) -> String {
     cos_of(omega, phase, "t")
-}
-
-/// `cos(0.5 k + 0.3)`, `cos(k)`: the cosine of ω·v + φ for the variable `v`.
-pub(super) fn cos_of(omega: f64, phase: f64, v: &str) -> String {
-    let wt = match fmt_num(omega).as_str() {
-        "1" => v.to_string(),
-        w => format!("{w} {v}"),
-    };
-    let ph = fmt_num(phase);
-    if ph == "0" {
-        format!("cos({wt})")
-    } else if let Some(m) = ph.strip_prefix('-') {
-        format!("cos({wt} - {m})")
-    } else {
-        format!("cos({wt} + {ph})")
-    }
-}
-
-/// Joins non-empty factors with spaces; a magnitude of 1 is dropped when other factors follow.
-pub(super) fn product(mag: f64, factors: &[String]) -> String {
-    let factors: Vec<&String> = factors.iter().filter(|f| !f.is_empty()).collect();
-    let m = fmt_num(mag);
-    let mut parts: Vec<String> = Vec::new();
-    if m != "1" || factors.is_empty() {
-        parts.push(m);
-    }
-    parts.extend(factors.into_iter().cloned());
-    parts.join(" ")
 }
 
 /// Signed text pieces of one group; coefficients with |c| ≤ noise are left out.
@@ -209,17 +173,4 @@ fn term_pieces(t: &ClosedFormTerm, noise: f64) -> Vec<(bool, String)> {
             vec![(neg, format!("{e} ({inner})"))]
         }
     }
-}
-
-pub(super) fn signed_sum(pieces: Vec<(bool, String)>) -> String {
-    let mut s = String::new();
-    for (i, (neg, body)) in pieces.iter().enumerate() {
-        match (i, neg) {
-            (0, true) => s.push_str(&format!("-{body}")),
-            (0, false) => s.push_str(body),
-            (_, true) => s.push_str(&format!(" - {body}")),
-            (_, false) => s.push_str(&format!(" + {body}")),
-        }
-    }
-    s
 }

@@ -6,8 +6,10 @@ use std::f64::consts::{PI, TAU};
 
 use super::circle_side;
 use super::freq::eval;
-use crate::analysis::margins::{dedup_by_w, wrap_deg};
-use crate::analysis::{Factored, GainCrossing, HalfPlane, Margins, PhaseCrossing};
+use crate::analysis::margins::crossing::{
+    GainCrossing, Margins, PhaseCrossing, dedup_by_w, wrap_deg,
+};
+use crate::analysis::{Factored, HalfPlane};
 use crate::error::Result;
 use crate::numeric::scalar::all_crossings;
 
