@@ -403,3 +403,28 @@ fn cli_residue_on_a_discrete_plant() {
     assert_eq!(v["terms"].as_array().unwrap().len(), 2);
     assert!((v["terms"][0]["residue"][0].as_f64().unwrap() - 2.0 / 3.0).abs() < 1e-15);
 }
+
+/// Found by the fuzzer (seed 9): a drawing span of 1e100 s over T = 0.1 s was counted in
+/// samples as a usize (capacity overflow); it is one error line now, or a picture.
+#[test]
+fn a_huge_span_of_a_discrete_picture_is_no_panic() {
+    let dir = std::env::temp_dir().join(format!("ltikit-huge-span-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("x.png");
+    let out = ltikit(&[
+        "step",
+        "--num",
+        "1",
+        "--den",
+        "1 -0.5",
+        "--dt",
+        "0.1",
+        "--t-end",
+        "1e100",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    let code = out.status.code();
+    assert!(code == Some(0) || code == Some(1), "{out:?}");
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("internal error"));
+}

@@ -260,10 +260,11 @@ impl Factored {
         t_end: f64,
         uniform: Vec<f64>,
     ) -> Result<TimeResponse> {
-        let samples = (t_end / dt).floor() as usize;
-        if samples + 1 > uniform.len() {
+        // (compared in floating point: t_end/T may be far beyond usize)
+        if (t_end / dt).floor() + 1.0 > uniform.len() as f64 {
             return self.time_response(input, &[], &uniform);
         }
+        let samples = (t_end / dt).floor() as usize;
         let k: Vec<f64> = (0..=samples).map(|k| k as f64 * dt).collect();
         let r = self.time_response(input, &[], &k)?;
         let mut t = Vec::with_capacity(2 * k.len());
