@@ -40,6 +40,8 @@ fn record(line: usize, text: &str) -> Value {
     })();
     let mut out = serde_json::Map::new();
     out.insert("line".into(), json!(line));
+    // the domain of the record, as in every plant document
+    out.insert("dt".into(), json!(plant.domain().dt()));
     // a record's own name, never the generated one
     if let Some(n) = serde_json::from_str::<Value>(text)
         .ok()
