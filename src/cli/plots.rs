@@ -629,6 +629,7 @@ pub fn nyquist(a: &NyquistArgs) -> Result<()> {
         .iter()
         .map(|(_, g)| g.nyquist())
         .collect::<crate::Result<Vec<_>>>()?;
+    let opts = discrete_title(&opts, "Nyquist diagram", &plants);
     let series: Vec<NyquistSeries> = plants
         .iter()
         .zip(&contours)
@@ -646,6 +647,8 @@ pub fn nyquist(a: &NyquistArgs) -> Result<()> {
             "closed_loop_rhp_poles": c.closed_loop_rhp_poles,
             "g_at_infinity": c.g_at_infinity,
             "axis_poles": c.axis_poles,
+            // where P and Z are counted
+            "region": if c.dt.is_some() { "outside the unit circle" } else { "right half plane" },
         }))
     })?;
     print_json(&json!({
