@@ -261,3 +261,34 @@ fn cli_nyquist_of_a_discrete_plant() {
     assert!(out.stdout.is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bode_of_a_discrete_plant_marks_the_nyquist_frequency() {
+    use ltikit::plot::{BodeSeries, PlotOptions, bode_png};
+    let dir = std::env::temp_dir().join(format!("ltikit-dbode-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("b.png");
+    let path = png.to_str().unwrap();
+    // the response ends at π/T = 10π rad/s (T = 0.1), the marker stands there
+    let doc = json(&[
+        "bode", "--num", "1", "--den", "1 -1.5 0.5", "--dt", "0.1", "-o", path, "--json",
+    ]);
+    let hi = doc["w_range"][1].as_f64().unwrap();
+    assert!((hi - std::f64::consts::PI / 0.1).abs() < 1e-12, "{hi}");
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // through the library: the series carries π/T; a bad one is refused, no file left
+    let g = loop_z(1.0, &[1.0], &[1.0, -0.5], 0.5);
+    let w: Vec<f64> = (1..=50).map(|i| f64::from(i) * std::f64::consts::PI / 0.5 / 50.0).collect();
+    let fr = g.freq_response(&w).unwrap();
+    let s = BodeSeries::new(&fr).label("1/(z - 0.5)").sampling_period(0.5);
+    assert!((s.nyquist_frequency.unwrap() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    let png2 = dir.join("lib.png");
+    bode_png(&png2, &[s], &PlotOptions::default()).unwrap();
+    assert!(std::fs::metadata(&png2).unwrap().len() > 1000);
+    let mut bad = s;
+    bad.nyquist_frequency = Some(f64::NAN);
+    let png3 = dir.join("bad.png");
+    assert!(bode_png(&png3, &[bad], &PlotOptions::default()).is_err());
+    assert!(!png3.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -120,12 +120,16 @@ pub fn bode_figure(
         } else {
             None
         };
-        data.push((label, fr, m, asym));
+        data.push((label, fr, m, asym, g.domain().dt()));
     }
     let series: Vec<BodeSeries> = data
         .iter()
-        .map(|(label, fr, m, asym)| {
+        .map(|(label, fr, m, asym, dt)| {
             let mut s = BodeSeries::new(fr).label(label);
+            // a discrete plant: the Nyquist frequency π/T is marked
+            if let Some(dt) = dt {
+                s = s.sampling_period(*dt);
+            }
             if let Some(m) = m {
                 s = s.margins(m);
             }
@@ -138,7 +142,7 @@ pub fn bode_figure(
     bode_png(path, &series, opts)?;
     Ok(BodeDrawn {
         range: (lo, hi),
-        margins: data.into_iter().map(|(_, _, m, _)| m).collect(),
+        margins: data.into_iter().map(|(_, _, m, _, _)| m).collect(),
     })
 }
 
