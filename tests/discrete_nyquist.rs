@@ -69,12 +69,19 @@ fn integrator_loop_matches_jury_and_the_roots() {
     assert_eq!(n.dt, Some(0.1));
     assert_eq!(n.axis_poles, vec![0.0]); // the integrator z = 1, ω = 0
     assert_eq!(
-        (n.open_loop_rhp_poles, n.encirclements, n.closed_loop_rhp_poles),
+        (
+            n.open_loop_rhp_poles,
+            n.encirclements,
+            n.closed_loop_rhp_poles
+        ),
         (0, Some(0), Some(0))
     );
     // K = 0.8: z² − 1.5z + 1.3, a complex pair with |z|² = 1.3 > 1: two outside, N = 2.
     let n = contour(0.8, &num, &den);
-    assert_eq!((n.encirclements, n.closed_loop_rhp_poles), (Some(2), Some(2)));
+    assert_eq!(
+        (n.encirclements, n.closed_loop_rhp_poles),
+        (Some(2), Some(2))
+    );
     let jt = jury(&poly(&closed_loop(0.8, &num, &den))).unwrap();
     assert_eq!(jt.outside, 2);
     // the whole sweep: the criterion against the Jury table and the roots
@@ -82,7 +89,12 @@ fn integrator_loop_matches_jury_and_the_roots() {
         let n = contour(k, &num, &den);
         let jt = jury(&poly(&closed_loop(k, &num, &den))).unwrap();
         if let Some(z) = outside_by_roots(k, &num, &den) {
-            assert_eq!(n.closed_loop_rhp_poles, Some(z), "K = {k}: N = {:?}", n.encirclements);
+            assert_eq!(
+                n.closed_loop_rhp_poles,
+                Some(z),
+                "K = {k}: N = {:?}",
+                n.encirclements
+            );
             assert_eq!(z, jt.outside as i64, "K = {k}");
             assert_eq!(z == 0, k > 0.0 && k < 0.5, "K = {k}");
         }
@@ -116,10 +128,17 @@ fn the_arc_around_z_equal_one_is_outside_and_maps_to_the_large_clockwise_arc() {
     }
     // clockwise: the angle of G decreases along the arc, from about +90° to −90°
     assert!(arc.windows(2).all(|w| (w[1].g / w[0].g).arg() <= 1e-12));
-    let (first, last) = (arc[0].g.arg().to_degrees(), arc[arc.len() - 1].g.arg().to_degrees());
+    let (first, last) = (
+        arc[0].g.arg().to_degrees(),
+        arc[arc.len() - 1].g.arg().to_degrees(),
+    );
     assert!(first > 80.0 && last < -80.0, "{first}° … {last}°");
     // every other point is on the unit circle, and the curve is closed at z = −1
-    for p in n.points.iter().filter(|p| p.part == ContourPart::UnitCircle) {
+    for p in n
+        .points
+        .iter()
+        .filter(|p| p.part == ContourPart::UnitCircle)
+    {
         assert!((p.s.norm() - 1.0).abs() < 1e-12);
     }
     let (a, b) = (n.points[0], n.points[n.points.len() - 1]);
@@ -146,7 +165,11 @@ fn first_order_crosses_at_z_equal_minus_one() {
     }
     for k in gains() {
         if let Some(z) = outside_by_roots(k, &num, &den) {
-            assert_eq!(contour(k, &num, &den).closed_loop_rhp_poles, Some(z), "K = {k}");
+            assert_eq!(
+                contour(k, &num, &den).closed_loop_rhp_poles,
+                Some(z),
+                "K = {k}"
+            );
         }
     }
 }
@@ -159,16 +182,28 @@ fn an_unstable_pole_stabilised_by_feedback() {
     let (num, den) = ([1.0], [1.0, -2.0]);
     let n = contour(1.5, &num, &den);
     assert_eq!(
-        (n.open_loop_rhp_poles, n.encirclements, n.closed_loop_rhp_poles),
+        (
+            n.open_loop_rhp_poles,
+            n.encirclements,
+            n.closed_loop_rhp_poles
+        ),
         (1, Some(-1), Some(0))
     );
     for (k, nn, z) in [(0.5, 0, 1), (2.9, -1, 0), (3.5, 0, 1)] {
         let n = contour(k, &num, &den);
-        assert_eq!((n.encirclements, n.closed_loop_rhp_poles), (Some(nn), Some(z)), "K = {k}");
+        assert_eq!(
+            (n.encirclements, n.closed_loop_rhp_poles),
+            (Some(nn), Some(z)),
+            "K = {k}"
+        );
     }
     for k in gains() {
         if let Some(z) = outside_by_roots(k, &num, &den) {
-            assert_eq!(contour(k, &num, &den).closed_loop_rhp_poles, Some(z), "K = {k}");
+            assert_eq!(
+                contour(k, &num, &den).closed_loop_rhp_poles,
+                Some(z),
+                "K = {k}"
+            );
         }
     }
 }
@@ -190,7 +225,15 @@ fn criterion_matches_the_roots_on_plants_with_poles_on_the_circle() {
         // an unstable pair 1.2e^(±j0.6) with a zero
         (&[1.0, -0.3], &[1.0, -2.4 * 0.6f64.cos(), 1.44]),
         // third order, a resonance near the circle: (z − 0.95e^(±j0.3))(z − 0.2)
-        (&[1.0], &[1.0, -(1.9 * 0.3f64.cos() + 0.2), 0.9025 + 0.38 * 0.3f64.cos(), -0.1805]),
+        (
+            &[1.0],
+            &[
+                1.0,
+                -(1.9 * 0.3f64.cos() + 0.2),
+                0.9025 + 0.38 * 0.3f64.cos(),
+                -0.1805,
+            ],
+        ),
     ];
     let mut checked = 0;
     for (num, den) in cases {
@@ -228,10 +271,14 @@ fn improper_and_ill_posed_loops() {
     let g = loop_z(1.0, &[1.0, 0.0, 0.0], &[1.0, 0.5], 0.1);
     assert!(g.nyquist().is_err());
     // 1 + G(∞) = 0: −z/(z − 0.5), the loop is not causal: N undefined
-    let n = loop_z(-1.0, &[1.0, 0.0], &[1.0, -0.5], 0.1).nyquist().unwrap();
+    let n = loop_z(-1.0, &[1.0, 0.0], &[1.0, -0.5], 0.1)
+        .nyquist()
+        .unwrap();
     assert_eq!(n.encirclements, None);
     // biproper and well posed: 2z/(z − 0.5), closed loop 3z − 0.5: stable
-    let n = loop_z(2.0, &[1.0, 0.0], &[1.0, -0.5], 0.1).nyquist().unwrap();
+    let n = loop_z(2.0, &[1.0, 0.0], &[1.0, -0.5], 0.1)
+        .nyquist()
+        .unwrap();
     assert_eq!(n.closed_loop_rhp_poles, Some(0));
     assert!((n.g_at_infinity - 2.0).abs() < 1e-15);
 }
@@ -243,7 +290,16 @@ fn cli_nyquist_of_a_discrete_plant() {
     let png = dir.join("n.png");
     let path = png.to_str().unwrap();
     let doc = json(&[
-        "nyquist", "--num", "0.8", "--den", "1 -1.5 0.5", "--dt", "0.1", "-o", path, "--json",
+        "nyquist",
+        "--num",
+        "0.8",
+        "--den",
+        "1 -1.5 0.5",
+        "--dt",
+        "0.1",
+        "-o",
+        path,
+        "--json",
     ]);
     assert_eq!(doc["dt"], 0.1);
     let p = &doc["plants"][0];
@@ -253,10 +309,14 @@ fn cli_nyquist_of_a_discrete_plant() {
     assert_eq!(p["region"], "outside the unit circle");
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
     // a continuous plant keeps the half plane
-    let doc = json(&["nyquist", "--num", "2", "--den", "1 3 2 0", "-o", path, "--json"]);
+    let doc = json(&[
+        "nyquist", "--num", "2", "--den", "1 3 2 0", "-o", path, "--json",
+    ]);
     assert_eq!(doc["plants"][0]["region"], "right half plane");
     // improper in z: one line, exit 1
-    let out = ltikit(&["nyquist", "--num", "1 0 0", "--den", "1 0.5", "--dt", "0.1", "-o", path]);
+    let out = ltikit(&[
+        "nyquist", "--num", "1 0 0", "--den", "1 0.5", "--dt", "0.1", "-o", path,
+    ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(out.stdout.is_empty());
     std::fs::remove_dir_all(&dir).ok();
@@ -271,16 +331,29 @@ fn bode_of_a_discrete_plant_marks_the_nyquist_frequency() {
     let path = png.to_str().unwrap();
     // the response ends at π/T = 10π rad/s (T = 0.1), the marker stands there
     let doc = json(&[
-        "bode", "--num", "1", "--den", "1 -1.5 0.5", "--dt", "0.1", "-o", path, "--json",
+        "bode",
+        "--num",
+        "1",
+        "--den",
+        "1 -1.5 0.5",
+        "--dt",
+        "0.1",
+        "-o",
+        path,
+        "--json",
     ]);
     let hi = doc["w_range"][1].as_f64().unwrap();
     assert!((hi - std::f64::consts::PI / 0.1).abs() < 1e-12, "{hi}");
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
     // through the library: the series carries π/T; a bad one is refused, no file left
     let g = loop_z(1.0, &[1.0], &[1.0, -0.5], 0.5);
-    let w: Vec<f64> = (1..=50).map(|i| f64::from(i) * std::f64::consts::PI / 0.5 / 50.0).collect();
+    let w: Vec<f64> = (1..=50)
+        .map(|i| f64::from(i) * std::f64::consts::PI / 0.5 / 50.0)
+        .collect();
     let fr = g.freq_response(&w).unwrap();
-    let s = BodeSeries::new(&fr).label("1/(z - 0.5)").sampling_period(0.5);
+    let s = BodeSeries::new(&fr)
+        .label("1/(z - 0.5)")
+        .sampling_period(0.5);
     assert!((s.nyquist_frequency.unwrap() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
     let png2 = dir.join("lib.png");
     bode_png(&png2, &[s], &PlotOptions::default()).unwrap();

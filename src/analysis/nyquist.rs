@@ -178,11 +178,10 @@ impl Piece {
             Piece::Unit { a, b, .. } => {
                 ((200.0 * (b - a) / std::f64::consts::PI).ceil() as usize).clamp(16, MAX_POINTS)
             }
-            Piece::Bump { psi0, psi1, m, .. } => {
-                ((16.0 * m.max(1) as f64 * (psi1 - psi0).abs() / std::f64::consts::PI).ceil()
-                    as usize)
-                    .clamp(8, MAX_POINTS)
-            }
+            Piece::Bump { psi0, psi1, m, .. } => ((16.0 * m.max(1) as f64 * (psi1 - psi0).abs()
+                / std::f64::consts::PI)
+                .ceil() as usize)
+                .clamp(8, MAX_POINTS),
         }
     }
 

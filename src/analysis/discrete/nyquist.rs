@@ -109,6 +109,7 @@ fn sample_all(g: &Factored, pieces: &[Piece]) -> Vec<NyquistPoint> {
 
 /// The contour of a discrete plant with period `dt` (G proper; `g_inf` = G(∞); `ill_posed`
 /// when 1 + G(∞) = 0).
+#[allow(clippy::float_cmp)] // atan2(0, x) is exactly 0 or π for a real pole at z = ±1
 pub(crate) fn nyquist_contour(
     g: &Factored,
     dt: f64,
