@@ -16,6 +16,22 @@
 //! The samples are adaptive: between neighbours the angle of G and of 1 + G may turn by at
 //! most 8° (and |G| change by at most 30 %), so a resonance or a pass near −1 is resolved
 //! and the winding number is exact.
+//!
+//! **In discrete time** (a plant with a sampling period T) the contour is the unit circle
+//! z = e^(jθ), θ = ωT from −π to π (the image for θ in [0, π] and its conjugate), traversed
+//! counterclockwise: the exterior of the disc, the unstable region, lies on its right, as the
+//! right half plane lies on the right of the D contour — so it is gone round clockwise, and
+//! z = ∞ belongs to it (a proper G is finite there and D + N keeps the degree of D, so the
+//! closed loop has no pole there). Poles of G on the circle, e^(jα), are passed on small arcs
+//! z = e^(jα)(1 + ε e^(jψ)) **outside** the circle (ψ through 0, from the circle point
+//! e^(j(α − δ)) to e^(j(α + δ)), ε = 2 sin(δ/2)), so they count as inside: P is the number of
+//! poles with |p| > 1 strictly, and the criterion is the same Z = N + P, N the clockwise
+//! encirclements of −1 and Z the closed-loop poles outside the unit circle. The arc around an
+//! integrator z = 1 maps, as the indentation around s = 0 does, to a large clockwise arc of
+//! radius ~|residue|/ε. ε is 10⁻³ of the distance from the pole to its nearest other pole or
+//! zero (at most 10⁻³). The curve closes on itself at z = −1 (or on the arc around a pole
+//! there), and the winding of G + 1 is refined in θ as it is in ω. An improper G (non-causal,
+//! a pole at z = ∞) is refused; with 1 + G(∞) = 0 the loop is not causal and N is `None`.
 
 use num_complex::Complex64;
 use serde::Serialize;
@@ -31,31 +47,43 @@ use crate::poly::{HalfPlane, half_plane};
 pub enum ContourPart {
     /// s = jω on the imaginary axis.
     Axis,
-    /// On a small semicircle around an imaginary-axis pole.
+    /// On a small semicircle around an imaginary-axis pole (or, in z, a small arc outside the
+    /// unit circle around a pole on it).
     Indentation,
+    /// z = e^(jωT) on the unit circle (a discrete-time plant; −π/T ≤ ω ≤ π/T).
+    UnitCircle,
 }
 
 /// One sample of the contour.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct NyquistPoint {
-    /// The point s of the D contour (Im s < 0 on the mirror half, ω < 0).
+    /// The point s of the D contour (Im s < 0 on the mirror half, ω < 0); for a discrete plant
+    /// the point z of the unit-circle contour.
     pub s: Complex64,
-    /// G(s).
+    /// G(s) (G(z) in discrete time).
     pub g: Complex64,
-    /// Axis or indentation.
+    /// Axis, unit circle or indentation.
     pub part: ContourPart,
 }
 
-/// G along the Nyquist D contour, in contour order (ω from −∞ to +∞).
+/// G along the Nyquist D contour, in contour order (ω from −∞ to +∞); for a discrete plant G
+/// along the unit circle z = e^(jωT), ω from −π/T to π/T (see the [module
+/// documentation](self)).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct NyquistContour {
-    /// The samples, ω from −∞ to +∞ (the ω < 0 half is the mirror image of the ω > 0 half).
+    /// The sampling period T of a discrete plant (`None`: continuous time, the D contour).
+    pub dt: Option<f64>,
+    /// The samples, ω from −∞ to +∞ (the ω < 0 half is the mirror image of the ω > 0 half);
+    /// in discrete time from −π/T to π/T.
     pub points: Vec<NyquistPoint>,
     /// lim G(jω) for ω → ±∞ (the whole infinite semicircle maps to this real number: the
-    /// direct feedthrough, 0 for a strictly proper G).
+    /// direct feedthrough, 0 for a strictly proper G). In discrete time G(z → ∞), the
+    /// feedthrough, which is not on the contour.
     pub g_at_infinity: f64,
     /// Frequencies ω ≥ 0 of the imaginary-axis poles of G (0 for poles at the origin), each
-    /// passed on a semicircle of radius `indent_radius[k]`.
+    /// passed on a semicircle of radius `indent_radius[k]`. In discrete time the frequencies
+    /// ω = θ/T, 0 ≤ θ ≤ π, of the poles e^(jθ) on the unit circle (0 for z = 1, π/T for
+    /// z = −1), each passed outside the circle on an arc of radius `indent_radius[k]`.
     pub axis_poles: Vec<f64>,
     /// Indentation radii, one per entry of `axis_poles`.
     pub indent_radius: Vec<f64>,
@@ -64,11 +92,13 @@ pub struct NyquistContour {
     /// scale from every imaginary-axis pole); beyond it the curve only heads off to infinity.
     /// `None` when the curve is bounded.
     pub display_radius: Option<f64>,
-    /// P: poles of G (lowest terms) with Re p > 0, with multiplicity.
+    /// P: poles of G (lowest terms) with Re p > 0, with multiplicity; in discrete time the
+    /// poles strictly outside the unit circle.
     pub open_loop_rhp_poles: usize,
     /// N: clockwise encirclements of −1 by G; `None` when the curve passes through −1.
     pub encirclements: Option<i64>,
-    /// Z = N + P: closed-loop right-half-plane poles of G/(1 + G); `None` with N.
+    /// Z = N + P: closed-loop right-half-plane poles of G/(1 + G) (in discrete time: poles
+    /// outside the unit circle); `None` with N.
     pub closed_loop_rhp_poles: Option<i64>,
 }
 
@@ -85,11 +115,22 @@ const INDENT_REL: f64 = 1e-3;
 
 /// A parametrised piece of the positive-frequency half of the contour.
 #[derive(Debug, Clone, Copy)]
-enum Piece {
+pub(crate) enum Piece {
     /// s = j·10^u for u in [a, b].
     Axis { a: f64, b: f64 },
     /// s = jω + ε e^{jθ} for θ in [−π/2, π/2].
     Arc { w: f64, eps: f64, m: usize },
+    /// z = e^{jθ} for θ in [a, b] (0 < a: log-spaced in θ when `log`).
+    Unit { a: f64, b: f64, log: bool },
+    /// z = e^{jα}(1 + ε e^{jψ}) for ψ in [psi0, psi1]: around a pole e^{jα} on the unit
+    /// circle, outside it (ψ = 0 points away from the origin).
+    Bump {
+        alpha: f64,
+        eps: f64,
+        psi0: f64,
+        psi1: f64,
+        m: usize,
+    },
 }
 
 impl Piece {
@@ -99,6 +140,25 @@ impl Piece {
             Piece::Arc { w, eps, .. } => {
                 let th = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * t;
                 Complex64::new(eps * th.cos(), w + eps * th.sin())
+            }
+            Piece::Unit { a, b, log } => {
+                let th = if log {
+                    10f64.powf(a.log10() + (b.log10() - a.log10()) * t)
+                } else {
+                    a + (b - a) * t
+                };
+                Complex64::from_polar(1.0, th)
+            }
+            Piece::Bump {
+                alpha,
+                eps,
+                psi0,
+                psi1,
+                ..
+            } => {
+                let psi = psi0 + (psi1 - psi0) * t;
+                Complex64::from_polar(1.0, alpha)
+                    * (Complex64::new(1.0, 0.0) + Complex64::from_polar(eps, psi))
             }
         }
     }
@@ -112,13 +172,24 @@ impl Piece {
             }
             Piece::Axis { .. } => 8,
             Piece::Arc { m, .. } => 16 * m.max(1),
+            Piece::Unit { a, b, log: true } if a > 0.0 && (b / a).is_finite() => {
+                (((b / a).log10() * 60.0).ceil() as usize).clamp(16, MAX_POINTS)
+            }
+            Piece::Unit { a, b, .. } => {
+                ((200.0 * (b - a) / std::f64::consts::PI).ceil() as usize).clamp(16, MAX_POINTS)
+            }
+            Piece::Bump { psi0, psi1, m, .. } => ((16.0 * m.max(1) as f64 * (psi1 - psi0).abs()
+                / std::f64::consts::PI)
+                .ceil() as usize)
+                .clamp(8, MAX_POINTS),
         }
     }
 
     fn part(&self) -> ContourPart {
         match self {
             Piece::Axis { .. } => ContourPart::Axis,
-            Piece::Arc { .. } => ContourPart::Indentation,
+            Piece::Arc { .. } | Piece::Bump { .. } => ContourPart::Indentation,
+            Piece::Unit { .. } => ContourPart::UnitCircle,
         }
     }
 }
@@ -141,7 +212,7 @@ fn too_coarse(a: Complex64, b: Complex64) -> bool {
 }
 
 /// Samples one piece adaptively, appending to `out` (without duplicating a shared endpoint).
-fn sample_piece(g: &Factored, piece: Piece, out: &mut Vec<NyquistPoint>) {
+pub(crate) fn sample_piece(g: &Factored, piece: Piece, out: &mut Vec<NyquistPoint>) {
     let n = piece.initial();
     let eval = |t: f64| {
         let s = piece.s(t);
@@ -197,23 +268,32 @@ pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
     } else {
         0.0
     };
+    if let Some(dt) = g.domain().dt() {
+        // 1 + G(∞) = 0: D + N drops degree, the loop is not causal (a pole at z = ∞).
+        let ill_posed = tiny_about_minus_one(Complex64::new(1.0 + g_inf, 0.0), g_inf.into());
+        return crate::analysis::discrete::nyquist_contour(g, dt, g_inf, ill_posed);
+    }
     let geo = Geometry::of(g);
     let positive = geo.positive_half(g);
     let middle = geo.middle(g);
-    let mut points: Vec<NyquistPoint> = positive
-        .iter()
-        .rev()
-        .map(|p| NyquistPoint {
-            s: p.s.conj(),
-            g: p.g.conj(),
-            part: p.part,
-        })
-        .collect();
+    let mut points = mirrored(&positive);
     points.extend(middle);
     points.extend(positive.iter().copied());
     let display_radius = geo.display_radius(&points, g_inf);
-    let encirclements = winding_about_minus_one(&points, g_inf, |s| g.eval(s));
+    // The axis ends join ω = ±∞, where G = G(∞); a segment on the axis that turns too far is
+    // refined in ω.
+    let at_inf = Complex64::new(g_inf, 0.0);
+    let path: Vec<(Option<f64>, Complex64)> = std::iter::once((Some(f64::NEG_INFINITY), at_inf))
+        .chain(
+            points
+                .iter()
+                .map(|p| ((p.part == ContourPart::Axis).then_some(p.s.im), p.g)),
+        )
+        .chain(std::iter::once((Some(f64::INFINITY), at_inf)))
+        .collect();
+    let encirclements = winding_about_minus_one(&path, |w| g.eval(Complex64::new(0.0, w)));
     Ok(NyquistContour {
+        dt: None,
         points,
         g_at_infinity: g_inf,
         axis_poles: geo.axis.iter().map(|a| a.0).collect(),
@@ -223,6 +303,19 @@ pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
         encirclements,
         closed_loop_rhp_poles: encirclements.map(|n| n + geo.rhp as i64),
     })
+}
+
+/// The mirror half of the contour: the conjugates of the positive half, in reverse order.
+pub(crate) fn mirrored(positive: &[NyquistPoint]) -> Vec<NyquistPoint> {
+    positive
+        .iter()
+        .rev()
+        .map(|p| NyquistPoint {
+            s: p.s.conj(),
+            g: p.g.conj(),
+            part: p.part,
+        })
+        .collect()
 }
 
 /// Where the contour must go around poles: the imaginary-axis poles (ω ≥ 0, sorted, with
@@ -389,39 +482,35 @@ impl Geometry {
     }
 }
 
-/// Clockwise encirclements of −1 by the closed curve (the points, closed through G(∞)).
+/// Clockwise encirclements of −1 by the closed curve `path`: (parameter, G) pairs in contour
+/// order, the last joined to the first by the caller's closing entries. The parameter is the
+/// point's ω on the imaginary axis (±∞ for the ends of the axis; in z the angle θ on the unit
+/// circle), `None` on an indentation.
 ///
-/// The angle of G + 1 is summed segment by segment; a segment along the imaginary axis whose
-/// turn is too large to tell the way round (the curve sweeps close by −1 between two samples:
-/// 1e8/(s + 1)² passes 2e-4 below −1 near ω = 1e4) is subdivided with `eval` (bisection in
-/// ω, geometric for ω of one sign) until every piece turns by less than 0.9π. `None` when the
-/// curve passes through −1 (|G + 1| ≤ 1e-10·max(1, |G|)) or refinement does not resolve it.
-fn winding_about_minus_one(
-    points: &[NyquistPoint],
-    g_inf: f64,
-    eval: impl Fn(Complex64) -> Complex64,
+/// The angle of G + 1 is summed segment by segment; a segment between two parametrised points
+/// whose turn is too large to tell the way round (the curve sweeps close by −1 between two
+/// samples: 1e8/(s + 1)² passes 2e-4 below −1 near ω = 1e4) is subdivided with `eval` (G at a
+/// parameter; bisection, geometric for parameters of one sign) until every piece turns by
+/// less than 0.9π. `None` when the curve passes through −1 (|G + 1| ≤ 1e-10·max(1, |G|)) or
+/// refinement does not resolve it. The counterclockwise winding is negated: N counts
+/// clockwise turns, the direction in which the contour goes round the unstable region.
+pub(crate) fn winding_about_minus_one(
+    path: &[(Option<f64>, Complex64)],
+    eval: impl Fn(f64) -> Complex64,
 ) -> Option<i64> {
     let one = Complex64::new(1.0, 0.0);
-    let inf = Complex64::new(g_inf + 1.0, 0.0);
-    if tiny_about_minus_one(inf, Complex64::new(g_inf, 0.0)) {
-        return None;
-    }
-    // The ends of the sampled axis join ω = ±∞ (where G = G(∞)); a segment on the axis, or to
-    // ω = ±∞, that turns too far is refined with `eval`.
-    let axis = |p: &NyquistPoint| (p.part == ContourPart::Axis).then_some(p.s.im);
     let mut total = 0.0;
-    let mut prev_w: Option<f64> = Some(f64::NEG_INFINITY);
-    let mut prev_z = inf;
-    for p in points {
-        let z = p.g + one;
-        if !(z.re.is_finite() && z.im.is_finite()) || tiny_about_minus_one(z, p.g) {
+    let mut prev: Option<(Option<f64>, Complex64)> = None;
+    for &(w, g) in path {
+        let z = g + one;
+        if !(z.re.is_finite() && z.im.is_finite()) || tiny_about_minus_one(z, g) {
             return None;
         }
-        total += segment_turn(prev_w, axis(p), prev_z, z, &eval)?;
-        prev_w = axis(p);
-        prev_z = z;
+        if let Some((pw, pz)) = prev {
+            total += segment_turn(pw, w, pz, z, &eval)?;
+        }
+        prev = Some((w, z));
     }
-    total += segment_turn(prev_w, Some(f64::INFINITY), prev_z, inf, &eval)?;
     let w = total / (2.0 * std::f64::consts::PI);
     ((w - w.round()).abs() < 0.05).then(|| -(w.round() as i64))
 }
@@ -433,19 +522,19 @@ const TURN_LIMIT: f64 = 0.9 * std::f64::consts::PI;
 const MAX_REFINE_DEPTH: u32 = 60;
 
 /// |G + 1| negligible against |G|: the curve passes through −1.
-fn tiny_about_minus_one(z: Complex64, g: Complex64) -> bool {
+pub(crate) fn tiny_about_minus_one(z: Complex64, g: Complex64) -> bool {
     z.norm() <= 1e-10 * g.norm().max(1.0)
 }
 
-/// The turn of G + 1 along one segment of the contour from `za` to `zb`; `wa`, `wb` the ω of its
-/// ends when they lie on the imaginary axis (±∞ for the ends of the axis). `None` when it
-/// turns too far to tell the way round and cannot be refined.
+/// The turn of G + 1 along one segment of the contour from `za` to `zb`; `wa`, `wb` the
+/// parameters of its ends (ω on the imaginary axis, ±∞ for the ends of the axis; θ on the
+/// unit circle). `None` when it turns too far to tell the way round and cannot be refined.
 fn segment_turn(
     wa: Option<f64>,
     wb: Option<f64>,
     za: Complex64,
     zb: Complex64,
-    eval: &impl Fn(Complex64) -> Complex64,
+    eval: &impl Fn(f64) -> Complex64,
 ) -> Option<f64> {
     let turn = (zb / za).arg();
     if turn.abs() <= TURN_LIMIT {
@@ -459,7 +548,7 @@ fn segment_turn(
     }
 }
 
-/// The turn of G(jω) + 1 from ω = `wa` (value `za`) to `wb` (value `zb`), subdividing until
+/// The turn of G + 1 from the parameter `wa` (value `za`) to `wb` (value `zb`), subdividing until
 /// each piece turns by less than [`TURN_LIMIT`]; one end may be ±∞ (then the split point
 /// moves out geometrically, ×16 per level).
 fn refined_turn(
@@ -467,7 +556,7 @@ fn refined_turn(
     wb: f64,
     za: Complex64,
     zb: Complex64,
-    eval: &impl Fn(Complex64) -> Complex64,
+    eval: &impl Fn(f64) -> Complex64,
     depth: u32,
 ) -> Option<f64> {
     let turn = (zb / za).arg();
@@ -496,7 +585,7 @@ fn refined_turn(
     if !(wm.is_finite() && (wa < wm && wm < wb || wb < wm && wm < wa)) {
         return None;
     }
-    let gm = eval(Complex64::new(0.0, wm));
+    let gm = eval(wm);
     let zm = gm + Complex64::new(1.0, 0.0);
     if !(zm.re.is_finite() && zm.im.is_finite()) || tiny_about_minus_one(zm, gm) {
         return None;
@@ -526,8 +615,6 @@ impl TransferFunction {
 impl Factored {
     /// The Nyquist contour ([`nyquist_contour`]).
     pub fn nyquist(&self) -> Result<NyquistContour> {
-        self.domain()
-            .require_continuous("the Nyquist contour (along the imaginary axis)")?;
         nyquist_contour(self)
     }
 }

@@ -54,7 +54,8 @@ pub(crate) enum Command {
     Step(plots::StepArgs),
     /// Pole-zero map PNG (multiplicities, cancelled pairs, stable half plane).
     Pzmap(plots::PzmapArgs),
-    /// Nyquist diagram PNG (−∞ < ω < ∞, indentations around imaginary-axis poles).
+    /// Nyquist diagram PNG (−∞ < ω < ∞, indentations around imaginary-axis poles; in z the
+    /// unit circle, arcs outside it around poles on it).
     Nyquist(plots::NyquistArgs),
     /// The main job: the textbook tour — analyses every plant and nonlinear model of the
     /// lecture notes, checks the results, writes out/report.md with its PNGs.

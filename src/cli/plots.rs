@@ -120,12 +120,16 @@ pub fn bode_figure(
         } else {
             None
         };
-        data.push((label, fr, m, asym));
+        data.push((label, fr, m, asym, g.domain().dt()));
     }
     let series: Vec<BodeSeries> = data
         .iter()
-        .map(|(label, fr, m, asym)| {
+        .map(|(label, fr, m, asym, dt)| {
             let mut s = BodeSeries::new(fr).label(label);
+            // a discrete plant: the Nyquist frequency π/T is marked
+            if let Some(dt) = dt {
+                s = s.sampling_period(*dt);
+            }
             if let Some(m) = m {
                 s = s.margins(m);
             }
@@ -138,7 +142,7 @@ pub fn bode_figure(
     bode_png(path, &series, opts)?;
     Ok(BodeDrawn {
         range: (lo, hi),
-        margins: data.into_iter().map(|(_, _, m, _)| m).collect(),
+        margins: data.into_iter().map(|(_, _, m, _, _)| m).collect(),
     })
 }
 
@@ -629,6 +633,7 @@ pub fn nyquist(a: &NyquistArgs) -> Result<()> {
         .iter()
         .map(|(_, g)| g.nyquist())
         .collect::<crate::Result<Vec<_>>>()?;
+    let opts = discrete_title(&opts, "Nyquist diagram", &plants);
     let series: Vec<NyquistSeries> = plants
         .iter()
         .zip(&contours)
@@ -646,6 +651,8 @@ pub fn nyquist(a: &NyquistArgs) -> Result<()> {
             "closed_loop_rhp_poles": c.closed_loop_rhp_poles,
             "g_at_infinity": c.g_at_infinity,
             "axis_poles": c.axis_poles,
+            // where P and Z are counted
+            "region": if c.dt.is_some() { "outside the unit circle" } else { "right half plane" },
         }))
     })?;
     print_json(&json!({

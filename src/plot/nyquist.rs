@@ -1,5 +1,5 @@
-//! Nyquist diagram: G along the D contour, with direction arrows, the −1 point and the
-//! encirclement count.
+//! Nyquist diagram: G along the D contour (or, for a discrete plant, along the unit circle
+//! z = e^(jωT)), with direction arrows, the −1 point and the encirclement count.
 
 use std::path::Path;
 
@@ -141,7 +141,14 @@ pub fn nyquist_png(
         }
     }
     let title = opts.title_or(|| match (series.len(), series[0].label) {
-        (1, Some(l)) => format!("Nyquist diagram of G(s) = {l}"),
+        (1, Some(l)) => format!(
+            "Nyquist diagram of G({}) = {l}",
+            if series[0].contour.dt.is_some() {
+                "z"
+            } else {
+                "s"
+            }
+        ),
         _ => "Nyquist diagram".into(),
     });
     render(path.as_ref(), opts, |c, th| {
@@ -271,10 +278,33 @@ fn draw_critical_point(
     Ok(())
 }
 
+/// Which contour the series were computed on: all continuous (the D contour), all discrete
+/// (the unit circle), or a mixture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    S,
+    Z,
+    Mixed,
+}
+
+fn kind_of(series: &[NyquistSeries]) -> Kind {
+    let discrete = series.iter().filter(|s| s.contour.dt.is_some()).count();
+    match discrete {
+        0 => Kind::S,
+        n if n == series.len() => Kind::Z,
+        _ => Kind::Mixed,
+    }
+}
+
 /// The legend: line styles (one plant) or plants, the verdict N, P, Z of each, and the
 /// display-radius note.
 fn legend_rows(series: &[NyquistSeries], radius: Option<f64>) -> Vec<LegendEntry> {
     let several = series.len() > 1;
+    let kind = kind_of(series);
+    let (pos, neg) = match kind {
+        Kind::Z => ("0 ≤ ω ≤ π/T", "−π/T ≤ ω < 0 (mirror)"),
+        _ => ("ω > 0", "ω < 0 (mirror)"),
+    };
     let mut legend = Vec::new();
     for (k, s) in series.iter().enumerate() {
         let name = s
@@ -283,7 +313,7 @@ fn legend_rows(series: &[NyquistSeries], radius: Option<f64>) -> Vec<LegendEntry
             .unwrap_or_else(|| format!("G{}", k + 1));
         if several {
             legend.push(LegendEntry::line(
-                format!("{name} (ω > 0)"),
+                format!("{name} ({pos})"),
                 color_of(series, k),
                 LineStyle::Solid,
             ));
@@ -294,9 +324,15 @@ fn legend_rows(series: &[NyquistSeries], radius: Option<f64>) -> Vec<LegendEntry
         } else {
             String::new()
         };
+        // where P and Z are counted: the right half plane, or outside the unit circle
+        let region = if n.dt.is_some() {
+            " (outside |z| = 1)"
+        } else {
+            ""
+        };
         let verdict = match (n.encirclements, n.closed_loop_rhp_poles) {
             (Some(nn), Some(z)) => format!(
-                "{prefix}N = {nn}, P = {} → Z = N + P = {z}{}",
+                "{prefix}N = {nn}, P = {}{region} → Z = N + P = {z}{}",
                 n.open_loop_rhp_poles,
                 if z == 0 {
                     " (closed loop stable)"
@@ -310,11 +346,8 @@ fn legend_rows(series: &[NyquistSeries], radius: Option<f64>) -> Vec<LegendEntry
     }
     if !several {
         let col = color_of(series, 0);
-        legend.insert(0, LegendEntry::line("ω > 0", col, LineStyle::Solid));
-        legend.insert(
-            1,
-            LegendEntry::line("ω < 0 (mirror)", col, LineStyle::Dashed),
-        );
+        legend.insert(0, LegendEntry::line(pos, col, LineStyle::Solid));
+        legend.insert(1, LegendEntry::line(neg, col, LineStyle::Dashed));
     }
     if let Some(r) = radius {
         legend.push(LegendEntry::line(
@@ -344,13 +377,12 @@ fn draw(
     let mut avoid = draw_curves(c, th, &frame, &all_runs, &colors);
     draw_critical_point(c, th, &frame, &mut avoid)?;
     frame.draw_axes(c, th, true, true)?;
-    frame.draw_axis_titles(
-        c,
-        th,
-        Some("Real axis Re G(jω)"),
-        Some("Imaginary axis Im G(jω)"),
-        th.pad,
-    )?;
+    let (re, im) = match kind_of(series) {
+        Kind::S => ("Real axis Re G(jω)", "Imaginary axis Im G(jω)"),
+        Kind::Z => ("Real axis Re G(e^(jωT))", "Imaginary axis Im G(e^(jωT))"),
+        Kind::Mixed => ("Real axis Re G", "Imaginary axis Im G"),
+    };
+    frame.draw_axis_titles(c, th, Some(re), Some(im), th.pad)?;
     draw_legend(
         c,
         &frame,

@@ -10,20 +10,25 @@
 //! | frequency | s = jω, ω ≥ 0 | z = e^(jωT), 0 ≤ ω ≤ π/T (the Nyquist frequency) |
 //! | responses | closed form in t | the sequence y[k] at t = kT, exact by the one marcher |
 //! | closed form | inverse Laplace transform of Y(s) | inverse z-transform of Y(z)/z: Σ c·kʲ·pᵏ |
+//! | Nyquist contour | s = jω, −∞ < ω < ∞, closed at ∞; P = poles with Re p > 0 | z = e^(jωT), −π/T ≤ ω ≤ π/T; P = poles with \|p\| > 1 |
 //! | initial conditions | y(0), y′(0), … of the ODE | y[−1], y[−2], … of the difference equation |
 //!
 //! The files: `freq.rs` (G(e^(jωT)) with its continuous phase), `margins.rs` (crossings on
 //! (0, π/T]), `time.rs` (step, impulse and input responses as sequences, step metrics in
-//! samples), `inverse_z.rs` (partial fractions of Y(z)/z and the closed-form y[k]).
+//! samples), `inverse_z.rs` (partial fractions of Y(z)/z and the closed-form y[k]),
+//! `nyquist.rs` (the Nyquist contour along the unit circle, arcs outside it around the poles
+//! on it, P counted outside the circle).
 
 mod freq;
 mod inverse_z;
 mod margins;
+mod nyquist;
 mod time;
 
 pub(crate) use freq::freq_response;
 pub(crate) use inverse_z::closed_parts;
 pub(crate) use margins::{margins, peak};
+pub(crate) use nyquist::nyquist_contour;
 pub use time::MAX_STEP_INFO_SAMPLES;
 pub(crate) use time::{step_info, time_response};
 

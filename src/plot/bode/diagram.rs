@@ -4,15 +4,17 @@
 use std::path::Path;
 
 use super::margins::mark_margins;
-use super::panels::{Panels, data_ranges, layout_panels};
+use super::panels::{Panels, data_ranges, layout_panels, nyquist_frequencies};
 use super::series::{BodeSeries, check, color_of, name_of};
 use crate::error::Result;
+use crate::fmt::fmt_sig;
 use crate::plot::layout::draw_title;
-use crate::plot::legend::{Avoid, Corner, LegendEntry, draw_legend, sample_run};
+use crate::plot::legend::{Avoid, Corner, LegendEntry, box_points, draw_legend, sample_run};
 use crate::plot::options::PlotOptions;
 use crate::plot::raster::{Canvas, Color};
 use crate::plot::render::render;
 use crate::plot::style::{LineStyle, Theme};
+use crate::plot::text::{HAlign, VAlign};
 
 /// Writes a Bode diagram of one or more plants.
 ///
@@ -20,7 +22,9 @@ use crate::plot::style::{LineStyle, Theme};
 /// 90°); the shared ω axis (rad/s) is logarithmic with decade grid lines labelled 10^k. With
 /// margins, the gain crossover ω_gc and phase crossover ω_pc are drawn as vertical lines, the
 /// gain margin as a bar from |G(jω_pc)| up to 0 dB and the phase margin as a bar from φ(ω_gc)
-/// to the −180° reference, with the values listed. Asymptotes are drawn dashed. Points that
+/// to the −180° reference, with the values listed. For a discrete plant (a series with a
+/// Nyquist frequency) the ω axis reaches a little beyond π/T, where the response ends, and a
+/// dash-dotted vertical line labelled "π/T = … rad/s" marks it. Asymptotes are drawn dashed. Points that
 /// are not finite (−∞ dB at a zero on the axis) break the curve.
 ///
 /// Errors: no series, mismatched lengths, fewer than two finite points, bad options, a title
@@ -45,7 +49,14 @@ use crate::plot::style::{LineStyle, Theme};
 pub fn bode_png(path: impl AsRef<Path>, series: &[BodeSeries], opts: &PlotOptions) -> Result<()> {
     check(series)?;
     let title = opts.title_or(|| match (series.len(), series[0].label) {
-        (1, Some(l)) => format!("Bode diagram of G(s) = {l}"),
+        (1, Some(l)) => format!(
+            "Bode diagram of G({}) = {l}",
+            if series[0].nyquist_frequency.is_some() {
+                "z"
+            } else {
+                "s"
+            }
+        ),
         _ => "Bode diagram".into(),
     });
     render(path.as_ref(), opts, |c, th| {
@@ -113,6 +124,50 @@ fn draw_curves(c: &mut Canvas, th: &Theme, series: &[BodeSeries], p: &Panels) ->
         }
     }
     (avoid_mag, avoid_ph)
+}
+
+/// The Nyquist frequency π/T of each discrete series: a vertical line through both panels,
+/// labelled at the top of the magnitude panel (the label is kept clear of the legend).
+fn mark_nyquist_frequencies(
+    c: &mut Canvas,
+    th: &Theme,
+    series: &[BodeSeries],
+    p: &Panels,
+    avoid: &mut (Avoid, Avoid),
+) -> Result<()> {
+    let col = Color(90, 90, 90);
+    let width = (th.line * 0.8).max(1.0);
+    for (i, wn) in nyquist_frequencies(series).into_iter().enumerate() {
+        p.mag.vline(c, wn, width, col, LineStyle::DashDot);
+        p.ph.vline(c, wn, width, col, LineStyle::DashDot);
+        let text = format!("π/T = {} rad/s", fmt_sig(wn, 3));
+        let (top, bottom) = (p.mag.y.hi, p.mag.y.lo);
+        if !p.mag.contains((wn, top)) {
+            continue;
+        }
+        // at the top of the panel, or at its bottom when fewer curve points lie there
+        let width = Canvas::text_width(&text, th.note);
+        let height = 1.3 * th.note;
+        let x = p.mag.px((wn, top)).0 - 4.0 * th.s;
+        let step = (6.0 + 18.0 * i as f64) * th.s;
+        let y_top = p.mag.px((wn, top)).1 + step;
+        let y_bottom = p.mag.px((wn, bottom)).1 - step;
+        let hits = |y0: f64| {
+            avoid
+                .0
+                .iter()
+                .filter(|q| q.0 >= x - width && q.0 <= x && q.1 >= y0 && q.1 <= y0 + height)
+                .count()
+        };
+        let (at, valign) = if hits(y_top) <= hits(y_bottom - height) {
+            ((x, y_top), VAlign::Top)
+        } else {
+            ((x, y_bottom), VAlign::Bottom)
+        };
+        let b = c.text_on_box(&text, at, th.note, col, (HAlign::Right, valign))?;
+        avoid.0.extend(box_points(b));
+    }
+    Ok(())
 }
 
 /// Axis frames, ticks and titles of both panels.
@@ -194,6 +249,7 @@ fn draw(
     let mut avoid = draw_curves(c, th, series, &panels);
     let colors: Vec<Color> = (0..series.len()).map(|k| color_of(series, k)).collect();
     let info = mark_margins(c, th, series, &colors, &panels, &ranges, &mut avoid)?;
+    mark_nyquist_frequencies(c, th, series, &panels, &mut avoid)?;
     draw_axes(c, th, &panels)?;
     draw_legends(c, th, series, &panels, &avoid, &info)?;
     if let Some(t) = title {

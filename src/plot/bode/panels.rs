@@ -46,6 +46,17 @@ impl Ranges {
     }
 }
 
+/// How far the ω axis reaches beyond the highest Nyquist frequency (a factor).
+const NYQUIST_ROOM: f64 = 1.3;
+
+/// The distinct Nyquist frequencies π/T of the series, ascending.
+pub(super) fn nyquist_frequencies(series: &[BodeSeries]) -> Vec<f64> {
+    let mut v: Vec<f64> = series.iter().filter_map(|s| s.nyquist_frequency).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());
+    v
+}
+
 /// The largest magnitude span drawn (dB).
 const MAX_DB_SPAN: f64 = 300.0;
 
@@ -78,7 +89,12 @@ pub(super) fn data_ranges(series: &[BodeSeries]) -> Result<Ranges> {
             .filter(|w| *w > 0.0)
             .collect::<Vec<_>>()
     };
-    let w = bounds(series.iter().flat_map(finite_w)).unwrap_or((0.1, 10.0));
+    let mut w = bounds(series.iter().flat_map(finite_w)).unwrap_or((0.1, 10.0));
+    // The response of a discrete plant ends at π/T: a little room beyond it, so that its
+    // marker stands inside the frame.
+    if let Some(wn) = nyquist_frequencies(series).last() {
+        w.1 = w.1.max(wn * NYQUIST_ROOM);
+    }
     let in_range = |x: f64| x >= w.0 && x <= w.1;
     let mut mags: Vec<f64> = Vec::new();
     let mut phases: Vec<f64> = Vec::new();

@@ -28,6 +28,9 @@ pub struct BodeSeries<'a> {
     pub asymptotes: Option<&'a BodeAsymptotes>,
     /// Colour; `None` takes the palette colour of the series' position.
     pub color: Option<Color>,
+    /// The Nyquist frequency π/T of a discrete-time plant (rad/s): marked by a vertical line
+    /// labelled "π/T", where the response ends. `None` for a continuous plant.
+    pub nyquist_frequency: Option<f64>,
 }
 
 impl<'a> BodeSeries<'a> {
@@ -39,6 +42,7 @@ impl<'a> BodeSeries<'a> {
             margins: None,
             asymptotes: None,
             color: None,
+            nyquist_frequency: None,
         }
     }
 
@@ -63,6 +67,20 @@ impl<'a> BodeSeries<'a> {
     /// Sets the colour.
     pub fn color(mut self, color: Color) -> Self {
         self.color = Some(color);
+        self
+    }
+
+    /// Marks the Nyquist frequency π/T of a discrete-time plant with period `dt`.
+    ///
+    /// ```
+    /// use ltikit::analysis::FrequencyResponse;
+    /// use ltikit::plot::BodeSeries;
+    /// let fr = FrequencyResponse { w: vec![0.1, 1.0], magnitude: vec![1.0, 0.7], magnitude_db: vec![0.0, -3.0], phase_deg: vec![-6.0, -45.0] };
+    /// let s = BodeSeries::new(&fr).sampling_period(0.1);
+    /// assert!((s.nyquist_frequency.unwrap() - std::f64::consts::PI / 0.1).abs() < 1e-12);
+    /// ```
+    pub fn sampling_period(mut self, dt: f64) -> Self {
+        self.nyquist_frequency = Some(std::f64::consts::PI / dt);
         self
     }
 }
@@ -111,6 +129,14 @@ pub(super) fn check(series: &[BodeSeries]) -> Result<()> {
         if good < 2 {
             return Err(LtiError::Plot(format!(
                 "Bode plot: series {} has fewer than two finite points with ω > 0",
+                k + 1
+            )));
+        }
+        if let Some(w) = s.nyquist_frequency
+            && !(w.is_finite() && w > 0.0)
+        {
+            return Err(LtiError::Plot(format!(
+                "Bode plot: series {}: the Nyquist frequency must be finite and > 0",
                 k + 1
             )));
         }
