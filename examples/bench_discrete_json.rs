@@ -12,7 +12,8 @@
 //! - `dstep_order8`: `Factored::step_response` of the discrete order-8 plant at the `samples`
 //!   sample times (the one marcher) — vs `scipy.signal.dstep((num, den, T), n = samples)`;
 //!   `dstep_tf_order8`: the same from the transfer function (factorisation included);
-//! - `matmul_257`: one dense 257 × 257 matrix product (a sub-step of `c2d_lattice`);
+//! - `matmul_257`: one dense 257 × 257 matrix product, `lu_solve_257`: one LU solve with 257
+//!   right-hand sides (the Padé denominator's) — sub-steps of `c2d_lattice`;
 //! - `closed_form_order8`: `Factored::response(Step)` at those samples: the partial fractions
 //!   of Y(z)/z, the closed form y[k] evaluated at every sample, and the recursion beside it.
 
@@ -81,6 +82,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     let out = serde_json::json!({
         "matmul_257": median_time(7, 0.2, || &m * &m),
+        "lu_solve_257": median_time(7, 0.2, || {
+            let id = nalgebra::DMatrix::<f64>::identity(n, n);
+            (&id - &m).lu().solve(&(&id + &m))
+        }),
         "c2d_lattice": median_time(5, 0.5, || lattice.c2d(d.dt_lattice, zoh)),
         "c2d_tf_order8": median_time(7, 0.2, || g.c2d(d.dt_order8, zoh)),
         "c2d_factored_order8": median_time(7, 0.2, || f.c2d(d.dt_order8, zoh)),
