@@ -256,3 +256,59 @@ mod ss {
         }
     }
 }
+
+/// Discrete time (issue 20), on the inputs of `benches/compare/compare_discrete.py`
+/// (`[discrete]` in inputs.toml): c2d (ZOH) of the lattice and of the order-8 plant, the
+/// discrete step response of the order-8 discrete plant at 10⁵ samples and its closed form.
+mod discrete {
+    use crate::common;
+    use divan::{Bencher, black_box};
+    use ltikit::analysis::Input;
+    use ltikit::lti::Discretization;
+
+    /// `StateSpace::c2d` (ZOH: exponential of the 257 × 257 augmented matrix) of the
+    /// 256-state lattice.
+    #[divan::bench(sample_count = 10)]
+    fn c2d_lattice(bencher: Bencher) {
+        let ss = common::ss::lattice();
+        let dt = common::discrete::inputs().dt_lattice;
+        bencher.bench(|| black_box(&ss).c2d(dt, Discretization::Zoh).unwrap());
+    }
+
+    /// `TransferFunction::c2d` (ZOH) of the order-8 plant.
+    #[divan::bench]
+    fn c2d_tf_order8(bencher: Bencher) {
+        let g = common::order8();
+        let dt = common::discrete::inputs().dt_order8;
+        bencher.bench(|| black_box(&g).c2d(dt, Discretization::Zoh).unwrap());
+    }
+
+    /// `Factored::c2d` (ZOH: poles e^(pT), zeros and gain of the discretised realisation).
+    #[divan::bench]
+    fn c2d_factored_order8(bencher: Bencher) {
+        let f = common::order8().factored().unwrap();
+        let dt = common::discrete::inputs().dt_order8;
+        bencher.bench(|| black_box(&f).c2d(dt, Discretization::Zoh).unwrap());
+    }
+
+    /// The step response of the order-8 discrete plant at 10⁵ samples (the one marcher).
+    #[divan::bench(sample_count = 20)]
+    fn step_order8(bencher: Bencher) {
+        let f = common::discrete::factored_z();
+        let t = common::discrete::sample_times();
+        bencher.bench(|| black_box(&f).step_response(black_box(&t)).unwrap());
+    }
+
+    /// The closed form y[k] (partial fractions of Y(z)/z) at the same 10⁵ samples, with the
+    /// recursion beside it (`Factored::response`).
+    #[divan::bench(sample_count = 20)]
+    fn step_closed_form_order8(bencher: Bencher) {
+        let f = common::discrete::factored_z();
+        let t = common::discrete::sample_times();
+        bencher.bench(|| {
+            black_box(&f)
+                .response(&Input::Step, &[], black_box(&t))
+                .unwrap()
+        });
+    }
+}

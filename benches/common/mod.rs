@@ -4,6 +4,7 @@
 //! `benches/compare/compare.py` reads too, so both sides time identical inputs.
 #![allow(dead_code)] // each including target uses a different subset
 
+pub mod discrete;
 pub mod ss;
 
 use ltikit::TransferFunction;
