@@ -52,8 +52,12 @@ fn sampled_poles(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         fmt_sig(p.im, 6)
     ));
     let mut rows = Vec::new();
+    let mut at_half = None;
     for &dt in &[0.05, 0.2, 0.5, 1.0, 2.0] {
         let gz = g.c2d(dt, Discretization::Zoh)?;
+        if (dt - 0.5f64).abs() < 1e-12 {
+            at_half = Some(gz.clone());
+        }
         let z = gz
             .poles()
             .iter()
@@ -95,7 +99,9 @@ fn sampled_poles(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
         &["T [s]", "z = e^(pT)", "|z|", "ln(z)/T", "", "stability"],
         &rows,
     );
-    let gz = g.c2d(0.5, Discretization::Zoh)?;
+    let Some(gz) = at_half else {
+        return Ok(());
+    };
     let file = "digital-smd-pzmap.png";
     plots::pzmap_figure(
         &ctx.figure(file),
@@ -150,7 +156,8 @@ fn digital_pid(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
          hold delays the loop by about T/2, so the phase margin shrinks by about ω_c·T/2 and \
          the overshoot grows; at a long enough period the loop goes unstable.",
     ));
-    let cont = ClosedLoop::new(&c.tf()?.factored()?, &g)?;
+    let cf = c.tf()?.factored()?;
+    let cont = ClosedLoop::new(&cf, &g)?;
     let mut rows = Vec::new();
     let mut series: Vec<(String, Factored)> = Vec::new();
     let describe = |label: String, cl: &ClosedLoop| -> Result<Vec<String>> {
@@ -172,10 +179,7 @@ fn digital_pid(ctx: &mut Ctx, md: &mut Md) -> Result<()> {
     let pm0 = cont.loop_tf().margins()?;
     for &dt in &[0.02, 0.1, 0.3, 0.6, 1.0] {
         let gz = g.c2d(dt, Discretization::Zoh)?;
-        let cz = c
-            .tf()?
-            .factored()?
-            .c2d(dt, Discretization::Tustin { prewarp: None })?;
+        let cz = cf.c2d(dt, Discretization::Tustin { prewarp: None })?;
         let cl = ClosedLoop::new(&cz, &gz)?;
         rows.push(describe(format!("T = {dt} s"), &cl)?);
         if dt <= 0.3 {
