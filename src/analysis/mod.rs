@@ -16,7 +16,7 @@
 //! | | closed loops, root locus | [`ClosedLoop::new`], [`Factored::feedback`], [`Factored::root_locus`] |
 //! | a state-space model | its whole analysis (eigen structure, minimal realisation, zeros) | [`crate::StateSpace::analysis`] |
 //! | | MIMO responses | [`crate::StateSpace::step_response_from`], [`crate::StateSpace::freq_response_mimo`] |
-//! | a polynomial in z, a sampled loop | Jury table, exact unit-circle counts, stable gains | [`jury`], [`jury_exact`], [`discrete_stable_gains`] |
+//! | a polynomial in z, a sampled loop | Jury table, exact unit-circle counts, stable gains | [`jury()`], [`jury_exact`], [`discrete_stable_gains`] |
 //!
 //! The numerical kernels underneath (`crate::numeric`) are building blocks; an analysis needs
 //! none of them directly.

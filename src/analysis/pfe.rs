@@ -263,7 +263,7 @@ fn terms_of_upper(terms: &[PfTerm], upper: Complex64, m: usize) -> Option<Vec<Pf
     (found.len() == m).then_some(found)
 }
 
-/// c₀ … c_{m−1}: the Taylor coefficients at p = poles[i] of N(s)/D_p(s), with
+/// c₀ … c_{m−1}: the Taylor coefficients at p = poles\[i\] of N(s)/D_p(s), with
 /// D_p(s) = lead · Π_{j ≠ i} (s − q_j)^(m_j).
 fn laurent_head(num: &Poly, lead: f64, poles: &[Root], i: usize) -> Result<Vec<Complex64>> {
     let p = poles[i].value;

@@ -62,9 +62,9 @@ impl Factored {
     /// order (or any, for a plant without ODE coefficients), NaN/∞ values, an invalid input
     /// parameter, a negative or non-finite time, values that overflow.
     ///
-    /// A **discrete-time** plant answers in z: the closed form is the sequence y[k]
+    /// A **discrete-time** plant answers in z: the closed form is the sequence y\[k\]
     /// ([`crate::analysis::SequenceForm`] inside the [`ClosedForm`], from the partial fractions
-    /// of Y(z)/z; see `analysis::discrete`), `ics` are y[−1], y[−2], … of the difference
+    /// of Y(z)/z; see `analysis::discrete`), `ics` are y\[−1\], y\[−2\], … of the difference
     /// equation, the inputs are sampled at t = kT, a time reads the sample at or before it,
     /// and the exact values come from the one marcher ([`Factored::time_response`]).
     ///
@@ -111,9 +111,9 @@ impl Factored {
         self.response(input, ics, &[])
     }
 
-    /// The closed-form sequence y[k] of a discrete-time plant alone ([`Factored::response`]
+    /// The closed-form sequence y\[k\] of a discrete-time plant alone ([`Factored::response`]
     /// without samples): the inverse z-transform of Y(z) = G(z)U(z) + Y_ic(z), with `ics` =
-    /// [y[−1], y[−2], …] of the difference equation. Errors in continuous time.
+    /// [y\[−1\], y\[−2\], …] of the difference equation. Errors in continuous time.
     ///
     /// ```
     /// use ltikit::TransferFunction;

@@ -46,7 +46,7 @@ pub struct PlantArgs {
     #[arg(long, value_name = "ROWS", allow_hyphen_values = true, requires = "a")]
     pub d: Option<String>,
     /// Sampling period in seconds: the plant is discrete-time, --num/--den in descending
-    /// powers of z and --a…--d giving x[k+1] = A x[k] + B u[k] (also `dt = T` in a plant
+    /// powers of z and --a…--d giving `x[k+1] = A x[k] + B u[k]` (also `dt = T` in a plant
     /// file).
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub dt: Option<f64>,

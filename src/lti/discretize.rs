@@ -8,11 +8,11 @@
 //! | ZOH | exp([[A, B], [0, 0]]·T) = [[A_d, B_d], [0, I]]; C, D unchanged |
 //! | FOH (triangle hold) | exp([[A·T, B·T, 0], [0, 0, I], [0, 0, 0]]) = [[Φ, Γ₁, Γ₂], …]: A_d = Φ, B_d = Γ₁ − Γ₂ + Φ·Γ₂, D_d = D + C·Γ₂ (as MATLAB, python-control and scipy `foh`) |
 //! | Tustin | with h = T/2, or h = tan(ωT/2)/ω when prewarped at ω: A_d = (I − hA)⁻¹(I + hA), B_d = (I − hA)⁻¹·2h·B, C_d = C(I − hA)⁻¹, D_d = D + h·C·(I − hA)⁻¹B (scipy's `bilinear`, i.e. `gbt` with α = ½) |
-//! | impulse | A_d = e^(AT), B_d = T·e^(AT)·B, C_d = C, D_d = T·C·B; needs D = 0 (scipy's `impulse`: h_d[k] = T·h(kT) for k ≥ 0, the whole h(0) at k = 0) |
-//! | matched | SISO: poles e^(pT), finite zeros e^(zT), zeros at infinity as MATLAB (see [`matched_zpk`]), gain matched at low frequency |
+//! | impulse | A_d = e^(AT), B_d = T·e^(AT)·B, C_d = C, D_d = T·C·B; needs D = 0 (scipy's `impulse`: h_d\[k\] = T·h(kT) for k ≥ 0, the whole h(0) at k = 0) |
+//! | matched | SISO: poles e^(pT), finite zeros e^(zT), zeros at infinity as MATLAB (see `matched_zpk`), gain matched at low frequency |
 //!
 //! `d2c` inverts ZOH by the real matrix logarithm of [[A_d, B_d], [0, I]]
-//! ([`crate::numeric::logm`]; a pole at 0 or on the negative real axis has no preimage), and
+//! ([`crate::numeric::logm()`]; a pole at 0 or on the negative real axis has no preimage), and
 //! Tustin by A = (1/h)(A_d + I)⁻¹(A_d − I), B = (A_d + I)⁻¹B_d/h, C = 2C_d(A_d + I)⁻¹,
 //! D = D_d − C_d(A_d + I)⁻¹B_d (a pole at −1 has no preimage).
 
@@ -53,7 +53,7 @@ pub enum Discretization {
     /// Matched pole-zero (SISO): poles and zeros mapped by z = e^(sT), zeros at infinity as
     /// MATLAB's `c2d(…, 'matched')`, gain matched at low frequency.
     Matched,
-    /// Impulse invariance, scipy's convention: h_d[k] = T·h(kT) (needs a strictly proper
+    /// Impulse invariance, scipy's convention: h_d\[k\] = T·h(kT) (needs a strictly proper
     /// plant).
     Impulse,
 }

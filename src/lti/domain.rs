@@ -29,7 +29,7 @@ pub enum Domain {
     /// Continuous time: G(s), ẋ = Ax + Bu.
     #[default]
     Continuous,
-    /// Discrete time with sampling period `dt` > 0: G(z), x[k+1] = A x[k] + B u[k].
+    /// Discrete time with sampling period `dt` > 0: G(z), x\[k+1\] = A x\[k\] + B u\[k\].
     Discrete {
         /// The sampling period in seconds (finite, > 0).
         dt: f64,

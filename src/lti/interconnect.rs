@@ -172,7 +172,7 @@ impl StateSpace {
 
     /// Feedback u₁ = r + sign·y₂ with y₂ = H·y₁ around `self` = G (x = [x_G; x_H]). With
     /// E = (I − sign·D_H·D_G)⁻¹ and u₁ = E(r + sign·D_H·C_G x_G + sign·C_H x_H):
-    /// ẋ_G = A_G x_G + B_G u₁, ẋ_H = A_H x_H + B_H y₁, y₁ = C_G x_G + D_G u₁ (x[k+1] for ẋ in
+    /// ẋ_G = A_G x_G + B_G u₁, ẋ_H = A_H x_H + B_H y₁, y₁ = C_G x_G + D_G u₁ (x\[k+1\] for ẋ in
     /// discrete time), in the two models' common domain.
     ///
     /// Errors: a sign other than ±1, models of different domains, mismatched dimensions, a singular I − sign·D_H·D_G

@@ -124,8 +124,8 @@ impl StateSpace {
         self.c.nrows()
     }
 
-    /// The SISO channel from input `input` to output `output` (0-based): (A, B[:, i],
-    /// C[j, :], D[j, i]), in the model's domain.
+    /// The SISO channel from input `input` to output `output` (0-based): (A, B\[:, i\],
+    /// C\[j, :\], D\[j, i\]), in the model's domain.
     ///
     /// Errors: an index that does not exist (naming the ranges).
     ///

@@ -20,7 +20,7 @@ pub struct StateSpace {
     pub c: DMatrix<f64>,
     /// p × m feedthrough matrix.
     pub d: DMatrix<f64>,
-    /// Continuous time (ẋ = Ax + Bu) or discrete time (x[k+1] = Ax[k] + Bu[k]) with its
+    /// Continuous time (ẋ = Ax + Bu) or discrete time (x\[k+1\] = Ax\[k\] + Bu\[k\]) with its
     /// sampling period; [`StateSpace::new`] makes a continuous model,
     /// [`StateSpace::with_domain`] sets it.
     pub domain: Domain,
@@ -80,7 +80,7 @@ impl StateSpace {
         })
     }
 
-    /// The same matrices in `domain` (x[k+1] = A x[k] + B u[k] in discrete time).
+    /// The same matrices in `domain` (x\[k+1\] = A x\[k\] + B u\[k\] in discrete time).
     ///
     /// ```
     /// use nalgebra::DMatrix;

@@ -112,7 +112,7 @@ impl TransferFunction {
 
     /// The same transfer function in `domain`: with [`Domain::Discrete`] the coefficients are
     /// read in descending powers of z (G(z), the difference equation
-    /// a_n y[k+n] + … + a_0 y[k] = b_m u[k+m] + … + b_0 u[k]).
+    /// a_n y\[k+n\] + … + a_0 y\[k\] = b_m u\[k+m\] + … + b_0 u\[k\]).
     ///
     /// ```
     /// use ltikit::{TransferFunction, lti::Domain};

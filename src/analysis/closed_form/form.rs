@@ -9,7 +9,7 @@ use super::term::{ClosedFormTerm, group_term};
 use crate::analysis::pfe::PartialFractions;
 
 /// A closed-form time function: a sum of [`ClosedFormTerm`]s — or, for a discrete-time
-/// plant, a closed-form sequence y[k] ([`SequenceForm`], [`ClosedForm::sequence`]), which
+/// plant, a closed-form sequence y\[k\] ([`SequenceForm`], [`ClosedForm::sequence`]), which
 /// every method then answers for: [`ClosedForm::eval`] reads the sample at or before t and
 /// the text says `y[k] = …`.
 ///
@@ -40,7 +40,7 @@ impl ClosedForm {
         }
     }
 
-    /// A closed-form sequence y[k] of a discrete-time response as a closed form.
+    /// A closed-form sequence y\[k\] of a discrete-time response as a closed form.
     ///
     /// ```
     /// use ltikit::analysis::{ClosedForm, SequenceForm, SequenceTerm};
@@ -122,7 +122,7 @@ impl ClosedForm {
     }
 
     /// y(t) for t ≥ 0, δ terms excluded (at t = 0 this is y(0⁺)); 0 for t < 0; NaN for NaN.
-    /// For a sequence: the sample y[k] at or before t ([`SequenceForm::eval_at`], δ terms
+    /// For a sequence: the sample y\[k\] at or before t ([`SequenceForm::eval_at`], δ terms
     /// included: they are samples).
     pub fn eval(&self, t: f64) -> f64 {
         if let Some(s) = &self.sequence {

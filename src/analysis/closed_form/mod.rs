@@ -12,7 +12,7 @@
 //! [`ClosedForm::eval`] is the smooth part for t ≥ 0 (δ terms excluded; 0 for t < 0: every
 //! term carries 1(t)).
 //!
-//! A discrete-time response is a closed-form sequence y[k] instead ([`SequenceForm`], the
+//! A discrete-time response is a closed-form sequence y\[k\] instead ([`SequenceForm`], the
 //! inverse z-transform of the partial fractions of Y(z)/z: sums of k^j·p^k terms and delayed
 //! unit samples), held by the same [`ClosedForm`] type so that a response has one shape in s
 //! and in z.

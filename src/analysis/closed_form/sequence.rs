@@ -1,16 +1,16 @@
-//! Closed-form sequences y[k] in real form: the inverse z-transform of a partial-fraction
+//! Closed-form sequences y\[k\] in real form: the inverse z-transform of a partial-fraction
 //! expansion of Y(z)/z.
 //!
 //! A term c/(z − p)^j of Y(z)/z is c·z/(z − p)^j in Y(z), whose inverse transform is
 //! c·C(k, j−1)·p^(k−j+1) (k ≥ 0; zero for k < j − 1, where the binomial vanishes); at p = 0 it
-//! is c·z^(1−j), the delayed unit sample c·δ[k − (j−1)]. The binomials are expanded in powers
+//! is c·z^(1−j), the delayed unit sample c·δ\[k − (j−1)\]. The binomials are expanded in powers
 //! of k (C(k, m) = k(k−1)…(k−m+1)/m!), so a pole of multiplicity m gives p^k times a
 //! polynomial of degree m − 1 in k:
 //! - a real pole p: (c₀ + c₁k + …)·p^k, written `0.5^k`, `(-0.5)^k`, and a polynomial in k
 //!   alone at p = 1;
 //! - a conjugate pair ρe^(±jθ): ρ^k·Σᵢ Aᵢ kⁱ cos(θk + φᵢ), with the phases in [−π/2, π/2] as
 //!   in continuous time (the sign moved into Aᵢ);
-//! - a pole at z = 0: Σ cₘ δ[k − m] (a finite impulse response).
+//! - a pole at z = 0: Σ cₘ δ\[k − m\] (a finite impulse response).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt;
@@ -26,7 +26,7 @@ use crate::fmt::fmt_num;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum SequenceTerm {
-    /// coefficient·δ[k − delay] (from a pole at z = 0).
+    /// coefficient·δ\[k − delay\] (from a pole at z = 0).
     Delta {
         /// The delay m ≥ 0 in samples.
         delay: usize,
@@ -98,7 +98,7 @@ impl SequenceTerm {
         }
     }
 
-    /// A bound on |term[k]|: Σ|cᵢ|kⁱ|p|^k (|c| for a δ term at its delay).
+    /// A bound on |term\[k\]|: Σ|cᵢ|kⁱ|p|^k (|c| for a δ term at its delay).
     pub fn envelope(&self, k: u64) -> f64 {
         let kf = k as f64;
         let abs_horner = |c: &[f64]| c.iter().rev().fold(0.0, |acc, &x| acc * kf + x.abs());
@@ -135,8 +135,8 @@ impl SequenceTerm {
     }
 }
 
-/// A closed-form sequence y[k], k = 0, 1, 2, … at t = kT: a sum of [`SequenceTerm`]s (see
-/// the [module docs](self)).
+/// A closed-form sequence y\[k\], k = 0, 1, 2, … at t = kT: a sum of [`SequenceTerm`]s (see
+/// the module docs of `analysis::closed_form`).
 ///
 /// ```
 /// use ltikit::TransferFunction;
@@ -153,7 +153,7 @@ impl SequenceTerm {
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SequenceForm {
-    /// The sampling period T in seconds (y[k] is the value at t = kT).
+    /// The sampling period T in seconds (y\[k\] is the value at t = kT).
     pub dt: f64,
     pub(super) terms: Vec<SequenceTerm>,
 }
@@ -235,12 +235,12 @@ impl SequenceForm {
         self.terms.is_empty()
     }
 
-    /// y[k].
+    /// y\[k\].
     pub fn eval(&self, k: u64) -> f64 {
         self.terms.iter().map(|x| x.eval(k)).sum()
     }
 
-    /// The sample a time t reads: y[k] for the last kT at or before t (the value held); 0 for
+    /// The sample a time t reads: y\[k\] for the last kT at or before t (the value held); 0 for
     /// t < 0, NaN for NaN.
     pub fn eval_at(&self, t: f64) -> f64 {
         if t.is_nan() {
@@ -264,7 +264,7 @@ impl SequenceForm {
         sample_of(t, self.dt)
     }
 
-    /// Σ over terms of their envelopes: a bound on |y[k]| and the scale of the rounding error
+    /// Σ over terms of their envelopes: a bound on |y\[k\]| and the scale of the rounding error
     /// of [`SequenceForm::eval`].
     pub fn envelope(&self, k: u64) -> f64 {
         self.terms.iter().map(|x| x.envelope(k)).sum()

@@ -1,4 +1,4 @@
-//! The words of a closed form shared by y(t) and y[k]: powers of the variable, cosines,
+//! The words of a closed form shared by y(t) and y\[k\]: powers of the variable, cosines,
 //! products and signed sums (a leaf: no closed-form type here).
 
 use crate::fmt::fmt_num;

@@ -1,13 +1,13 @@
 //! The closed form of a discrete-time response: Y(z) = G(z)U(z) + Y_ic(z) in partial
-//! fractions of Y(z)/z, and their inverse z-transform y[k] (a
+//! fractions of Y(z)/z, and their inverse z-transform y\[k\] (a
 //! [`SequenceForm`](crate::analysis::SequenceForm)).
 //!
 //! # The sampled inputs
-//! Each input is read at t = kT (u[k] = u(kT), k ≥ 0) and enters as Ũ(z) = U(z)/z:
+//! Each input is read at t = kT (u\[k\] = u(kT), k ≥ 0) and enters as Ũ(z) = U(z)/z:
 //!
-//! | input | u[k] | U(z)/z |
+//! | input | u\[k\] | U(z)/z |
 //! |---|---|---|
-//! | impulse | δ[k] | 1/z |
+//! | impulse | δ\[k\] | 1/z |
 //! | step | 1 | 1/(z − 1) |
 //! | ramp | kT | T/(z − 1)² |
 //! | exp:a | r^k, r = e^(aT) | 1/(z − r) |
@@ -22,13 +22,13 @@
 //! The forced part G·Ũ is built from the factors of G in lowest terms, as in continuous time
 //! ([`crate::analysis::laplace`]): an input pole on a zero of G cancels, an input pole on a
 //! pole of G (resonance) raises its multiplicity and is taken at the input's exact value, a
-//! pole at z = 0 of G or of the impulse gives delayed unit samples δ[k − m].
+//! pole at z = 0 of G or of the impulse gives delayed unit samples δ\[k − m\].
 //!
 //! **Initial conditions** are those of the difference equation
-//! a₀y[k] + a₁y[k−1] + … + a_n y[k−n] = b₀u[k] + … (the coefficients of D(z) as given, with
-//! u[k] = 0 for k < 0): `ics` = [y[−1], y[−2], …, y[−n]] (fewer: the rest are 0). The
+//! a₀y\[k\] + a₁y\[k−1\] + … + a_n y\[k−n\] = b₀u\[k\] + … (the coefficients of D(z) as given, with
+//! u\[k\] = 0 for k < 0): `ics` = [y\[−1\], y\[−2\], …, y\[−n\]] (fewer: the rest are 0). The
 //! one-sided z-transform of the delays gives Y_ic(z) = N_ic(z)/D(z) with
-//! N_ic(z) = −Σᵢ₌₁ⁿ aᵢ Σⱼ₌₁ⁱ y[−j] z^(n−i+j), which has the factor z.
+//! N_ic(z) = −Σᵢ₌₁ⁿ aᵢ Σⱼ₌₁ⁱ y\[−j\] z^(n−i+j), which has the factor z.
 //!
 //! Transient and steady state are split as in continuous time: terms of input poles
 //! (resonant ones included) are the steady state, the rest (and every δ term) the transient.
@@ -100,7 +100,7 @@ fn sampled_input(input: &Input, dt: f64) -> SampledInput {
 }
 
 /// N_ic(z)/z for the characteristic polynomial `den` (degree n, descending coefficients
-/// a₀ … a_n) and `ics` = [y[−1], …] (see the module docs). Errors: more than n values, NaN/∞.
+/// a₀ … a_n) and `ics` = [y\[−1\], …] (see the module docs). Errors: more than n values, NaN/∞.
 pub(crate) fn ic_numerator_over_z(den: &Poly, ics: &[f64]) -> Result<Poly> {
     let n = den.degree();
     if ics.len() > n {
@@ -248,7 +248,7 @@ pub(crate) fn decomposition(f: &Factored, input: &Input, ics: &[f64]) -> Result<
     })
 }
 
-/// The closed-form sequence y[k] and its transient/steady-state split.
+/// The closed-form sequence y\[k\] and its transient/steady-state split.
 pub(crate) fn closed_parts(f: &Factored, input: &Input, ics: &[f64]) -> Result<ClosedParts> {
     let dec = decomposition(f, input, ics)?;
     let dt = f.domain().dt().unwrap_or(1.0);

@@ -8,14 +8,14 @@
 //! | dc gain | G(0) | G(1) (∞ with a pole at z = 1: a discrete integrator) |
 //! | modes | ωₙ = \|p\|, ζ = −Re p/\|p\| | the same of the equivalent s = ln(z)/T (MATLAB `damp`) |
 //! | frequency | s = jω, ω ≥ 0 | z = e^(jωT), 0 ≤ ω ≤ π/T (the Nyquist frequency) |
-//! | responses | closed form in t | the sequence y[k] at t = kT, exact by the one marcher |
+//! | responses | closed form in t | the sequence y\[k\] at t = kT, exact by the one marcher |
 //! | closed form | inverse Laplace transform of Y(s) | inverse z-transform of Y(z)/z: Σ c·kʲ·pᵏ |
 //! | Nyquist contour | s = jω, −∞ < ω < ∞, closed at ∞; P = poles with Re p > 0 | z = e^(jωT), −π/T ≤ ω ≤ π/T; P = poles with \|p\| > 1 |
-//! | initial conditions | y(0), y′(0), … of the ODE | y[−1], y[−2], … of the difference equation |
+//! | initial conditions | y(0), y′(0), … of the ODE | y\[−1\], y\[−2\], … of the difference equation |
 //!
 //! The files: `freq.rs` (G(e^(jωT)) with its continuous phase), `margins.rs` (crossings on
 //! (0, π/T]), `time.rs` (step, impulse and input responses as sequences, step metrics in
-//! samples), `inverse_z.rs` (partial fractions of Y(z)/z and the closed-form y[k]),
+//! samples), `inverse_z.rs` (partial fractions of Y(z)/z and the closed-form y\[k\]),
 //! `nyquist.rs` (the Nyquist contour along the unit circle, arcs outside it around the poles
 //! on it, P counted outside the circle).
 

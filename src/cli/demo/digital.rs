@@ -2,7 +2,7 @@
 //! several periods (poles on e^(pT), aliasing once ω_d·T > π), the sampled tank against the
 //! closed form of the exponential, and a PID run by a computer: the sampled-data loop (plant
 //! through its ZOH, C(z) by Tustin) against the continuous design — margins shrinking with T,
-//! step responses as staircases, the closed form y[k] against the recursion.
+//! step responses as staircases, the closed form y\[k\] against the recursion.
 
 use anyhow::Result;
 use num_complex::Complex64;

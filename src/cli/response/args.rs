@@ -15,7 +15,7 @@ pub struct ResponseArgs {
     #[arg(long, default_value = "step", allow_hyphen_values = true)]
     pub input: String,
     /// ODE initial conditions "y(0) y'(0) …" (input zero for t < 0; missing ones are 0); for a
-    /// discrete-time plant (--dt) those of its difference equation, "y[-1] y[-2] …".
+    /// discrete-time plant (--dt) those of its difference equation, `y[-1] y[-2] …`.
     #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
     pub ic: Option<String>,
     /// Times (s, ≥ 0) at which to report values, e.g. --t "0 0.5 1 2" (a discrete-time plant:

@@ -1,7 +1,7 @@
 //! The closed-form report of `response`: y(t) of a SISO plant (a transfer function, one
 //! channel of a state-space model, or a loop) for a standard input and ODE initial conditions
 //! from its factored form, the transient and steady-state parts, and exact values; for a
-//! discrete-time plant the sequence y[k] with the initial conditions y[−1], y[−2], … of its
+//! discrete-time plant the sequence y\[k\] with the initial conditions y\[−1\], y\[−2\], … of its
 //! difference equation, and the samples the times read.
 
 use anyhow::{Result, bail};

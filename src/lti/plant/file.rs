@@ -207,7 +207,7 @@ pub struct PlantFile {
     #[serde(default)]
     pub states: Vec<String>,
     /// The sampling period of a discrete-time plant (seconds; absent: continuous time). With it
-    /// `num`/`den` are in descending powers of z and `a`…`d` give x[k+1] = A x[k] + B u[k].
+    /// `num`/`den` are in descending powers of z and `a`…`d` give x\[k+1\] = A x\[k\] + B u\[k\].
     #[serde(default)]
     pub dt: Option<f64>,
     /// A controller in front of the plant (unity negative feedback), as a `[controller]`

@@ -200,7 +200,7 @@ impl Plant {
     }
 
     /// The same plant in `domain`: a discrete-time plant reads its coefficients in powers of z
-    /// and its matrices as x[k+1] = A x[k] + B u[k].
+    /// and its matrices as x\[k+1\] = A x\[k\] + B u\[k\].
     ///
     /// ```
     /// use ltikit::lti::{Domain, Plant};

@@ -105,7 +105,7 @@ pub(crate) fn hqr(
 }
 
 /// The start l of the unreduced block ending at row i: the largest k ≤ i with a negligible
-/// subdiagonal entry h[k, k−1] (set to zero), or 0.
+/// subdiagonal entry h\[k, k−1\] (set to zero), or 0.
 fn deflation_point(m: &mut Mat, i: usize, ulp: f64, smlnum: f64) -> usize {
     let mut k = i;
     while k > 0 {

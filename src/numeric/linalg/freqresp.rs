@@ -9,7 +9,7 @@
 //! is at most linear in n), fused with the solve Z·U = C̃ of the triangular factor: row k of
 //! U is final after step k, so Z's column k and the running sums Σᵢ zᵢ·uᵢⱼ are updated at
 //! once and U is never stored. The transformed right-hand side Y = E·B̃ comes out of the same
-//! row operations, and G = Σₖ Z[:, k]·Y[k, :] + D. The two inner loops run over contiguous
+//! row operations, and G = Σₖ Z\[:, k\]·Y\[k, :\] + D. The two inner loops run over contiguous
 //! real and imaginary arrays (vectorised; an AVX2 copy is selected at run time on x86-64).
 //! With more outputs than inputs the dual system (Hᵀ reversed is again upper Hessenberg) is
 //! used, so the work is n²·(1 + min(m, p)) complex multiply-adds.

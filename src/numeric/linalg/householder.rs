@@ -21,7 +21,7 @@ pub struct Reflector {
 
 /// Builds the reflector that maps x to β·e₁ (LAPACK's `dlarfg` convention: β = −sign(x₀)‖x‖,
 /// so no cancellation) and returns (β, τ); `x` is overwritten by v (x\[0\] = 1).
-/// For x[1..] = 0 the reflector is the identity (τ = 0) and β = x₀.
+/// For x\[1..\] = 0 the reflector is the identity (τ = 0) and β = x₀.
 pub fn make_reflector(x: &mut [f64]) -> (f64, f64) {
     let Some((&alpha, tail)) = x.split_first() else {
         return (0.0, 0.0);

@@ -576,7 +576,7 @@ pub(crate) fn reduced_problem(
     Reduced { q_w, sigma, v }
 }
 
-/// Solves (S − λI)x = 0 with x[p] = 1, x[j] = 0 below p and at the other cluster positions
+/// Solves (S − λI)x = 0 with x\[p\] = 1, x\[j\] = 0 below p and at the other cluster positions
 /// (`slot(j)` is Some for them); returns x (scaled to avoid overflow) and the residuals at
 /// the cluster positions above p as (slot, value).
 pub(crate) fn back_substitute(

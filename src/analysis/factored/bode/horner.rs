@@ -102,7 +102,7 @@ impl AxisHorner {
 }
 
 /// ln|P(jω)| and an argument of P(jω) (ω > 0) by Horner's rule in double-double; for ω > 1
-/// on the reversed polynomial in 1/(jω), so nothing overflows. `c` descending, c[n] ≠ 0.
+/// on the reversed polynomial in 1/(jω), so nothing overflows. `c` descending, c\[n\] ≠ 0.
 pub(super) fn dd_axis(c: &[f64], w: f64) -> (f64, f64) {
     use crate::numeric::dd::Dd;
     let n = c.len() - 1;
