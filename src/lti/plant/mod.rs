@@ -28,4 +28,5 @@ pub use text::{
 };
 
 pub use record::Plant;
+#[cfg(feature = "cli")]
 pub(crate) use record::physical_model_has_no_dt;
