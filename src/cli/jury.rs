@@ -33,8 +33,12 @@ pub fn run_jury(a: &RouthArgs) -> Result<()> {
     run(a, &plant)
 }
 
-/// The exact numerator and denominator: the coefficients as typed, or the f64 values.
-fn exact_parts(plant: &Plant, g: &crate::TransferFunction) -> Result<(ExactPoly, ExactPoly)> {
+/// The exact numerator and denominator: the coefficients as typed, or the f64 values (the
+/// Routh and Jury tables' exact counts both start here).
+pub(super) fn exact_parts(
+    plant: &Plant,
+    g: &crate::TransferFunction,
+) -> crate::error::Result<(ExactPoly, ExactPoly)> {
     Ok(match &plant.typed {
         Some((n, d)) => {
             let texts = |c: &[crate::lti::plant::Coefficient]| {

@@ -195,21 +195,7 @@ fn exact_counts_within_budget(
     gain: Option<f64>,
 ) -> crate::error::Result<Exact> {
     use crate::poly::exact::{ExactPoly, Rational};
-    let (num, den) = match &plant.typed {
-        Some((n, d)) => {
-            let texts = |c: &[crate::lti::plant::Coefficient]| {
-                c.iter().map(|x| x.text.clone()).collect::<Vec<_>>()
-            };
-            (
-                ExactPoly::parse_descending(&texts(n))?,
-                ExactPoly::parse_descending(&texts(d))?,
-            )
-        }
-        None => (
-            ExactPoly::from_f64_descending(g.num().coeffs())?,
-            ExactPoly::from_f64_descending(g.den().coeffs())?,
-        ),
-    };
+    let (num, den) = super::jury::exact_parts(plant, g)?;
     let p = match gain {
         None => den,
         Some(k) => {

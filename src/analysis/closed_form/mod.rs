@@ -24,5 +24,6 @@ mod text;
 mod words;
 
 pub use form::ClosedForm;
+pub(crate) use sequence::sample_floor;
 pub use sequence::{SequenceForm, SequenceTerm};
 pub use term::ClosedFormTerm;

@@ -307,9 +307,17 @@ impl SequenceForm {
     }
 }
 
-/// The sample index a time reads (the last sample at or before t ≥ 0; saturates at 2^64).
+/// The sample a time reads, as a float: the last sample at or before t ≥ 0 (t/T rounded
+/// down, with 4 ulps of slack so that k·T computed in floating point reads sample k). The one
+/// rule of every discrete-time response: the closed form, the marched sequence, the
+/// state-space march.
+pub(crate) fn sample_floor(t: f64, dt: f64) -> f64 {
+    (t / dt * (1.0 + 4.0 * f64::EPSILON)).floor()
+}
+
+/// [`sample_floor`] as an index (saturates at 2^64).
 pub(crate) fn sample_of(t: f64, dt: f64) -> u64 {
-    (t / dt * (1.0 + 4.0 * f64::EPSILON)).floor() as u64
+    sample_floor(t, dt) as u64
 }
 
 impl fmt::Display for SequenceForm {

@@ -14,6 +14,7 @@ use nalgebra::{DMatrix, DVector};
 use crate::analysis::{Factored, Input, MetricNote, StepInfo, StepInfoOptions, TimeResponse};
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
+use crate::numeric::linalg::matrix_power;
 use crate::numeric::march::march;
 use crate::poly::Poly;
 
@@ -23,7 +24,7 @@ pub const MAX_STEP_INFO_SAMPLES: usize = 2_000_000;
 
 /// The sample index a time reads (the last sample at or before t).
 fn sample_index(t: f64, dt: f64) -> Result<u64> {
-    let k = (t / dt * (1.0 + 4.0 * f64::EPSILON)).floor();
+    let k = crate::analysis::closed_form::sample_floor(t, dt);
     if k > 2f64.powi(53) {
         return Err(LtiError::InvalidTime {
             value: t,
@@ -101,23 +102,6 @@ fn augmented(
     (f, hh, z0)
 }
 
-/// F^m by binary powers.
-fn power(f: &DMatrix<f64>, m: u64) -> DMatrix<f64> {
-    let mut result = DMatrix::identity(f.nrows(), f.ncols());
-    let mut base = f.clone();
-    let mut e = m;
-    while e > 0 {
-        if e & 1 == 1 {
-            result = &result * &base;
-        }
-        e >>= 1;
-        if e > 0 {
-            base = &base * &base;
-        }
-    }
-    result
-}
-
 /// y\[kᵢ\] = H F^(kᵢ) z₀ for the sample indices `k` (any order).
 fn samples(
     f: &DMatrix<f64>,
@@ -135,7 +119,7 @@ fn samples(
     march(
         &times,
         &mut zs,
-        |m, _| Ok(power(f, m.round() as u64)),
+        |m, _| Ok(matrix_power(f, m.round() as u64)),
         |map, (z, scratch), _, _| {
             scratch.gemv(1.0, map, z, 0.0);
             std::mem::swap(z, scratch);

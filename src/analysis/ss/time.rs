@@ -111,17 +111,7 @@ impl StepMaps {
         for i in 0..m {
             big[(n + i, n + i)] = 1.0;
         }
-        let mut result = DMatrix::identity(n + m, n + m);
-        let mut e = (h / dt).round().max(0.0) as u64;
-        while e > 0 {
-            if e & 1 == 1 {
-                result = &result * &big;
-            }
-            e >>= 1;
-            if e > 0 {
-                big = &big * &big;
-            }
-        }
+        let result = crate::numeric::linalg::matrix_power(&big, (h / dt).round().max(0.0) as u64);
         StepMaps {
             phi: result.view((0, 0), (n, n)).into_owned(),
             g0: result.view((0, n), (n, m)).into_owned(),
@@ -172,7 +162,7 @@ impl March<'_> {
         let snapped: Vec<f64> = match dt {
             Some(dt) => t
                 .iter()
-                .map(|&x| (x / dt * (1.0 + 4.0 * f64::EPSILON)).floor() * dt)
+                .map(|&x| crate::analysis::closed_form::sample_floor(x, dt) * dt)
                 .collect(),
             None => t.to_vec(),
         };

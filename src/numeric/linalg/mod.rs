@@ -48,6 +48,25 @@ pub(crate) mod checks;
 pub(crate) mod norms;
 
 pub use eigvec::EigenvectorSet;
+
+/// M^e by binary powers (⌈log₂ e⌉ squarings): the map of e samples of a discrete-time model,
+/// read by both marchers of discrete time (a transfer function's realisation with its input
+/// generator, and a state-space model with held inputs).
+pub(crate) fn matrix_power(m: &nalgebra::DMatrix<f64>, e: u64) -> nalgebra::DMatrix<f64> {
+    let mut result = nalgebra::DMatrix::identity(m.nrows(), m.ncols());
+    let mut base = m.clone();
+    let mut e = e;
+    while e > 0 {
+        if e & 1 == 1 {
+            result = &result * &base;
+        }
+        e >>= 1;
+        if e > 0 {
+            base = &base * &base;
+        }
+    }
+    result
+}
 pub use freqresp::HessenbergResponse;
 pub use hessenberg::{Hessenberg, hessenberg};
 pub use markov::{RelativeDegree, markov_parameter, relative_degree};
