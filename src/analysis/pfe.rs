@@ -59,6 +59,33 @@ pub struct PartialFractions {
 }
 
 impl PartialFractions {
+    /// The terms grouped by pole (exact equality), in order of first appearance, the residue
+    /// of 1/(s − p)^j at index j − 1; a conjugate pair by its upper member only. The closed
+    /// forms in t and in k are built from these groups.
+    pub(crate) fn by_pole(&self) -> Vec<(Complex64, Vec<Complex64>)> {
+        let mut groups: Vec<(Complex64, Vec<Complex64>)> = Vec::new();
+        for t in &self.terms {
+            if t.pole.im < 0.0 {
+                continue;
+            }
+            let k = match groups.iter().position(|(p, _)| *p == t.pole) {
+                Some(k) => k,
+                None => {
+                    groups.push((t.pole, Vec::new()));
+                    groups.len() - 1
+                }
+            };
+            let g = &mut groups[k].1;
+            if g.len() < t.power {
+                g.resize(t.power, Complex64::new(0.0, 0.0));
+            }
+            g[t.power - 1] += t.residue;
+        }
+        groups
+    }
+}
+
+impl PartialFractions {
     /// Value of the expansion at s (a pole gives an infinite or NaN value).
     ///
     /// ```

@@ -86,24 +86,7 @@ impl ClosedForm {
                 coefficient: c,
             });
         }
-        // Group by pole (exact equality), in order of first appearance.
-        let mut groups: Vec<(Complex64, Vec<Complex64>)> = Vec::new();
-        for t in &pf.terms {
-            if t.pole.im < 0.0 {
-                continue;
-            }
-            let g = match groups.iter_mut().position(|(p, _)| *p == t.pole) {
-                Some(k) => &mut groups[k].1,
-                None => {
-                    groups.push((t.pole, Vec::new()));
-                    &mut groups.last_mut().expect("ok: just pushed").1
-                }
-            };
-            if g.len() < t.power {
-                g.resize(t.power, Complex64::new(0.0, 0.0));
-            }
-            g[t.power - 1] += t.residue;
-        }
+        let groups = pf.by_pole();
         for (p, res) in groups {
             terms.push(group_term(p, &res));
         }

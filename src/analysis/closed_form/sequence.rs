@@ -186,23 +186,7 @@ impl SequenceForm {
     /// assert!((y.eval(4) - 4.0 * 0.5f64.powi(3)).abs() < 1e-15);
     /// ```
     pub fn from_partial_fractions(pf: &PartialFractions, dt: f64) -> SequenceForm {
-        let mut groups: Vec<(Complex64, Vec<Complex64>)> = Vec::new();
-        for t in &pf.terms {
-            if t.pole.im < 0.0 {
-                continue;
-            }
-            let g = match groups.iter_mut().position(|(p, _)| *p == t.pole) {
-                Some(k) => &mut groups[k].1,
-                None => {
-                    groups.push((t.pole, Vec::new()));
-                    &mut groups.last_mut().expect("ok: just pushed").1
-                }
-            };
-            if g.len() < t.power {
-                g.resize(t.power, Complex64::new(0.0, 0.0));
-            }
-            g[t.power - 1] += t.residue;
-        }
+        let groups = pf.by_pole();
         let mut terms = Vec::new();
         for (p, res) in groups {
             if p == Complex64::new(0.0, 0.0) {
