@@ -214,6 +214,14 @@ limits! {
     /// denominator.
     EXPONENT, MAX_EXPONENT: i64 = 1000, "", ["num", "den"],
         "decimal exponent of a number";
+    /// Longest dead time (s). Beyond it the phase −ωT of e^(−jωT) at the frequencies a plot
+    /// or a margin reads (ω up to ~10⁶ rad/s) exceeds 10¹², where an f64 keeps fewer than
+    /// four digits of its angle modulo 2π: the delay would carry no information.
+    DELAY, MAX_DELAY: u64 = 1_000_000, "s", ["delay"], "a dead time e^(−sT)";
+    /// Highest order of a Padé approximant of a dead time (its coefficients (2n−k)!/k!…
+    /// span 10⁴⁰ at n = 20; beyond it the rational approximant itself is ill-conditioned).
+    PADE_ORDER, MAX_PADE_ORDER: usize = 20, "", ["pade", "order"],
+        "order of a Padé approximant";
 }
 
 #[cfg(test)]

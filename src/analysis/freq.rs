@@ -105,6 +105,9 @@ impl Factored {
     /// let r = f.freq_response(&[1.0]).unwrap();
     /// assert!((r.phase_deg[0] + 1800.0).abs() < 1e-9);
     /// assert!((r.magnitude[0] - 2f64.powi(-20)).abs() < 1e-20);
+    /// // a dead time T keeps |G| and subtracts ωT from the phase: e^(−2s)/(s + 1)^40 at ω = 1
+    /// let d = f.with_delay(2.0).unwrap().freq_response(&[1.0]).unwrap();
+    /// assert!((d.phase_deg[0] - (r.phase_deg[0] - 2f64.to_degrees())).abs() < 1e-12);
     /// ```
     pub fn freq_response(&self, w: &[f64]) -> Result<FrequencyResponse> {
         if let Some(dt) = self.domain().dt() {
@@ -161,6 +164,13 @@ impl Factored {
                     &mut magnitude_db[r.clone()],
                     &mut phase_deg[r],
                 );
+            }
+        }
+        let delay = self.delay();
+        if delay > 0.0 {
+            // e^(−jωT): |G| unchanged, the phase loses ωT (continuous in ω by construction)
+            for (p, &x) in phase_deg.iter_mut().zip(w) {
+                *p -= (x * delay).to_degrees();
             }
         }
         Ok(FrequencyResponse {

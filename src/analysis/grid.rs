@@ -263,6 +263,14 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
             }
         }
     };
+    let (raw, reason) = if f.delay() > 0.0 {
+        (
+            raw + f.delay(),
+            format!("{reason}, after the dead time {} s", crate::fmt::fmt_num(f.delay())),
+        )
+    } else {
+        (raw, reason)
+    };
     let t_end = nice_ceil(raw);
     if !(t_end.is_finite() && t_end > 0.0) {
         return Err(LtiError::Undefined {

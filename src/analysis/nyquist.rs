@@ -216,7 +216,7 @@ pub(crate) fn sample_piece(g: &Factored, piece: Piece, out: &mut Vec<NyquistPoin
     let n = piece.initial();
     let eval = |t: f64| {
         let s = piece.s(t);
-        (t, s, g.eval(s))
+        (t, s, g.eval_delayed(s))
     };
     let mut prev = eval(0.0);
     out.push(NyquistPoint {
@@ -273,7 +273,18 @@ pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
         let ill_posed = tiny_about_minus_one(Complex64::new(1.0 + g_inf, 0.0), g_inf.into());
         return crate::analysis::discrete::nyquist_contour(g, dt, g_inf, ill_posed);
     }
-    let geo = Geometry::of(g);
+    if g.delay() > 0.0 && g_inf != 0.0 {
+        return Err(crate::LtiError::invalid(format!(
+            "Nyquist plot of a biproper loop with a dead time: G(∞)·e^(−jωT) circles at radius \
+             {} for ever (the curve never closes); add a pole, or replace the delay by a Padé \
+             approximant (`pade`)",
+            crate::fmt::fmt_sig(g_inf.abs(), 6)
+        )));
+    }
+    let mut geo = Geometry::of(g);
+    if g.delay() > 0.0 {
+        geo.w_end = spiral_end(g, geo.w_end);
+    }
     let positive = geo.positive_half(g);
     let middle = geo.middle(g);
     let mut points = mirrored(&positive);
@@ -291,7 +302,8 @@ pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
         )
         .chain(std::iter::once((Some(f64::INFINITY), at_inf)))
         .collect();
-    let encirclements = winding_about_minus_one(&path, |w| g.eval(Complex64::new(0.0, w)));
+    let encirclements =
+        winding_about_minus_one(&path, |w| g.eval_delayed(Complex64::new(0.0, w)));
     Ok(NyquistContour {
         dt: None,
         points,
@@ -327,7 +339,31 @@ struct Geometry {
     eps: Vec<f64>,
     rhp: usize,
     w_lo: f64,
-    w_hi: f64,
+    /// Where the axis part ends (the curve is at G(∞) beyond it).
+    w_end: f64,
+}
+
+/// Where the spiral of a strictly proper loop with a dead time may end: beyond twice the
+/// last frequency (on the factored form's sampling grid, up to `w_end`) at which |G| ≥ 0.02,
+/// the curve stays inside a circle of radius 0.02 about the origin, far from −1 — it can
+/// encircle nothing more, and its remaining turns are invisible.
+fn spiral_end(g: &Factored, w_end: f64) -> f64 {
+    let last = g
+        .bode()
+        .sampling_grid(50)
+        .into_iter()
+        .filter(|&w| w <= w_end && g.eval(Complex64::new(0.0, w)).norm() >= 0.02)
+        .fold(0.0, f64::max);
+    if last <= 0.0 {
+        return w_end;
+    }
+    // past the grid's end |G| may still be large (a high-gain loop): double until it is not
+    // (up to 1000 × the usual end, where the sampling cap would not follow the turns anyway)
+    let mut w = last;
+    while w < 1e3 * w_end && g.eval(Complex64::new(0.0, w)).norm() >= 0.02 {
+        w *= 2.0;
+    }
+    2.0 * w
 }
 
 impl Geometry {
@@ -382,7 +418,7 @@ impl Geometry {
             eps,
             rhp,
             w_lo,
-            w_hi,
+            w_end: 1e3 * w_hi,
         }
     }
 
@@ -416,7 +452,7 @@ impl Geometry {
         }
         pieces.push(Piece::Axis {
             a: start.max(f64::MIN_POSITIVE).log10(),
-            b: (1e3 * self.w_hi).log10(),
+            b: self.w_end.max(start * 10.0).log10(),
         });
         let mut positive = Vec::new();
         for piece in pieces {

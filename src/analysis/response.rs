@@ -84,6 +84,19 @@ impl Factored {
             let y = self.time_response(input, ics, t)?.y;
             return Ok(assemble(parts, t, y));
         }
+        let delay = self.delay();
+        if delay > 0.0 {
+            // the rational response shifted by T: closed forms f(t − T)·1(t − T)
+            crate::analysis::time::require_no_ics_with_delay(ics, delay)?;
+            let rational = self.rational();
+            let dec = Decomposition::new(&rational, input, ics)?;
+            let mut parts = dec.closed_form()?;
+            parts.closed_form = parts.closed_form.with_delay(delay);
+            parts.transient = parts.transient.with_delay(delay);
+            parts.steady_state = parts.steady_state.with_delay(delay);
+            let y = self.time_response(input, ics, t)?.y;
+            return Ok(assemble(parts, t, y));
+        }
         let dec = Decomposition::new(self, input, ics)?;
         let parts = dec.closed_form()?;
         let y = simulate(&dec, t)?;

@@ -220,11 +220,45 @@ impl Factored {
             Some(k) if k != 0.0 && k.is_finite() => k,
             _ => return Ok(None),
         };
-        // zero initial conditions
+        // zero initial conditions; a dead time shifts every instant (the rational part's
+        // closed form is what the metrics search)
         let y = Decomposition::new(self, &Input::Step, &[])?
             .closed_form()?
             .closed_form;
-        step_info_of(&y, y_inf, opts).map(Some)
+        let info = step_info_of(&y, y_inf, opts)?;
+        Ok(Some(info.delayed(self.delay())))
+    }
+}
+
+impl StepInfo {
+    /// The metrics of the same response delayed by `delay` seconds: every instant (settling,
+    /// transient, peak, rise start and end) moves by T, the rise time and the values do not
+    /// (MATLAB `stepinfo` of a delayed model).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// let s = g.step_info().unwrap().unwrap();
+    /// let d = g.with_delay(0.5).unwrap().step_info().unwrap().unwrap();
+    /// assert_eq!(d.rise_time, s.rise_time);
+    /// assert_eq!(d.settling_time.unwrap(), s.settling_time.unwrap() + 0.5);
+    /// ```
+    pub fn delayed(mut self, delay: f64) -> StepInfo {
+        if delay != 0.0 {
+            for t in [
+                &mut self.settling_time,
+                &mut self.transient_time,
+                &mut self.peak_time,
+                &mut self.rise_start,
+                &mut self.rise_end,
+            ]
+            .into_iter()
+            .flatten()
+            {
+                *t += delay;
+            }
+        }
+        self
     }
 }
 

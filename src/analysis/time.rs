@@ -132,6 +132,27 @@ fn overflow_reason(e: LtiError, part: &Part, t: f64) -> LtiError {
     }
 }
 
+/// The times t − T of the rational part (0 where t < T) and which times fall before the
+/// delay (there the response of a delayed plant is exactly 0).
+pub(crate) fn shift_times(t: &[f64], delay: f64) -> (Vec<f64>, Vec<bool>) {
+    let before: Vec<bool> = t.iter().map(|&x| x < delay).collect();
+    let shifted = t.iter().map(|&x| (x - delay).max(0.0)).collect();
+    (shifted, before)
+}
+
+/// A delayed plant's responses start from rest: the dead time acts on the input, and the
+/// history of an input over [−T, 0) is not an ODE initial condition.
+pub(crate) fn require_no_ics_with_delay(ics: &[f64], delay: f64) -> Result<()> {
+    if ics.iter().all(|&x| x == 0.0) {
+        return Ok(());
+    }
+    Err(LtiError::invalid(format!(
+        "initial conditions with a dead time e^(-{} s): a delayed plant's response is taken \
+         from rest (the input's history over the delay is not an ODE initial condition)",
+        crate::fmt::fmt_num(delay)
+    )))
+}
+
 impl Factored {
     /// The exact response to `input` with ODE initial conditions `ics` = [y(0), y′(0), …]
     /// (input zero for t < 0; fewer than the order: the rest are 0) at the times `t`, in the
@@ -157,6 +178,20 @@ impl Factored {
             return crate::analysis::discrete::time_response(self, dt, input, ics, t);
         }
         check_times(t)?;
+        let delay = self.delay();
+        if delay > 0.0 {
+            require_no_ics_with_delay(ics, delay)?;
+            let rational = self.rational();
+            let (shifted, before) = shift_times(t, delay);
+            let mut r = rational.time_response(input, ics, &shifted)?;
+            for (y, b) in r.y.iter_mut().zip(before) {
+                if b {
+                    *y = 0.0;
+                }
+            }
+            r.t = t.to_vec();
+            return Ok(r);
+        }
         let dec = Decomposition::new(self, input, ics)?;
         let y = simulate(&dec, t)?;
         Ok(TimeResponse {
@@ -234,6 +269,33 @@ impl Factored {
         check_times(&uniform)?;
         if let Some(dt) = self.domain().dt() {
             return self.staircase(input, dt, t_end, uniform);
+        }
+        let delay = self.delay();
+        if delay > 0.0 {
+            // exactly 0 up to T (drawn as a corner at T), then the rational response shifted
+            let mut r = if t_end > delay {
+                self.rational()
+                    .response_for_drawing(input, t_end - delay, points)?
+            } else {
+                TimeResponse {
+                    t: Vec::new(),
+                    y: Vec::new(),
+                    final_value: None,
+                }
+            };
+            let mut t = vec![0.0];
+            let mut y = vec![0.0];
+            for (ti, yi) in r.t.iter().zip(&r.y) {
+                t.push(ti + delay);
+                y.push(*yi);
+            }
+            if t_end <= delay {
+                t.push(t_end);
+                y.push(0.0);
+            }
+            r.t = t;
+            r.y = y;
+            return Ok(r);
         }
         let dec = Decomposition::new(self, input, &[])?;
         let t = match dec.closed_form() {

@@ -53,7 +53,7 @@ impl PlantArgs {
                 list: vec![Channel {
                     input: i,
                     output: o,
-                    factored: self.minreal(plant.factored_channel(i, o)?)?,
+                    factored: self.minreal(self.pade_of(plant.factored_channel(i, o)?)?)?,
                 }],
             });
         }
@@ -64,7 +64,7 @@ impl PlantArgs {
                 list: vec![Channel {
                     input: 0,
                     output: 0,
-                    factored: self.minreal(plant.factored()?)?,
+                    factored: self.minreal(self.pade_of(plant.factored()?)?)?,
                 }],
             });
         }
@@ -81,7 +81,7 @@ impl PlantArgs {
                 list.push(Channel {
                     input: i,
                     output: o,
-                    factored: self.minreal(plant.factored_channel(i, o)?)?,
+                    factored: self.minreal(self.pade_of(plant.factored_channel(i, o)?)?)?,
                 });
             }
         }

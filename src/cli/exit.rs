@@ -208,6 +208,9 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("method", "--method"),
     ("prewarp", "--prewarp"),
     ("dt", "--dt"),
+    ("delay", "--delay"),
+    ("pade", "--pade"),
+    ("order", "--order"),
 ];
 
 /// The flag of a library field name, if the command line has one.

@@ -82,6 +82,17 @@ pub fn set_document_dt(dt: Option<f64>) {
     DOCUMENT_DT.with(|c| c.set(Some(dt)));
 }
 
+thread_local! {
+    /// The dead time of the plants this command read (0: none).
+    static DOCUMENT_DELAY: std::cell::Cell<f64> = const { std::cell::Cell::new(0.0) };
+}
+
+/// Records the dead time of the plants a command analyses: every JSON document it prints then
+/// carries `"delay"` (seconds) after `"dt"` when it is not 0.
+pub fn set_document_delay(delay: f64) {
+    DOCUMENT_DELAY.with(|c| c.set(delay));
+}
+
 /// Puts `"dt"` first in a document object that does not carry it yet.
 fn with_dt(v: &mut serde_json::Value) {
     if let serde_json::Value::Object(map) = v
@@ -90,6 +101,10 @@ fn with_dt(v: &mut serde_json::Value) {
     {
         let mut out = serde_json::Map::new();
         out.insert("dt".into(), serde_json::json!(dt));
+        let delay = DOCUMENT_DELAY.with(|c| c.get());
+        if delay > 0.0 && !map.contains_key("delay") {
+            out.insert("delay".into(), serde_json::json!(delay));
+        }
         out.extend(std::mem::take(map));
         *map = out;
     }

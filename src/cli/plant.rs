@@ -50,6 +50,14 @@ pub struct PlantArgs {
     /// file).
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub dt: Option<f64>,
+    /// Dead time in seconds: the plant is G(s)·e^(−sT), kept exact in every analysis (on
+    /// every input of a state-space plant; `delay = T` in a plant file). A discrete plant
+    /// takes a whole number of periods, as z^(−d).
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub delay: Option<f64>,
+    /// Replace the dead time by its [N/N] Padé approximant (N = 1…20) for this analysis.
+    #[arg(long, value_name = "N")]
+    pub pade: Option<usize>,
     /// Sample the (continuous) plant with a zero-order hold at period T before the analysis:
     /// with a controller, the sampled-data loop — C discretised by --controller-method, the
     /// plant seen through its ZOH — analysed at the samples.
@@ -127,6 +135,11 @@ impl PlantArgs {
             self.sample
                 .or_else(|| out.first().and_then(|p| p.domain().dt())),
         );
+        super::output::set_document_delay(if self.pade.is_some() {
+            0.0
+        } else {
+            out.first().map_or(0.0, Plant::delay)
+        });
         let method = self
             .controller_method
             .as_deref()
@@ -152,6 +165,11 @@ impl PlantArgs {
                     p.name,
                     crate::fmt::fmt_num(t)
                 );
+            }
+            if let Some(n) = self.pade
+                && p.delay() > 0.0
+            {
+                p.name = format!("{} (the delay as its [{n}/{n}] Padé approximant)", p.name);
             }
             p.selection = self
                 .loop_flag()
@@ -224,6 +242,12 @@ impl PlantArgs {
                 })
                 .collect::<crate::error::Result<_>>()?;
         }
+        if let Some(t) = self.delay {
+            out = out
+                .into_iter()
+                .map(|p| p.with_delay(t))
+                .collect::<crate::error::Result<_>>()?;
+        }
         if out.is_empty() {
             return Err(UsageError(
                 "no plant given: use --num/--den, --a/--b/--c, --plant FILE.toml or --model NAME"
@@ -270,6 +294,7 @@ impl PlantArgs {
             Some((i, o)) => plant.factored_channel(i, o)?,
             None => plant.factored()?,
         };
+        let g = self.pade_of(g)?;
         let g = match self.sample {
             Some(t) => g.c2d(t, crate::lti::Discretization::Zoh)?,
             None => g,
@@ -283,6 +308,23 @@ impl PlantArgs {
             }
         }
         Ok((f, cl))
+    }
+
+    /// `g` with its dead time replaced by the `--pade N` approximant (a note on stderr says
+    /// so); `g` itself without the option.
+    pub fn pade_of(&self, g: crate::analysis::Factored) -> Result<crate::analysis::Factored> {
+        let Some(n) = self.pade else {
+            return Ok(g);
+        };
+        let delay = g.delay();
+        let approx = g.pade(n)?;
+        if delay > 0.0 {
+            super::warn(format!(
+                "--pade {n}: the dead time e^(-{} s) is replaced by its [{n}/{n}] Padé approximant",
+                crate::fmt::fmt_num(delay)
+            ));
+        }
+        Ok(approx)
     }
 
     /// `f` with the pole-zero pairs within `--minreal TOL` cancelled (a warning names each

@@ -216,7 +216,18 @@ pub fn dt_suffix(domain: crate::lti::Domain) -> String {
 /// factors and its size (a large one in words).
 pub fn g_text(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {
     let text = g_text_in(plant, f);
-    format!("{text}{}", dt_suffix(f.domain()))
+    let delay = match (&plant.model, &plant.typed) {
+        // the typed coefficients are the rational part
+        (crate::lti::Model::Tf(_), Some(_)) if plant.selection.is_none() && f.delay() > 0.0 => {
+            format!(" · {}", crate::lti::delay::factor_text(f.delay()))
+        }
+        _ if plant.selection.is_none() && f.delay() == 0.0 && plant.delay() > 0.0 => format!(
+            " · {}  (the delay replaced by a Padé approximant)",
+            crate::lti::delay::factor_text(plant.delay())
+        ),
+        _ => String::new(),
+    };
+    format!("{text}{delay}{}", dt_suffix(f.domain()))
 }
 
 fn g_text_in(plant: &crate::lti::Plant, f: &crate::analysis::Factored) -> String {

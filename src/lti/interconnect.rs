@@ -63,8 +63,11 @@ impl TransferFunction {
     /// ```
     pub fn parallel(&self, other: &TransferFunction) -> Result<TransferFunction> {
         let domain = self.domain().join(other.domain(), "parallel")?;
+        let delay = crate::lti::delay::common_delay("parallel", self.delay(), other.delay())?;
         let num = &(self.num() * other.den()) + &(other.num() * self.den());
-        Ok(TransferFunction::new(num, self.den() * other.den())?.with_domain(domain))
+        TransferFunction::new(num, self.den() * other.den())?
+            .with_domain(domain)
+            .with_delay(delay)
     }
 
     /// Feedback u = r + sign·H·y around G = `self`: T = N_G·D_H/(D_G·D_H − sign·N_G·N_H) (no
@@ -84,6 +87,7 @@ impl TransferFunction {
     pub fn feedback(&self, h: &TransferFunction, sign: f64) -> Result<TransferFunction> {
         check_sign(sign)?;
         let domain = self.domain().join(h.domain(), "feedback")?;
+        crate::lti::delay::require_rational("feedback", self.delay() + h.delay())?;
         let num = self.num() * h.den();
         let den = &(self.den() * h.den()) - &(self.num() * h.num()).scale(sign);
         if den.is_zero() {
@@ -123,6 +127,8 @@ impl StateSpace {
     /// assert_eq!(s.to_tf().unwrap().den().coeffs(), &[1.0, 2.0, 1.0]);
     /// ```
     pub fn series(&self, next: &StateSpace) -> Result<StateSpace> {
+        self.require_no_delays("series")?;
+        next.require_no_delays("series")?;
         let domain = self.domain.join(next.domain, "series")?;
         if self.n_outputs() != next.n_inputs() {
             return Err(LtiError::invalid(format!(
@@ -154,6 +160,8 @@ impl StateSpace {
     /// assert!((p.to_tf().unwrap().eval(0.0.into()).re - 2.0).abs() < 1e-14);
     /// ```
     pub fn parallel(&self, other: &StateSpace) -> Result<StateSpace> {
+        self.require_no_delays("parallel")?;
+        other.require_no_delays("parallel")?;
         let domain = self.domain.join(other.domain, "parallel")?;
         if self.dims() != other.dims() {
             return Err(LtiError::invalid(format!(
@@ -187,6 +195,8 @@ impl StateSpace {
     /// assert_eq!(t.den().coeffs(), &[1.0, 4.0, 5.0]);
     /// ```
     pub fn feedback(&self, h: &StateSpace, sign: f64) -> Result<StateSpace> {
+        self.require_no_delays("feedback")?;
+        h.require_no_delays("feedback")?;
         check_sign(sign)?;
         let domain = self.domain.join(h.domain, "feedback")?;
         let (m, p) = (self.n_inputs(), self.n_outputs());

@@ -1,6 +1,7 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
 pub mod controller;
+pub mod delay;
 pub mod discretize;
 pub mod domain;
 pub mod interconnect;

@@ -156,8 +156,12 @@ impl StateSpace {
             self.b.columns(input, 1).into_owned(),
             self.c.rows(output, 1).into_owned(),
             DMatrix::from_element(1, 1, self.d[(output, input)]),
+        )?
+        .with_domain(self.domain)
+        .with_delays(
+            self.input_delays.get(input).map(|&t| vec![t]).unwrap_or_default(),
+            self.output_delays.get(output).map(|&t| vec![t]).unwrap_or_default(),
         )
-        .map(|ch| ch.with_domain(self.domain))
     }
 
     /// Refuses models beyond [`MAX_STATES`] states or [`MAX_SIGNALS`] inputs or outputs.

@@ -24,6 +24,11 @@ pub struct StateSpace {
     /// sampling period; [`StateSpace::new`] makes a continuous model,
     /// [`StateSpace::with_domain`] sets it.
     pub domain: Domain,
+    /// Dead time (s) on each input (empty: none); the channel from input j to output i is
+    /// delayed by `input_delays[j] + output_delays[i]` ([`StateSpace::with_delays`]).
+    pub input_delays: Vec<f64>,
+    /// Dead time (s) on each output (empty: none).
+    pub output_delays: Vec<f64>,
 }
 
 impl StateSpace {
@@ -77,6 +82,8 @@ impl StateSpace {
             c,
             d,
             domain: Domain::Continuous,
+            input_delays: Vec::new(),
+            output_delays: Vec::new(),
         })
     }
 
@@ -94,6 +101,73 @@ impl StateSpace {
     pub fn with_domain(mut self, domain: Domain) -> Self {
         self.domain = domain;
         self
+    }
+
+    /// The same model with a dead time on each input and each output (s; an empty list is
+    /// no delay): y_i = Σ_j G_ij(s)·e^(−s(τ_in,j + τ_out,i))·u_j (continuous time).
+    ///
+    /// Errors: a list of the wrong length, a bad delay
+    /// ([`check_delay`](crate::lti::delay::check_delay)), a discrete-time model (its delays
+    /// are whole samples, part of its matrices).
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::StateSpace;
+    /// let one = DMatrix::from_element(1, 1, 1.0);
+    /// let ss = StateSpace::new(-one.clone(), one.clone(), one.clone(), one.scale(0.0)).unwrap()
+    ///     .with_delays(vec![0.5], vec![0.25]).unwrap();
+    /// assert_eq!(ss.channel_delay(0, 0), 0.75);
+    /// assert!(ss.clone().with_delays(vec![0.5, 1.0], vec![]).is_err());
+    /// ```
+    pub fn with_delays(mut self, input: Vec<f64>, output: Vec<f64>) -> Result<Self> {
+        for (v, n, what) in [
+            (&input, self.b.ncols(), "input"),
+            (&output, self.c.nrows(), "output"),
+        ] {
+            if !v.is_empty() && v.len() != n {
+                return Err(LtiError::invalid(format!(
+                    "`{what}_delays` has {} values, the model has {n} {what}s",
+                    v.len()
+                )));
+            }
+            for &t in v {
+                crate::lti::delay::check_delay(t)?;
+            }
+        }
+        let any = input.iter().chain(&output).any(|&t| t > 0.0);
+        if any {
+            self.domain.require_continuous(
+                "a dead time on the inputs or outputs of a state-space model (a discrete model \
+                 delays by whole samples in its matrices)",
+            )?;
+        }
+        self.input_delays = if input.iter().any(|&t| t > 0.0) { input } else { Vec::new() };
+        self.output_delays = if output.iter().any(|&t| t > 0.0) { output } else { Vec::new() };
+        Ok(self)
+    }
+
+    /// The dead time of the channel from `input` to `output` (0-based): its input's delay
+    /// plus its output's (0 without delays or for an index out of range).
+    pub fn channel_delay(&self, input: usize, output: usize) -> f64 {
+        self.input_delays.get(input).copied().unwrap_or(0.0)
+            + self.output_delays.get(output).copied().unwrap_or(0.0)
+    }
+
+    /// True when some input or output has a dead time.
+    pub fn has_delays(&self) -> bool {
+        !self.input_delays.is_empty() || !self.output_delays.is_empty()
+    }
+
+    /// Errors when the model has dead times: `operation` takes the rational model only.
+    pub fn require_no_delays(&self, operation: &str) -> Result<()> {
+        if !self.has_delays() {
+            return Ok(());
+        }
+        Err(LtiError::invalid(format!(
+            "{operation} of a state-space model with input or output dead times is not \
+             available; analyse one channel (it carries its delay), or replace the delays by \
+             Padé approximants (`pade`)"
+        )))
     }
 
     /// Number of states.
@@ -172,6 +246,8 @@ impl StateSpace {
             c,
             d: self.d.clone(),
             domain: self.domain,
+            input_delays: self.input_delays.clone(),
+            output_delays: self.output_delays.clone(),
         }
     }
 
@@ -181,7 +257,9 @@ impl StateSpace {
     /// polynomials come from the eigenvalues (conjugate pairs exact, so the coefficients are
     /// real).
     pub fn to_tf(&self) -> Result<TransferFunction> {
-        Ok(self.to_tf_in_s()?.with_domain(self.domain))
+        self.to_tf_in_s()?
+            .with_domain(self.domain)
+            .with_delay(self.channel_delay(0, 0))
     }
 
     fn to_tf_in_s(&self) -> Result<TransferFunction> {

@@ -18,6 +18,8 @@ pub struct TransferFunction {
     num: Poly,
     den: Poly,
     domain: Domain,
+    /// Dead time T ≥ 0 (s) of the factor e^(−sT); 0 for none (continuous time only).
+    delay: f64,
 }
 
 impl TransferFunction {
@@ -65,6 +67,7 @@ impl TransferFunction {
             num,
             den,
             domain: Domain::Continuous,
+            delay: 0.0,
         })
     }
 
@@ -98,6 +101,7 @@ impl TransferFunction {
             num: Poly::s(),
             den: Poly::constant(1.0),
             domain: Domain::Continuous,
+            delay: 0.0,
         }
     }
 
@@ -107,6 +111,7 @@ impl TransferFunction {
             num: Poly::constant(k),
             den: Poly::constant(1.0),
             domain: Domain::Continuous,
+            delay: 0.0,
         }
     }
 
@@ -129,6 +134,52 @@ impl TransferFunction {
     /// Continuous or discrete time (with the sampling period).
     pub fn domain(&self) -> Domain {
         self.domain
+    }
+
+    /// The same rational part with the dead time `delay` (s): G(s)·e^(−s·delay). In discrete
+    /// time the delay must be a whole number d of sampling periods and becomes z^(−d) — the
+    /// denominator times z^d, exact (then [`TransferFunction::delay`] stays 0).
+    ///
+    /// Errors: a delay that is negative, not finite or above
+    /// [`MAX_DELAY`](crate::limits::MAX_DELAY); in discrete time, not a whole number of
+    /// periods.
+    ///
+    /// ```
+    /// use ltikit::{TransferFunction, lti::Domain};
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap().with_delay(0.5).unwrap();
+    /// assert_eq!(g.delay(), 0.5);
+    /// assert_eq!(g.to_string(), "1 / (s + 1) · e^(-0.5 s)");
+    /// let z = TransferFunction::from_descending(&[0.5], &[1.0, -0.5]).unwrap()
+    ///     .with_domain(Domain::discrete(0.1).unwrap()).with_delay(0.2).unwrap();
+    /// assert_eq!(z.to_string(), "0.5 / (z^3 - 0.5 z^2)");
+    /// ```
+    pub fn with_delay(mut self, delay: f64) -> Result<Self> {
+        let delay = crate::lti::delay::check_delay(delay)?;
+        match self.domain.dt() {
+            None => {
+                self.delay = delay;
+                Ok(self)
+            }
+            Some(dt) => {
+                let d = crate::lti::delay::delay_samples(delay, dt)?;
+                let mut shifted = self.den.ascending().to_vec();
+                shifted.splice(0..0, std::iter::repeat_n(0.0, d));
+                let den = Poly::from_ascending(&shifted)?;
+                Ok(Self::new(self.num, den)?.with_domain(self.domain))
+            }
+        }
+    }
+
+    /// The dead time T (s) of the factor e^(−sT); 0 without one.
+    pub fn delay(&self) -> f64 {
+        self.delay
+    }
+
+    /// The rational part alone (the delay dropped).
+    pub fn rational(&self) -> Self {
+        let mut g = self.clone();
+        g.delay = 0.0;
+        g
     }
 
     /// Numerator polynomial.
@@ -218,6 +269,12 @@ impl TransferFunction {
                 what: "numerator (cannot invert the zero transfer function)".into(),
             });
         }
+        if self.delay != 0.0 {
+            return Err(LtiError::invalid(format!(
+                "1/G of a delayed plant would be a predictor e^(+{} s): not causal",
+                crate::fmt::fmt_num(self.delay)
+            )));
+        }
         Ok(Self::new(self.den.clone(), self.num.clone())?.with_domain(self.domain))
     }
 
@@ -236,6 +293,7 @@ impl std::ops::Mul for &TransferFunction {
             num: &self.num * &o.num,
             den: &self.den * &o.den,
             domain: self.domain,
+            delay: self.delay + o.delay,
         }
     }
 }
@@ -250,12 +308,14 @@ impl std::ops::Add for &TransferFunction {
                 num: &self.num + &o.num,
                 den: self.den.clone(),
                 domain: self.domain,
+                delay: self.delay,
             };
         }
         TransferFunction {
             num: &(&self.num * &o.den) + &(&o.num * &self.den),
             den: &self.den * &o.den,
             domain: self.domain,
+            delay: self.delay,
         }
     }
 }
@@ -267,6 +327,7 @@ impl std::ops::Neg for &TransferFunction {
             num: -&self.num,
             den: self.den.clone(),
             domain: self.domain,
+            delay: self.delay,
         }
     }
 }
@@ -285,10 +346,15 @@ impl fmt::Display for TransferFunction {
                 format!("({s})")
             }
         };
+        let delay = if self.delay == 0.0 {
+            String::new()
+        } else {
+            format!(" · {}", crate::lti::delay::factor_text(self.delay))
+        };
         if self.den.degree() == 0 && self.den.leading() == 1.0 {
-            return write!(f, "{n}");
+            return write!(f, "{n}{delay}");
         }
-        write!(f, "{} / {}", wrap(&n, &self.num), wrap(&d, &self.den))
+        write!(f, "{} / {}{delay}", wrap(&n, &self.num), wrap(&d, &self.den))
     }
 }
 

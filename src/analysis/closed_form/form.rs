@@ -29,6 +29,13 @@ pub struct ClosedForm {
     /// The sequence of a discrete-time response (then `terms` is empty).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) sequence: Option<SequenceForm>,
+    /// Dead time T (s): the function is the terms at t − T, and 0 before T.
+    #[serde(skip_serializing_if = "is_no_delay")]
+    pub(super) delay: f64,
+}
+
+fn is_no_delay(t: &f64) -> bool {
+    *t == 0.0
 }
 
 impl ClosedForm {
@@ -37,6 +44,7 @@ impl ClosedForm {
         ClosedForm {
             terms: terms.into_iter().filter(|t| !t.is_zero()).collect(),
             sequence: None,
+            delay: 0.0,
         }
     }
 
@@ -56,7 +64,32 @@ impl ClosedForm {
         ClosedForm {
             terms: Vec::new(),
             sequence: Some(sequence),
+            delay: 0.0,
         }
+    }
+
+    /// The same function delayed by `delay` seconds: f(t − T)·1(t − T) (a sequence is not
+    /// delayed here: a discrete delay is part of its rational model).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// use ltikit::analysis::Input;
+    /// let g = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap();
+    /// let y = g.inverse_laplace(&Input::Step, &[]).unwrap().closed_form.with_delay(2.0);
+    /// assert_eq!(y.to_string(), "y(t) = f(t - 2)·1(t - 2), f(t) = 1 - e^(-t)");
+    /// assert_eq!(y.eval(1.5), 0.0);
+    /// assert!((y.eval(3.0) - (1.0 - (-1f64).exp())).abs() < 1e-15);
+    /// ```
+    pub fn with_delay(mut self, delay: f64) -> ClosedForm {
+        if self.sequence.is_none() {
+            self.delay = delay;
+        }
+        self
+    }
+
+    /// The dead time T of a delayed closed form (0 for none).
+    pub fn delay(&self) -> f64 {
+        self.delay
     }
 
     /// The closed-form sequence of a discrete-time response (`None` in continuous time).
@@ -111,6 +144,7 @@ impl ClosedForm {
         if let Some(s) = &self.sequence {
             return s.eval_at(t);
         }
+        let t = t - self.delay;
         if t < 0.0 {
             return 0.0;
         }
@@ -123,6 +157,7 @@ impl ClosedForm {
         if self.sequence.is_some() {
             return f64::NAN;
         }
+        let t = t - self.delay;
         if t < 0.0 {
             return 0.0;
         }
@@ -140,6 +175,10 @@ impl ClosedForm {
                 s.envelope(super::sequence::sample_of(t, s.dt))
             };
         }
+        let t = t - self.delay;
+        if t < 0.0 {
+            return 0.0;
+        }
         self.terms.iter().map(|x| x.envelope(t)).sum()
     }
 
@@ -154,6 +193,7 @@ impl ClosedForm {
         }
         ClosedForm {
             sequence: None,
+            delay: self.delay,
             terms: self
                 .terms
                 .iter()

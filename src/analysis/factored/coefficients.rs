@@ -28,7 +28,7 @@ impl TransferFunction {
     /// assert_eq!(f.pole_zero().zeros_at_infinity, Some(1));
     /// ```
     pub fn factored(&self) -> Result<Factored> {
-        Factored::from_tf(self)
+        Factored::from_tf(self)?.with_delay(self.delay())
     }
 
     /// Poles, zeros, cancelled common roots and the reduced root lists

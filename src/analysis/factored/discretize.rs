@@ -45,6 +45,10 @@ impl Factored {
     /// assert!((d.eval(C::new(1.0, 0.0)).re - 1.0).abs() < 1e-13); // G(z = 1) = G(s = 0)
     /// ```
     pub fn c2d(&self, dt: f64, method: Discretization) -> Result<Factored> {
+        if self.delay() > 0.0 {
+            // a whole number d of periods is z^(−d), exact
+            return self.rational().c2d(dt, method)?.with_delay(self.delay());
+        }
         let domain = c2d_domain(self.domain(), dt)?;
         self.require_proper("c2d", false)?;
         let h = method.tustin_h(dt)?;

@@ -55,8 +55,19 @@ impl fmt::Display for Factored {
     /// assert_eq!(f.to_string(), "3 (s + 1)^2 / (s (s^2 + 2 s + 5))");
     /// ```
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.fmt_rational(f)?;
+        if self.delay() > 0.0 {
+            write!(f, " · {}", crate::lti::delay::factor_text(self.delay()))?;
+        }
+        Ok(())
+    }
+}
+
+impl Factored {
+    /// The rational part as text (see the `Display` impl).
+    fn fmt_rational(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(tf) = self.transfer_function() {
-            return write!(f, "{tf}");
+            return write!(f, "{}", tf.rational());
         }
         if self.is_zero() {
             return f.write_str("0");

@@ -51,6 +51,9 @@ pub struct Factored {
     decision: Decision,
     /// Continuous (s) or discrete (z, with the sampling period).
     domain: Domain,
+    /// Dead time T ≥ 0 (s) of the factor e^(−sT) beside the rational part (continuous time;
+    /// a discrete delay is absorbed as poles at z = 0).
+    delay: f64,
 }
 
 /// The one constructor of a [`Factored`]: every source (coefficients, exact coefficients,
@@ -66,6 +69,7 @@ pub(super) fn assemble(pz: PoleZero, gain: f64, source: Source, decision: Decisi
         bode: OnceLock::new(),
         decision,
         domain: Domain::Continuous,
+        delay: 0.0,
     }
 }
 
@@ -88,6 +92,82 @@ impl Factored {
         self.domain = domain;
         self.bode = OnceLock::new();
         self
+    }
+
+    /// The dead time T (s) of the factor e^(−sT) beside the rational part (0 without one).
+    /// Every analysis reads it: the frequency response loses ωT of phase, a response is the
+    /// rational one shifted by T, a closed loop around it is a delayed loop.
+    pub fn delay(&self) -> f64 {
+        self.delay
+    }
+
+    /// The same rational part with the dead time `delay` (s). In discrete time the delay must
+    /// be a whole number d of sampling periods and is absorbed exactly as z^(−d) (d more
+    /// poles at z = 0; [`Factored::delay`] stays 0).
+    ///
+    /// Errors: a negative, non-finite or too long delay
+    /// ([`check_delay`](crate::lti::delay::check_delay)); in discrete time, not a whole
+    /// number of periods.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let f = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap()
+    ///     .factored().unwrap().with_delay(0.5).unwrap();
+    /// assert_eq!(f.delay(), 0.5);
+    /// assert_eq!(f.poles().len(), 1); // the rational part is unchanged
+    /// ```
+    pub fn with_delay(mut self, delay: f64) -> Result<Factored> {
+        let delay = crate::lti::delay::check_delay(delay)?;
+        match self.domain.dt() {
+            None => {
+                self.delay = delay;
+                Ok(self)
+            }
+            Some(dt) => {
+                let d = crate::lti::delay::delay_samples(delay, dt)?;
+                if d == 0 {
+                    return Ok(self);
+                }
+                let shift = Factored::from_zpk(&[], &[Root::new(Complex64::new(0.0, 0.0), d)], 1.0)?
+                    .with_domain(self.domain);
+                self.series(&shift)
+            }
+        }
+    }
+
+    /// The rational part alone (the delay dropped; the cached evaluation form kept).
+    pub fn rational(&self) -> Factored {
+        let mut f = self.clone();
+        f.delay = 0.0;
+        f
+    }
+
+    /// The dead time replaced by its [n/n] Padé approximant
+    /// ([`pade`](crate::lti::delay::pade)): a rational plant (the same one without a delay).
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// let f = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap()
+    ///     .with_delay(0.5).unwrap().factored().unwrap();
+    /// let p = f.pade(3).unwrap();
+    /// assert_eq!((p.delay(), p.order()), (0.0, 4));
+    /// ```
+    pub fn pade(&self, n: usize) -> Result<Factored> {
+        let approx = crate::lti::delay::pade(self.delay.max(0.0), n)?;
+        if self.delay == 0.0 {
+            return Ok(self.clone());
+        }
+        self.rational().series(&approx.factored()?)
+    }
+
+    /// G(s)·e^(−sT) at a complex point: [`Factored::eval`] times the delay factor.
+    pub fn eval_delayed(&self, s: Complex64) -> Complex64 {
+        let g = self.eval(s);
+        if self.delay == 0.0 {
+            g
+        } else {
+            g * (-s * self.delay).exp()
+        }
     }
 
     /// Poles, zeros, cancellations and reduced root lists.

@@ -52,7 +52,9 @@ impl Factored {
     pub fn series(&self, next: &Factored) -> Result<Factored> {
         let domain = self.domain().join(next.domain(), "series")?;
         let (z, p, k) = series_parts(self, next);
-        Ok(Factored::from_zpk(&z, &p, k)?.with_domain(domain))
+        Factored::from_zpk(&z, &p, k)?
+            .with_domain(domain)
+            .with_delay(self.delay() + next.delay())
     }
 
     /// Parallel connection self + other = (N₁D₂ + N₂D₁)/(D₁D₂): the poles of both kept, the
@@ -71,6 +73,7 @@ impl Factored {
     /// ```
     pub fn parallel(&self, other: &Factored) -> Result<Factored> {
         let domain = self.domain().join(other.domain(), "parallel")?;
+        let delay = crate::lti::delay::common_delay("parallel", self.delay(), other.delay())?;
         let num = &(&self.num_poly()? * &Poly::from_root_list(other.poles())?)
             + &(&other.num_poly()? * &Poly::from_root_list(self.poles())?);
         let mut poles = self.poles().to_vec();
@@ -79,7 +82,9 @@ impl Factored {
             return Ok(Factored::from_zpk(&[], &poles, 0.0)?.with_domain(domain));
         }
         let zeros = num.roots()?;
-        Ok(Factored::from_zpk(&zeros, &poles, num.leading())?.with_domain(domain))
+        Factored::from_zpk(&zeros, &poles, num.leading())?
+            .with_domain(domain)
+            .with_delay(delay)
     }
 
     /// Feedback u = r + sign·H·y around this G (`sign = -1.0`: negative feedback):
@@ -109,6 +114,7 @@ impl Factored {
     pub fn feedback(&self, h: &Factored, sign: f64) -> Result<Feedback> {
         crate::lti::interconnect::check_sign(sign)?;
         let domain = self.domain().join(h.domain(), "feedback")?;
+        crate::lti::delay::require_rational("feedback", self.delay() + h.delay())?;
         let (lz, lp, lk) = series_parts(self, h);
         let (characteristic, poles, hidden) = close(&lz, &lp, lk, sign)?;
         let mut zeros = self.zeros().to_vec();

@@ -26,7 +26,7 @@ impl Plant {
     pub fn factored(&self) -> Result<Factored> {
         match &self.model {
             Model::Tf(g) => match &self.typed {
-                Some((num, den)) => Factored::from_typed(g, num, den),
+                Some((num, den)) => Factored::from_typed(g, num, den)?.with_delay(g.delay()),
                 None => g.factored(),
             },
             Model::Ss(ss) => {
@@ -111,6 +111,7 @@ impl Factored {
             Source::StateSpace(Box::new(source)),
             Decision::default(),
         )
-        .with_domain(ss.domain))
+        .with_domain(ss.domain)
+        .with_delay(ss.channel_delay(0, 0))?)
     }
 }

@@ -54,6 +54,10 @@ pub struct Margins {
     pub delay_margin: Option<f64>,
     /// The gain crossing of that delay margin (rad/s).
     pub delay_margin_w: Option<f64>,
+    /// For a loop with a dead time, whose phase crossings never end: the frequency (rad/s)
+    /// up to which `phase_crossings` lists them all (the plotted range and at least three
+    /// turns of the delay, at most 50 crossings); `None` for a rational loop.
+    pub crossings_listed_to: Option<f64>,
 }
 
 impl Margins {

@@ -38,6 +38,7 @@
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 pub(crate) mod crossing;
+mod delayed;
 
 pub use crossing::{GainCrossing, Margins, PhaseCrossing};
 pub(crate) use crossing::{dedup_by_w, wrap_deg};
@@ -104,7 +105,9 @@ impl Factored {
             if let Some(w) = polish(|x| form.eval(x).ln_mag(), w, &singular, 1e-10) {
                 out.gain_crossings.push(GainCrossing {
                     w,
-                    phase_margin_deg: wrap_deg(180.0 + form.eval(w).phase_deg()),
+                    phase_margin_deg: wrap_deg(
+                        180.0 + form.eval(w).phase_deg() - (w * self.delay()).to_degrees(),
+                    ),
                 });
             }
         }
@@ -121,7 +124,18 @@ impl Factored {
                 gain_margin_db: -e.db(),
             });
         }
-        for w in cand.phase_crossings(form)? {
+        let delay = self.delay();
+        if delay > 0.0 {
+            let w_plot = 10f64.powf(form.decade_range().1);
+            let (crossings, listed_to) = delayed::phase_crossings(form, delay, w_plot, &singular);
+            out.phase_crossings.extend(crossings);
+            out.crossings_listed_to = Some(listed_to);
+        }
+        for w in if delay > 0.0 {
+            Vec::new()
+        } else {
+            cand.phase_crossings(form)?
+        } {
             if singular.iter().any(|&b| (w - b).abs() <= 1e-8 * b) {
                 continue;
             }

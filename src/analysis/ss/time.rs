@@ -231,6 +231,58 @@ impl StateSpace {
         Ok(())
     }
 
+    /// A response to input `input` of a model with dead times: `rational` (the same response
+    /// of the model without them) at the times shifted by each output's channel delay, 0
+    /// before it; the states shifted by the input's delay.
+    fn delayed_from(
+        &self,
+        input: usize,
+        t: &[f64],
+        states: bool,
+        rational: impl Fn(&StateSpace, &[f64]) -> Result<SsTimeResponse>,
+    ) -> Result<SsTimeResponse> {
+        let mut plain = self.clone();
+        plain.input_delays.clear();
+        plain.output_delays.clear();
+        let shifted = |d: f64| -> Result<Vec<Vec<f64>>> {
+            let (ts, before) = crate::analysis::time::shift_times(t, d);
+            let mut r = rational(&plain, &ts)?;
+            for row in r.y.iter_mut().chain(r.x.iter_mut().flatten()) {
+                for (v, &b) in row.iter_mut().zip(&before) {
+                    if b {
+                        *v = 0.0;
+                    }
+                }
+            }
+            Ok(r.y.into_iter().chain(r.x.into_iter().flatten()).collect())
+        };
+        let p = self.n_outputs();
+        let mut y = vec![Vec::new(); p];
+        let mut done: Vec<(f64, Vec<Vec<f64>>)> = Vec::new();
+        for (i, yi) in y.iter_mut().enumerate() {
+            let d = self.channel_delay(input, i);
+            let k = match done.iter().position(|(e, _)| e.to_bits() == d.to_bits()) {
+                Some(k) => k,
+                None => {
+                    done.push((d, shifted(d)?));
+                    done.len() - 1
+                }
+            };
+            *yi = done[k].1[i].clone();
+        }
+        let x = if states {
+            let d = self.input_delays.get(input).copied().unwrap_or(0.0);
+            Some(shifted(d)?.split_off(p))
+        } else {
+            None
+        };
+        Ok(SsTimeResponse {
+            t: t.to_vec(),
+            y,
+            x,
+        })
+    }
+
     /// Response of every output to a unit step on input `input` (0-based) from x(0) = 0, at
     /// the times `t` (any order, finite, ≥ 0); the states too when `states`.
     ///
@@ -253,6 +305,11 @@ impl StateSpace {
     ) -> Result<SsTimeResponse> {
         self.check_input(input)?;
         check_times(t)?;
+        if self.has_delays() {
+            return self.delayed_from(input, t, states, |ss, t| {
+                ss.step_response_from(input, t, states)
+            });
+        }
         if let Some(mf) = self.modal_for(states) {
             let z0 = vec![num_complex::Complex64::new(0.0, 0.0); self.order()];
             let y = super::modal_time::march(&mf, z0, Some(input), t)?;
@@ -285,6 +342,11 @@ impl StateSpace {
     ) -> Result<SsTimeResponse> {
         self.check_input(input)?;
         check_times(t)?;
+        if self.has_delays() {
+            return self.delayed_from(input, t, states, |ss, t| {
+                ss.impulse_response_from(input, t, states)
+            });
+        }
         let x0 = self.b.column(input).into_owned();
         if let Some(dt) = self.domain.dt() {
             // δ[k]: y[0] = D eᵢ (with x[0] = 0), then y[k] = C A^(k−1) B eᵢ — the free
@@ -314,6 +376,12 @@ impl StateSpace {
     /// Errors: `x0` of the wrong length or not finite, bad times.
     pub fn initial_response(&self, x0: &[f64], t: &[f64], states: bool) -> Result<SsTimeResponse> {
         check_times(t)?;
+        if !self.output_delays.is_empty() {
+            return Err(LtiError::invalid(
+                "a free response with output dead times: the outputs over [0, τ) would show \
+                 the unknown past of the state",
+            ));
+        }
         if x0.len() != self.order() {
             return Err(LtiError::invalid(format!(
                 "the initial state has {} values, the model has {} states",
@@ -372,6 +440,7 @@ impl StateSpace {
         x0: Option<&[f64]>,
         states: bool,
     ) -> Result<SsTimeResponse> {
+        self.require_no_delays("a simulated response (lsim)")?;
         let m = self.n_inputs();
         signal.validate(m)?;
         let x0 = match x0 {

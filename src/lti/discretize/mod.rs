@@ -196,6 +196,7 @@ impl StateSpace {
     /// assert!(d.c2d(0.1, Discretization::Zoh).is_err()); // already discrete
     /// ```
     pub fn c2d(&self, dt: f64, method: Discretization) -> Result<StateSpace> {
+        self.require_no_delays("c2d")?;
         let domain = c2d_domain(self.domain, dt)?;
         let (n, m) = (self.order(), self.b.ncols());
         let (a, b, c, d) = match method {
@@ -414,6 +415,10 @@ impl TransferFunction {
     /// assert_eq!(d.to_string(), "(0.2 z + 0.2) / (z - 0.6)");
     /// ```
     pub fn c2d(&self, dt: f64, method: Discretization) -> Result<TransferFunction> {
+        if self.delay() > 0.0 {
+            // a whole number d of periods is z^(−d), exact
+            return self.rational().c2d(dt, method)?.with_delay(self.delay());
+        }
         let domain = c2d_domain(self.domain(), dt)?;
         self.require_proper("c2d", false)?;
         let out = match method {

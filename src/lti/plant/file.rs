@@ -210,6 +210,16 @@ pub struct PlantFile {
     /// `num`/`den` are in descending powers of z and `a`…`d` give x\[k+1\] = A x\[k\] + B u\[k\].
     #[serde(default)]
     pub dt: Option<f64>,
+    /// A dead time (seconds) e^(−sT) on the plant (on every input of a state-space plant);
+    /// in discrete time a whole number of periods, absorbed as z^(−d).
+    #[serde(default)]
+    pub delay: Option<f64>,
+    /// Dead times (s) on each input of a state-space plant.
+    #[serde(default)]
+    pub input_delays: Vec<f64>,
+    /// Dead times (s) on each output of a state-space plant.
+    #[serde(default)]
+    pub output_delays: Vec<f64>,
     /// A controller in front of the plant (unity negative feedback), as a `[controller]`
     /// section: `kind = "pid"` and the parameters of [`crate::lti::Controller`].
     #[serde(default)]

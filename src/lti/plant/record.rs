@@ -224,6 +224,83 @@ impl Plant {
         Ok(self)
     }
 
+    /// The same plant with a dead time `delay` (s): G(s)·e^(−s·delay) for a transfer function,
+    /// the same delay on every input of a state-space model. In discrete time the delay is a
+    /// whole number d of periods, absorbed exactly as z^(−d) (the typed denominator gains d
+    /// trailing zeros, so the exact path sees it too).
+    ///
+    /// Errors: those of [`TransferFunction::with_delay`](crate::TransferFunction::with_delay)
+    /// and [`StateSpace::with_delays`](crate::StateSpace::with_delays).
+    ///
+    /// ```
+    /// use ltikit::lti::Plant;
+    /// let p = Plant::from_text(None, "1 1").unwrap().with_delay(0.5).unwrap();
+    /// assert_eq!(p.name, "1 / (s + 1) · e^(-0.5 s)");
+    /// assert_eq!(p.factored().unwrap().delay(), 0.5);
+    /// ```
+    pub fn with_delay(mut self, delay: f64) -> Result<Plant> {
+        let delay = crate::lti::delay::check_delay(delay)?;
+        if delay == 0.0 {
+            return Ok(self);
+        }
+        let typed_name = match &self.model {
+            Model::Tf(g) => self.name == g.to_string(),
+            Model::Ss(_) => false,
+        };
+        self.model = match self.model {
+            Model::Tf(g) => {
+                if let (Some(dt), Some((_, den))) = (g.domain().dt(), self.typed.as_mut()) {
+                    let d = crate::lti::delay::delay_samples(delay, dt)?;
+                    den.extend((0..d).map(|_| super::text::Coefficient {
+                        text: "0".into(),
+                        value: 0.0,
+                    }));
+                }
+                Model::Tf(g.with_delay(delay)?)
+            }
+            Model::Ss(ss) => {
+                let m = ss.n_inputs();
+                let out = ss.output_delays.clone();
+                Model::Ss(ss.with_delays(vec![delay; m], out)?)
+            }
+        };
+        if typed_name && let Model::Tf(g) = &self.model {
+            self.name = g.to_string();
+        }
+        Ok(self)
+    }
+
+    /// A state-space plant with a dead time on each input and each output
+    /// ([`StateSpace::with_delays`](crate::StateSpace::with_delays)); a transfer function
+    /// takes the sum of its one input's and one output's delay.
+    pub fn with_io_delays(mut self, input: Vec<f64>, output: Vec<f64>) -> Result<Plant> {
+        match &self.model {
+            Model::Ss(ss) => {
+                self.model = Model::Ss(ss.clone().with_delays(input, output)?);
+                Ok(self)
+            }
+            Model::Tf(_) => {
+                if input.len() > 1 || output.len() > 1 {
+                    return Err(LtiError::invalid(
+                        "a transfer function has one input and one output: give one delay \
+                         each (or `delay`)",
+                    ));
+                }
+                let total = input.first().copied().unwrap_or(0.0)
+                    + output.first().copied().unwrap_or(0.0);
+                self.with_delay(total)
+            }
+        }
+    }
+
+    /// The dead time of a SISO plant (its channel's for a state-space model).
+    pub fn delay(&self) -> f64 {
+        match &self.model {
+            Model::Tf(g) => g.delay(),
+            Model::Ss(ss) => ss.channel_delay(0, 0),
+        }
+    }
+
     /// Continuous or discrete time.
     pub fn domain(&self) -> Domain {
         match &self.model {
@@ -332,6 +409,19 @@ impl Plant {
             }
             let domain = Domain::discrete(dt).map_err(on("dt"))?;
             plant = plant.with_domain(domain).map_err(on("dt"))?;
+        }
+        if let Some(t) = f.delay {
+            plant = plant.with_delay(t).map_err(on("delay"))?;
+        }
+        if !f.input_delays.is_empty() || !f.output_delays.is_empty() {
+            let key = if f.input_delays.is_empty() {
+                "output_delays"
+            } else {
+                "input_delays"
+            };
+            plant = plant
+                .with_io_delays(f.input_delays.clone(), f.output_delays.clone())
+                .map_err(on(key))?;
         }
         Ok(plant)
     }
