@@ -156,6 +156,8 @@ const PLANT: &[&str] = &[
     "--control-sensitivity",
     "--minreal",
     "--dt",
+    "--delay",
+    "--pade",
     "--sample",
     "--controller-method",
 ];
@@ -603,6 +605,8 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--controller-method" => r.pick(&["tustin", "zoh", "matched"]).into(),
         "--phase" => "1,2".into(),
         "--dt" => "0.1".into(),
+        "--delay" => "0.5".into(),
+        "--pade" => "3".into(),
         "--prewarp" => "1".into(),
         "--method" => r
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
@@ -757,6 +761,14 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
             ])
             .into()),
         "--prewarp" => v(number(r)),
+        "--delay" => v(r
+            .pick(&[
+                "0.5", "0.01", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "1e6", "", "x",
+            ])
+            .into()),
+        "--pade" => v(r
+            .pick(&["1", "3", "10", "20", "0", "21", "-1", "1e9", "x", ""])
+            .into()),
         "--sample" => v(r
             .pick(&[
                 "0.1", "0.5", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "", "x",

@@ -157,6 +157,7 @@ fn type1_third_order() -> (FrequencyResponse, Margins) {
         // PM/ω_c = 0.569198 rad / 0.749368 rad/s
         delay_margin: Some(32.6131f64.to_radians() / 0.749368),
         delay_margin_w: Some(0.749368),
+        crossings_listed_to: None,
     };
     (fr, m)
 }

@@ -266,7 +266,10 @@ pub fn auto_time_span(f: &Factored) -> Result<TimeSpan> {
     let (raw, reason) = if f.delay() > 0.0 {
         (
             raw + f.delay(),
-            format!("{reason}, after the dead time {} s", crate::fmt::fmt_num(f.delay())),
+            format!(
+                "{reason}, after the dead time {} s",
+                crate::fmt::fmt_num(f.delay())
+            ),
         )
     } else {
         (raw, reason)

@@ -302,8 +302,7 @@ pub fn nyquist_contour(g: &Factored) -> Result<NyquistContour> {
         )
         .chain(std::iter::once((Some(f64::INFINITY), at_inf)))
         .collect();
-    let encirclements =
-        winding_about_minus_one(&path, |w| g.eval_delayed(Complex64::new(0.0, w)));
+    let encirclements = winding_about_minus_one(&path, |w| g.eval_delayed(Complex64::new(0.0, w)));
     Ok(NyquistContour {
         dt: None,
         points,

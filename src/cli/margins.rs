@@ -168,9 +168,14 @@ pub fn report(m: &Margins) -> String {
     ));
     match (m.delay_margin, m.delay_margin_w) {
         (Some(d), Some(w)) => s.push_str(&format!(
-            "Delay margin:  {} s (PM/wc at the gain crossover w = {} rad/s)\n",
+            "Delay margin:  {} s (PM/wc at the gain crossover w = {} rad/s{})\n",
             fmt_sig(d, 7),
-            fmt_sig(w, 7)
+            fmt_sig(w, 7),
+            if m.crossings_listed_to.is_some() {
+                "; what remains beyond the loop's own dead time"
+            } else {
+                ""
+            }
         )),
         _ => s.push_str("Delay margin:  ∞ (no gain crossover: |G| never crosses 1)\n"),
     }
@@ -191,6 +196,13 @@ pub fn report(m: &Margins) -> String {
                 fmt_sig(c.phase_margin_deg, 7)
             ));
         }
+    }
+    if let Some(w) = m.crossings_listed_to {
+        s.push_str(&format!(
+            "  (the dead time makes the phase cross -180° infinitely often: the crossings up to \
+             w = {} rad/s are listed)\n",
+            fmt_sig(w, 7)
+        ));
     }
     s.push_str(&format!(
         "Bandwidth:     {}\n",

@@ -159,8 +159,14 @@ impl StateSpace {
         )?
         .with_domain(self.domain)
         .with_delays(
-            self.input_delays.get(input).map(|&t| vec![t]).unwrap_or_default(),
-            self.output_delays.get(output).map(|&t| vec![t]).unwrap_or_default(),
+            self.input_delays
+                .get(input)
+                .map(|&t| vec![t])
+                .unwrap_or_default(),
+            self.output_delays
+                .get(output)
+                .map(|&t| vec![t])
+                .unwrap_or_default(),
         )
     }
 

@@ -141,8 +141,16 @@ impl StateSpace {
                  delays by whole samples in its matrices)",
             )?;
         }
-        self.input_delays = if input.iter().any(|&t| t > 0.0) { input } else { Vec::new() };
-        self.output_delays = if output.iter().any(|&t| t > 0.0) { output } else { Vec::new() };
+        self.input_delays = if input.iter().any(|&t| t > 0.0) {
+            input
+        } else {
+            Vec::new()
+        };
+        self.output_delays = if output.iter().any(|&t| t > 0.0) {
+            output
+        } else {
+            Vec::new()
+        };
         Ok(self)
     }
 

@@ -354,7 +354,12 @@ impl fmt::Display for TransferFunction {
         if self.den.degree() == 0 && self.den.leading() == 1.0 {
             return write!(f, "{n}{delay}");
         }
-        write!(f, "{} / {}{delay}", wrap(&n, &self.num), wrap(&d, &self.den))
+        write!(
+            f,
+            "{} / {}{delay}",
+            wrap(&n, &self.num),
+            wrap(&d, &self.den)
+        )
     }
 }
 

@@ -55,7 +55,10 @@ impl ClosedForm {
         }
         if self.delay != 0.0 {
             let d = fmt_num(self.delay);
-            return format!("{lhs} = f(t - {d})·1(t - {d}), f(t) = {}", self.expression());
+            return format!(
+                "{lhs} = f(t - {d})·1(t - {d}), f(t) = {}",
+                self.expression()
+            );
         }
         format!("{lhs} = {}", self.expression())
     }

@@ -128,8 +128,9 @@ impl Factored {
                 if d == 0 {
                     return Ok(self);
                 }
-                let shift = Factored::from_zpk(&[], &[Root::new(Complex64::new(0.0, 0.0), d)], 1.0)?
-                    .with_domain(self.domain);
+                let shift =
+                    Factored::from_zpk(&[], &[Root::new(Complex64::new(0.0, 0.0), d)], 1.0)?
+                        .with_domain(self.domain);
                 self.series(&shift)
             }
         }

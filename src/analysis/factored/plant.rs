@@ -105,13 +105,13 @@ impl Factored {
     /// ```
     pub fn from_state_space(ss: &StateSpace) -> Result<Factored> {
         let (pz, gain, source) = factor_state_space(ss)?;
-        Ok(assemble(
+        assemble(
             pz,
             gain,
             Source::StateSpace(Box::new(source)),
             Decision::default(),
         )
         .with_domain(ss.domain)
-        .with_delay(ss.channel_delay(0, 0))?)
+        .with_delay(ss.channel_delay(0, 0))
     }
 }

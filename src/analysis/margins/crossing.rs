@@ -57,6 +57,7 @@ pub struct Margins {
     /// For a loop with a dead time, whose phase crossings never end: the frequency (rad/s)
     /// up to which `phase_crossings` lists them all (the plotted range and at least three
     /// turns of the delay, at most 50 crossings); `None` for a rational loop.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub crossings_listed_to: Option<f64>,
 }
 

@@ -286,8 +286,8 @@ impl Plant {
                          each (or `delay`)",
                     ));
                 }
-                let total = input.first().copied().unwrap_or(0.0)
-                    + output.first().copied().unwrap_or(0.0);
+                let total =
+                    input.first().copied().unwrap_or(0.0) + output.first().copied().unwrap_or(0.0);
                 self.with_delay(total)
             }
         }
