@@ -227,8 +227,9 @@ fn sampling_a_delay_of_whole_periods_is_exact_at_the_samples() {
         };
         assert!((y - want).abs() < 1e-14, "k = {k}: {y} vs {want}");
     }
-    // a fraction of a period is refused with the reason
-    assert!(f.c2d(0.07, ltikit::lti::Discretization::Zoh).is_err());
+    // a fraction of a period: zoh samples it (the modified z-transform, below), not matched
+    assert!(f.c2d(0.07, ltikit::lti::Discretization::Zoh).is_ok());
+    assert!(f.c2d(0.07, ltikit::lti::Discretization::Matched).is_err());
 }
 
 #[test]
@@ -320,4 +321,38 @@ fn bad_delays_are_one_clear_error() {
         assert!(e.contains("`delay`"), "{t}: {e}");
     }
     assert!(g.clone().with_delay(1e6).is_ok());
+}
+
+#[test]
+fn a_fraction_of_a_period_is_sampled_by_the_modified_z_transform() {
+    // e^(−0.25 s)/(s + 1) at dt = 0.1: two whole periods and τ = 0.05. With a ZOH the step
+    // is exact at the samples: y[k] = 1 − e^(−(kT − 0.25)) for kT ≥ 0.25, 0 before (k ≤ 2).
+    let f = delayed(&[1.0], &[1.0, 1.0], 0.25).factored().unwrap();
+    let z = f.c2d(0.1, ltikit::lti::Discretization::Zoh).unwrap();
+    // poles: e^(−0.1) and z = 0 for the held input, two more for z^(−2)
+    assert_eq!(z.order(), 4);
+    let t: Vec<f64> = (0..30).map(|k| k as f64 * 0.1).collect();
+    let r = z.step_response(&t).unwrap();
+    for (k, (&tk, &y)) in t.iter().zip(&r.y).enumerate() {
+        let want = if tk < 0.25 {
+            0.0
+        } else {
+            1.0 - (-(tk - 0.25)).exp()
+        };
+        assert!((y - want).abs() < 1e-14, "k = {k}: {y} vs {want}");
+    }
+    // the transfer-function path agrees
+    let g = delayed(&[1.0], &[1.0, 1.0], 0.25)
+        .c2d(0.1, ltikit::lti::Discretization::Zoh)
+        .unwrap();
+    let r2 = g.factored().unwrap().step_response(&t).unwrap();
+    for (a, b) in r.y.iter().zip(&r2.y) {
+        assert!((a - b).abs() < 1e-13);
+    }
+    // other methods take whole periods only
+    let e = f
+        .c2d(0.1, ltikit::lti::Discretization::Tustin { prewarp: None })
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("only zoh"), "{e}");
 }

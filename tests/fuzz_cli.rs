@@ -135,6 +135,7 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
         "d2c",
         &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
     ),
+    ("pade", &[&["--delay", "--order", "--w", "--json"]]),
 ];
 
 /// The plant options every analysis command takes.
@@ -607,6 +608,7 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--dt" => "0.1".into(),
         "--delay" => "0.5".into(),
         "--pade" => "3".into(),
+        "--order" => "3".into(),
         "--prewarp" => "1".into(),
         "--method" => r
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
@@ -766,7 +768,7 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "0.5", "0.01", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "1e6", "", "x",
             ])
             .into()),
-        "--pade" => v(r
+        "--pade" | "--order" => v(r
             .pick(&["1", "3", "10", "20", "0", "21", "-1", "1e9", "x", ""])
             .into()),
         "--sample" => v(r
@@ -849,6 +851,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         let required = opt == "<MODEL>"
             || opt == "--method"
             || (opt == "--dt" && cmd == "c2d")
+            || (matches!(opt, "--delay" | "--order") && cmd == "pade")
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
         let chance = match opt {
@@ -868,7 +871,10 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
             // (and a sampling period: every analysis takes discrete plants)
             chosen.retain(|o| {
                 !PLANT.contains(o)
-                    || matches!(*o, "--controller" | "--channel" | "--plant" | "--dt")
+                    || matches!(
+                        *o,
+                        "--controller" | "--channel" | "--plant" | "--dt" | "--delay" | "--pade"
+                    )
             });
             if r.one_in(8) {
                 let lp = [

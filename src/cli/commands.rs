@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, demo, freq, help, jury, linearize, margins, plots, pullin, residue, response,
-    rlocus, routh, simulate,
+    analyze, c2d, demo, freq, help, jury, linearize, margins, pade, plots, pullin, residue,
+    response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -75,6 +75,9 @@ pub(crate) enum Command {
     /// The continuous-time plant whose zoh or tustin sampling is the given discrete plant
     /// (matrix logarithm; a pole at 0 or on the negative real axis has no zoh preimage).
     D2c(c2d::D2cArgs),
+    /// The [N/N] Padé approximant of a dead time e^(−sT): coefficients, poles, and the phase
+    /// error against −ωT (what --pade N puts in place of a plant's delay).
+    Pade(pade::PadeArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -172,5 +175,6 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::MemsPullin(a) => pullin::run(&a),
         Command::C2d(a) => c2d::run_c2d(&a),
         Command::D2c(a) => c2d::run_d2c(&a),
+        Command::Pade(a) => pade::run(&a),
     }
 }

@@ -15,6 +15,7 @@ mod jury;
 mod linearize;
 mod margins;
 mod output;
+mod pade;
 mod parse;
 mod plant;
 mod plots;

@@ -46,8 +46,7 @@ impl Factored {
     /// ```
     pub fn c2d(&self, dt: f64, method: Discretization) -> Result<Factored> {
         if self.delay() > 0.0 {
-            // a whole number d of periods is z^(−d), exact
-            return self.rational().c2d(dt, method)?.with_delay(self.delay());
+            return self.c2d_delayed(dt, method);
         }
         let domain = c2d_domain(self.domain(), dt)?;
         self.require_proper("c2d", false)?;
@@ -95,6 +94,41 @@ impl Factored {
             }
         };
         Ok(Factored::from_zpk(&zeros, &poles, gain)?.with_domain(domain))
+    }
+
+    /// c2d of a delayed plant: d whole periods are z^(−d), exact (d poles at z = 0); a
+    /// fraction τ left over is the modified z-transform (ZOH only): the poles e^(pT) of the
+    /// factored poles and one more at z = 0 (the held input of the previous period), the
+    /// zeros and the gain from the realisation sampled with the fractional input delay
+    /// ([`StateSpace::c2d_zoh_fractional`]).
+    fn c2d_delayed(&self, dt: f64, method: Discretization) -> Result<Factored> {
+        let (d, tau) = crate::lti::discretize::split_delay(self.delay(), dt);
+        let whole = d as f64 * dt;
+        if tau == 0.0 {
+            return self.rational().c2d(dt, method)?.with_delay(whole);
+        }
+        crate::lti::discretize::require_zoh_for_fraction(method, self.delay(), dt)?;
+        let domain = c2d_domain(self.domain(), dt)?;
+        self.require_proper("c2d", false)?;
+        let zoh = |p| Ok(zoh_root(p, dt));
+        let mut poles = map_roots(self.poles(), zoh)?;
+        poles.push(Root::new(num_complex::Complex64::new(0.0, 0.0), 1));
+        let (zeros, gain) = if self.is_zero() {
+            (Vec::new(), 0.0)
+        } else {
+            let ss = self
+                .rational()
+                .reduced_realisation()?
+                .c2d_zoh_fractional(dt, tau)?;
+            let (zeros, gain) = zeros_and_gain(&ss, None)?;
+            (
+                with(zeros, map_roots(&self.pole_zero().cancelled, zoh)?),
+                gain,
+            )
+        };
+        Factored::from_zpk(&zeros, &poles, gain)?
+            .with_domain(domain)
+            .with_delay(whole)
     }
 
     /// The continuous-time factored form whose `method` discretisation (ZOH or Tustin) at this

@@ -416,8 +416,18 @@ impl TransferFunction {
     /// ```
     pub fn c2d(&self, dt: f64, method: Discretization) -> Result<TransferFunction> {
         if self.delay() > 0.0 {
-            // a whole number d of periods is z^(−d), exact
-            return self.rational().c2d(dt, method)?.with_delay(self.delay());
+            // d whole periods are z^(−d), exact; a fraction left over is the modified
+            // z-transform (ZOH only)
+            let (d, tau) = split_delay(self.delay(), dt);
+            let rational = if tau > 0.0 {
+                require_zoh_for_fraction(method, self.delay(), dt)?;
+                StateSpace::from_tf(&self.rational())?
+                    .c2d_zoh_fractional(dt, tau)?
+                    .to_tf()?
+            } else {
+                self.rational().c2d(dt, method)?
+            };
+            return rational.with_delay(d as f64 * dt);
         }
         let domain = c2d_domain(self.domain(), dt)?;
         self.require_proper("c2d", false)?;
@@ -532,6 +542,109 @@ fn substitute_z(p: &Poly, n: usize, h: f64) -> Result<Poly> {
 fn monic(num: Poly, den: Poly) -> Result<TransferFunction> {
     let lead = den.leading();
     TransferFunction::new(num.scale(1.0 / lead), den.scale(1.0 / lead))
+}
+
+/// Errors unless `method` is ZOH: only the zero-order hold has a modified z-transform for a
+/// delay that is not a whole number of periods.
+pub fn require_zoh_for_fraction(method: Discretization, delay: f64, dt: f64) -> Result<()> {
+    if method == Discretization::Zoh {
+        return Ok(());
+    }
+    Err(LtiError::invalid(format!(
+        "c2d: the dead time {} s is not a whole number of periods (dt = {} s); only zoh samples \
+         a fractional delay (the modified z-transform) — use --method zoh, or a period that \
+         divides the delay",
+        crate::fmt::fmt_num(delay),
+        crate::fmt::fmt_num(dt)
+    )))
+}
+
+/// A dead time `delay` sampled at the period `dt`: d whole periods and the fraction
+/// τ ∈ [0, dt) left over (a fraction within 1e-9 of 0 or of a period is rounded away).
+///
+/// ```
+/// use ltikit::lti::discretize::split_delay;
+/// assert_eq!(split_delay(0.3, 0.1), (3, 0.0));
+/// let (d, tau) = split_delay(0.25, 0.1);
+/// assert_eq!(d, 2);
+/// assert!((tau - 0.05).abs() < 1e-15);
+/// ```
+pub fn split_delay(delay: f64, dt: f64) -> (usize, f64) {
+    let q = delay / dt;
+    let d = q.floor();
+    let frac = q - d;
+    if frac <= 1e-9 * q.max(1.0) {
+        (d as usize, 0.0)
+    } else if 1.0 - frac <= 1e-9 * q.max(1.0) {
+        (d as usize + 1, 0.0)
+    } else {
+        (d as usize, delay - d * dt)
+    }
+}
+
+impl StateSpace {
+    /// Zero-order-hold sampling at the period `dt` of this model with its input delayed by
+    /// the fraction `tau` of a period (0 < τ < dt; the modified z-transform, as MATLAB `c2d`
+    /// of a model with a fractional input delay). Over a period the held input is u\[k−1\]
+    /// for τ seconds, then u\[k\]:
+    ///
+    /// x\[k+1\] = Φ x\[k\] + Γ₁ u\[k−1\] + Γ₀ u\[k\], y\[k\] = C x\[k\] + D u\[k−1\],
+    ///
+    /// Φ = e^(A·dt), Γ₀ = ∫₀^(dt−τ) e^(Aσ)dσ B, Γ₁ = e^(A(dt−τ)) ∫₀^τ e^(Aσ)dσ B; the state is
+    /// augmented by u\[k−1\] (one more state per input, a pole at z = 0).
+    ///
+    /// Errors: a discrete model, τ outside (0, dt), a model with delays of its own, those of
+    /// the matrix exponential.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::StateSpace;
+    /// // ẋ = −x + u(t − 0.05), sampled at 0.1 s: a step from k = 0 gives
+    /// // x(t) = 1 − e^(−(t − 0.05)) for t ≥ 0.05, so x[1] = 1 − e^(−0.05)
+    /// let one = DMatrix::from_element(1, 1, 1.0);
+    /// let ss = StateSpace::new(-one.clone(), one.clone(), one.clone(), one.scale(0.0)).unwrap();
+    /// let d = ss.c2d_zoh_fractional(0.1, 0.05).unwrap();
+    /// assert_eq!(d.order(), 2);
+    /// let r = d.step_response_from(0, &[0.0, 0.1, 0.2], false).unwrap();
+    /// assert!((r.y[0][1] - (1.0 - (-0.05f64).exp())).abs() < 1e-15);
+    /// assert!((r.y[0][2] - (1.0 - (-0.15f64).exp())).abs() < 1e-15);
+    /// ```
+    pub fn c2d_zoh_fractional(&self, dt: f64, tau: f64) -> Result<StateSpace> {
+        self.require_no_delays("c2d")?;
+        let domain = c2d_domain(self.domain, dt)?;
+        if !(tau > 0.0 && tau < dt) {
+            return Err(LtiError::invalid(format!(
+                "a fractional input delay must lie strictly between 0 and the period {} s \
+                 (found {})",
+                crate::fmt::fmt_num(dt),
+                crate::fmt::fmt_num(tau)
+            )));
+        }
+        let (n, m, p) = (self.order(), self.b.ncols(), self.c.nrows());
+        // e^([[A, B], [0, 0]]·s): e^(As) and ∫₀^s e^(Aσ)dσ B
+        let exp_int = |s: f64| -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+            let mut aug = DMatrix::<f64>::zeros(n + m, n + m);
+            aug.view_mut((0, 0), (n, n)).copy_from(&(&self.a * s));
+            aug.view_mut((0, n), (n, m)).copy_from(&(&self.b * s));
+            let e = crate::numeric::expm(&aug)?;
+            Ok((block(&e, n, 0, n), block(&e, n, n, m)))
+        };
+        let (e_rest, g0) = exp_int(dt - tau)?;
+        let (e_tau, i_tau) = exp_int(tau)?;
+        let phi = &e_rest * &e_tau;
+        let g1 = &e_rest * &i_tau;
+        let mut a = DMatrix::<f64>::zeros(n + m, n + m);
+        a.view_mut((0, 0), (n, n)).copy_from(&phi);
+        a.view_mut((0, n), (n, m)).copy_from(&g1);
+        let mut b = DMatrix::<f64>::zeros(n + m, m);
+        b.view_mut((0, 0), (n, m)).copy_from(&g0);
+        b.view_mut((n, 0), (m, m))
+            .copy_from(&DMatrix::<f64>::identity(m, m));
+        let mut c = DMatrix::<f64>::zeros(p, n + m);
+        c.view_mut((0, 0), (p, n)).copy_from(&self.c);
+        c.view_mut((0, n), (p, m)).copy_from(&self.d);
+        Ok(StateSpace::new(a, b, c, DMatrix::zeros(p, m))?.with_domain(domain))
+    }
 }
 
 #[cfg(test)]
