@@ -32,6 +32,21 @@ mod freq {
         bencher.bench(|| g.freq_response(black_box(&w)).unwrap());
     }
 
+    /// The factored form's response (factorisation outside the timing) without and with a
+    /// dead time of 0.5 s (issue 21's target: the delay costs at most 1.2×; its phase −ωT is
+    /// one multiply-add per frequency).
+    #[divan::bench(args = [0.0, 0.5], sample_count = 20)]
+    fn factored_with_delay(bencher: Bencher, delay: f64) {
+        let f = common::order8()
+            .with_delay(delay)
+            .unwrap()
+            .factored()
+            .unwrap();
+        let w = common::freq_grid(100_000);
+        f.freq_response(&w).unwrap(); // the evaluation form is built once, outside the timing
+        bencher.bench(|| f.freq_response(black_box(&w)).unwrap());
+    }
+
     /// Reference limit: f64 Horner for the complex G(jω) = N(jω)/D(jω) only.
     #[divan::bench(args = [1_000, 1_000_000], sample_count = 20)]
     fn horner_complex_only(bencher: Bencher, n: usize) {
