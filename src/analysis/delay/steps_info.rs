@@ -52,7 +52,7 @@ impl Factored {
     /// assert_eq!(s.steady_state, 0.5);
     /// // 10 % of 1/2 is reached on [1, 2], where y = 1 − e^(−(t−1)): t = 1 + ln(1/0.95)
     /// assert!((s.rise_start.unwrap() - (1.0 + (1.0f64 / 0.95).ln())).abs() < 1e-13);
-    /// assert!(s.peak.unwrap() > 0.5 && s.peak_time.unwrap() <= 2.0); // peak at the kink t = 2
+    /// assert!(s.overshoot_percent.unwrap() > 0.0 && s.peak_time.unwrap() > 2.0);
     /// ```
     pub fn delayed_step_info(
         &self,
