@@ -244,7 +244,7 @@ fn pi_loop_around_fopdt_over_ten_delays() {
         .map(|&(t, want)| (r.closed_form.eval(t) - want).abs())
         .fold(0.0, f64::max);
     eprintln!(
-        "PI/FOPDT, 10 delays: max |y − reference| = {worst:.2e} (march; cancellation bound \
+        "PI/FOPDT, 10 delays: max |y − reference| = {worst:.2e} (values; rounding bound \
          {:.2e}), closed form {cf_worst:.2e}",
         r.max_cancellation_bound
     );

@@ -25,20 +25,23 @@
 //! (K/a)^k; for an integrating loop h_k grows like (κt)^k/k!. Their sum is bounded (the loop
 //! may well be stable) but each value carries the rounding of its largest piece. Two
 //! evaluations are kept side by side, as in [`crate::analysis::response`]:
-//! - the **values** ([`DelayedResponse::y`]) march each h_k exactly (the matrix exponential of
-//!   a realisation of L^k·U, [`Factored::time_response`]) and sum the pieces with
-//!   compensation; their bound is the cancellation, 16·eps·Σ_k|h_k(t − kT)|
-//!   ([`DelayedResponse::cancellation_bound`]);
-//! - the **closed form** ([`DelayedClosedForm::eval`]) also carries the rounding of the
-//!   residues of the k-fold poles, which grows faster with k;
-//!   [`DelayedResponse::closed_form_error`] says how far it is from the values.
+//! - the **closed form** ([`DelayedClosedForm::eval`]) carries the rounding of the residues
+//!   of the k-fold poles, which grows with k;
+//! - the **exact march** of each h_k (the matrix exponential of a realisation of L^k·U,
+//!   [`Factored::time_response`]), summed with compensation, carries only the cancellation,
+//!   16·eps·Σ_k|h_k(t − kT)|.
+//!
+//! [`DelayedResponse::y`] comes from the closed form when it agrees with the march to 1e-10
+//! (relative) at the kinks and mid-intervals, from the march at every time otherwise;
+//! [`DelayedResponse::closed_form_error`] says how far the two are apart.
 //!
 //! Measured (`tests/delay_steps.rs`, against the DDE solved exactly by sympy): first-order loop
-//! K = 2, a = 1, T = 1/2 over 3 delays: values 2.6e-14, closed form 2.2e-15; PI around
-//! 1/(s + 1) with T = 1 over 10 delays: values 2.1e-14 (bound 6e-14), closed form 4.9e-15.
+//! K = 2, a = 1, T = 1/2 over 3 delays: closed form 2.2e-15 (march 2.6e-14); PI around
+//! 1/(s + 1) with T = 1 over 10 delays: closed form 4.9e-15 (march 2.1e-14, bound 6e-14).
 //! Over longer horizons the closed form degrades first: 40 pieces of the first-order loop
-//! (|L(0)| = 2): closed form off by 2e-5, values within 2.4e-10 of the cancellation; 60 pieces
-//! of the PI loop: closed form useless (off by 6e2), values within 6e-8. A long horizon
+//! (|L(0)| = 2): closed form off by 7e-5, march bound 2.4e-10; 60 pieces of the PI loop:
+//! closed form useless (off by 6e2), march within 4.8e-9 of y∞ (bound 6e-8); the march itself
+//! fails by 100 pieces (bound 4e-3), hence [`MAX_DELAY_PIECES`]. A long horizon
 //! against a short delay is better served by a Padé approximant of the delay.
 //!
 //! # Limits
@@ -321,20 +324,24 @@ pub struct DelayedResponse {
     pub closed_form: DelayedClosedForm,
     /// The times, in the caller's order.
     pub t: Vec<f64>,
-    /// y(t) (δ terms excluded; at a kink the value just after it): each h_k(t − kT) by the
-    /// exact matrix-exponential march of L^k·U ([`Factored::time_response`]), the pieces
-    /// summed with compensation.
+    /// y(t) (δ terms excluded; at a kink the value just after it): the closed form when it
+    /// agrees with the exact march to 1e-10 (relative to max(1, |y|)) at the kinks and the
+    /// middle of every interval; otherwise each h_k(t − kT) by the exact matrix-exponential
+    /// march of L^k·U ([`Factored::time_response`]) at every time, the pieces summed with
+    /// compensation.
     pub y: Vec<f64>,
     /// The control error e = r − y, which is also the signal entering L e^(−sT) (the loop's
     /// input; for an impulse r its δ at t = 0 is excluded).
     pub error: Vec<f64>,
     /// The rounding bound of each y from the cancellation of the alternating pieces:
-    /// 16·eps·Σ_k |h_k(t − kT)|.
+    /// 16·eps·Σ_k |h_k(t − kT)| (with the pieces' envelopes in place of |h_k| when the values
+    /// come from the closed form).
     pub cancellation_bound: Vec<f64>,
     /// max of `cancellation_bound` (0 for no times): the accuracy of `y`.
     pub max_cancellation_bound: f64,
-    /// max |closed form − y| over the times: the built-in cross-check of the closed form
-    /// (its residues for k-fold poles carry rounding that the march does not).
+    /// max |closed form − exact march| over the probe times (and over every time when the
+    /// values are marched): the built-in cross-check of the closed form (its residues for
+    /// k-fold poles carry rounding that the march does not).
     pub closed_form_error: f64,
 }
 
@@ -364,7 +371,7 @@ impl Factored {
     /// let h2 = |x: f64| 1.0 - (1.0 + x) * (-x).exp();
     /// assert!((r.y[2] - (h1(1.5) - h2(0.5))).abs() < 1e-15);
     /// assert!((r.error[1] - (1.0 - h1(0.5))).abs() < 1e-15);
-    /// assert!(r.closed_form_error < 1e-15 && r.max_cancellation_bound < 1e-14);
+    /// assert!(r.closed_form_error < 1e-14 && r.max_cancellation_bound < 1e-13);
     /// ```
     pub fn delayed_feedback_response(
         &self,
@@ -376,12 +383,29 @@ impl Factored {
         let horizon = t.iter().copied().fold(0.0, f64::max);
         let powers = loop_powers(self, delay, input, horizon)?;
         let closed_form = DelayedClosedForm::of_powers(&powers, delay, input)?;
-        let marched = march_pieces(&powers, &closed_form, input, t)?;
-        let closed_form_error = t
+        // The closed form where it agrees with the exact march at the kinks and the middle of
+        // every interval; the march at every time otherwise.
+        let probes = probe_times(&closed_form, horizon);
+        let at_probes = march_pieces(&powers, &closed_form, input, &probes)?;
+        let probe_error = probes
             .iter()
-            .zip(&marched.y)
+            .zip(&at_probes.y)
             .map(|(&x, v)| (closed_form.eval(x) - v).abs())
             .fold(0.0, f64::max);
+        let scale = at_probes.y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let (marched, closed_form_error) = if probe_error <= CLOSED_FORM_AGREEMENT * scale {
+            let y = t.iter().map(|&x| closed_form.eval(x)).collect();
+            let bound = t.iter().map(|&x| closed_form.error_bound(x)).collect();
+            (Marched { y, bound }, probe_error)
+        } else {
+            let m = march_pieces(&powers, &closed_form, input, t)?;
+            let e = t
+                .iter()
+                .zip(&m.y)
+                .map(|(&x, v)| (closed_form.eval(x) - v).abs())
+                .fold(probe_error, f64::max);
+            (m, e)
+        };
         let error = t
             .iter()
             .zip(&marched.y)
@@ -398,6 +422,25 @@ impl Factored {
             closed_form_error,
         })
     }
+}
+
+/// The closed form gives the values when it agrees with the march to this, relative to
+/// max(1, |y|), at the probe times ([`probe_times`]).
+const CLOSED_FORM_AGREEMENT: f64 = 1e-10;
+
+/// The kinks kT, the middle of each interval and the horizon: where the closed form is checked
+/// against the march.
+pub(crate) fn probe_times(y: &DelayedClosedForm, horizon: f64) -> Vec<f64> {
+    let last = y.interval_of(horizon).min(y.len());
+    let mut t = Vec::with_capacity(2 * last + 1);
+    for k in 1..=last {
+        let a = y.kink(k);
+        let b = if k == last { horizon } else { y.kink(k + 1) };
+        t.push(a);
+        t.push(0.5 * (a + b));
+    }
+    t.push(horizon);
+    t
 }
 
 /// Values of y and their cancellation bounds.

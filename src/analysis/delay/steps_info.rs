@@ -18,7 +18,7 @@
 //! \[0, t_end\], the settling and transient times the last exits within it — `None` with a
 //! note when y(t_end) is still outside the band. Every result carries a note saying so.
 
-use crate::analysis::delay::steps::{DelayedClosedForm, loop_powers, march_pieces};
+use crate::analysis::delay::steps::{DelayedClosedForm, loop_powers, march_pieces, probe_times};
 use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
 use crate::analysis::step_info::search::{crossing, reach_in};
@@ -93,15 +93,7 @@ fn check_against_march(
     y_inf: f64,
     opts: &StepInfoOptions,
 ) -> Result<()> {
-    let last = y.interval_of(horizon);
-    let mut t = Vec::with_capacity(2 * last + 2);
-    for k in 1..=last {
-        let a = y.kink(k);
-        let b = if k == last { horizon } else { y.kink(k + 1) };
-        t.push(a);
-        t.push(0.5 * (a + b));
-    }
-    t.push(horizon);
+    let t = probe_times(y, horizon);
     let m = march_pieces(powers, y, &Input::Step, &t)?;
     let tol = 1e-3 * opts.settling_threshold * y_inf.abs();
     let worst = t
