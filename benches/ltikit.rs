@@ -327,3 +327,41 @@ mod discrete {
         });
     }
 }
+
+/// The delayed closed loop by the method of steps (`analysis::delay`): PI (Kp = 0.5,
+/// Ti = 1.5) around e^(−s)/(s + 1), the loop of `tests/delay_steps.rs`.
+mod delay {
+    use super::*;
+    use ltikit::Root;
+    use ltikit::analysis::Factored;
+    use num_complex::Complex64;
+
+    fn pi_fopdt() -> Factored {
+        let r = |x: f64| Root::new(Complex64::new(x, 0.0), 1);
+        Factored::from_zpk(&[r(-1.0 / 1.5)], &[r(0.0), r(-1.0)], 0.5).unwrap()
+    }
+
+    /// Exact closed-loop step over 10 delays at 10⁴ samples: the 10 pieces' closed forms,
+    /// each piece marched exactly, the closed form evaluated as the cross-check.
+    #[divan::bench(sample_count = 20)]
+    fn step_10_delays_10k_samples(bencher: Bencher) {
+        let l = pi_fopdt();
+        let t: Vec<f64> = (0..10_000).map(|i| i as f64 * 10.0 / 9_999.0).collect();
+        bencher.bench(|| {
+            black_box(&l)
+                .delayed_feedback_response(1.0, &Input::Step, black_box(&t))
+                .unwrap()
+        });
+    }
+
+    /// The closed form alone over 10 delays, evaluated at the same 10⁴ samples.
+    #[divan::bench(sample_count = 20)]
+    fn closed_form_10_delays_10k_evals(bencher: Bencher) {
+        let l = pi_fopdt();
+        let t: Vec<f64> = (0..10_000).map(|i| i as f64 * 10.0 / 9_999.0).collect();
+        bencher.bench(|| {
+            let y = ltikit::analysis::DelayedClosedForm::new(&l, 1.0, &Input::Step, 10.0).unwrap();
+            t.iter().map(|&x| y.eval(x)).sum::<f64>()
+        });
+    }
+}

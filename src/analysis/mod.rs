@@ -24,6 +24,7 @@
 pub mod asymptotes;
 pub mod closed_form;
 pub mod closed_loop;
+pub mod delay;
 pub mod discrete;
 pub mod factored;
 pub mod freq;
@@ -47,6 +48,7 @@ pub mod time;
 pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm, SequenceForm, SequenceTerm};
 pub use closed_loop::{ClosedLoop, InternalStability, LoopSystem, Peak, Robustness};
+pub use delay::{DelayedClosedForm, DelayedResponse, MAX_DELAY_PIECES};
 pub use factored::{
     Factored, Feedback, MAX_FACTORED_ORDER, NEAR_PAIR_REL, NearPair, PoleZero, StructurePath,
     factorizations_on_this_thread,

@@ -39,7 +39,7 @@ use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
 
 mod grid;
-mod search;
+pub(crate) mod search;
 
 use search::{Budget, Scanner, crossing, envelope_peak, horizon, reach_in};
 

@@ -195,7 +195,7 @@ impl<'a, F: Fn(f64) -> f64> Scanner<'a, F> {
 }
 
 /// The crossing of g = 0 in [a, b] when g changes sign there (g monotone on [a, b]).
-pub(super) fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option<f64>> {
+pub(crate) fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option<f64>> {
     let (fa, fb) = (g(a), g(b));
     if fa == 0.0 {
         return Ok(Some(a));
@@ -210,7 +210,7 @@ pub(super) fn crossing(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option
 }
 
 /// The first t with g(t) ≥ 0 on the monotone piece [a, b] (g(a) < 0 assumed), if any.
-pub(super) fn reach_in(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option<f64>> {
+pub(crate) fn reach_in(g: &impl Fn(f64) -> f64, a: f64, b: f64) -> Result<Option<f64>> {
     let (fa, fb) = (g(a), g(b));
     if fa >= 0.0 {
         return Ok(Some(a));
