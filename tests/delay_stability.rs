@@ -2,6 +2,8 @@
 //! dead time T in negative unity feedback. Every reference is a closed form derived in the
 //! comments or a 40-digit mpmath value (script and output quoted).
 
+#![allow(clippy::excessive_precision)] // references are quoted to the digits they were computed with
+
 mod common;
 
 use std::f64::consts::{PI, TAU};
@@ -51,7 +53,11 @@ fn first_order_loop_below_unit_gain_is_stable_for_every_delay() {
     }
     // K = 1 touches |L| = 1 at ω = 0 only: said so
     let d = stability(&[1.0], &[1.0, 1.0]);
-    assert!(d.notes.iter().any(|n| n.contains("L(0) = +1")), "{:?}", d.notes);
+    assert!(
+        d.notes.iter().any(|n| n.contains("L(0) = +1")),
+        "{:?}",
+        d.notes
+    );
 }
 
 #[test]
@@ -86,7 +92,13 @@ fn first_order_loop_critical_delay_in_closed_form() {
         assert!(!d.is_stable_at(1.001 * t0).unwrap());
         // the independent count (delayed Nyquist criterion) agrees
         let f = loop_of(&[k], &[1.0, 1.0]);
-        for t in [0.5 * t0, 0.999 * t0, 1.001 * t0, 0.5 * (t0 + t1), 1.001 * t1] {
+        for t in [
+            0.5 * t0,
+            0.999 * t0,
+            1.001 * t0,
+            0.5 * (t0 + t1),
+            1.001 * t1,
+        ] {
             assert_eq!(
                 f.delayed_nyquist_count(t).unwrap(),
                 d.unstable_roots_at(t).unwrap(),
@@ -166,7 +178,12 @@ fn cooke_grossman_stability_switches() {
         let want = expected_intervals(&ev);
         assert_eq!(want.len(), count, "a = {a}, b = {b}, c = {cc}");
         assert!(d.complete);
-        assert_eq!(d.stable_intervals.len(), want.len(), "{:?}", d.stable_intervals);
+        assert_eq!(
+            d.stable_intervals.len(),
+            want.len(),
+            "{:?}",
+            d.stable_intervals
+        );
         for (got, w) in d.stable_intervals.iter().zip(&want) {
             assert!((got.from - w.0).abs() <= 1e-12 * w.1, "{got:?} vs {w:?}");
             assert!(rel(got.to, w.1) < 1e-12, "{got:?} vs {w:?}");
@@ -183,7 +200,10 @@ fn cooke_grossman_stability_switches() {
             assert!(!d.is_stable_at(mid).unwrap());
             let inside = 0.5 * (w[1].0 + w[1].1);
             assert!(d.is_stable_at(inside).unwrap());
-            assert_eq!(f.delayed_nyquist_count(mid).unwrap(), d.unstable_roots_at(mid).unwrap());
+            assert_eq!(
+                f.delayed_nyquist_count(mid).unwrap(),
+                d.unstable_roots_at(mid).unwrap()
+            );
             assert_eq!(f.delayed_nyquist_count(inside).unwrap(), 0);
         }
     }
@@ -201,37 +221,64 @@ fn cooke_grossman_stability_switches() {
 // k = −6…6 sorted by real part, the first three (upper members):
 // ---------------------------------------------------------------------------------------
 
-const LAMBERT: &[(f64, f64, [(f64, f64); 3])] = &[
-    (2.0, 0.5, [
-        (-0.9310186622288393076, 3.1849035750475891727),
-        (-4.1107933644079072454, 15.306969768434307419),
-        (-5.2992733101340052357, 27.969293332533513557),
-    ]),
-    (2.0, 2.0, [
-        (0.10883499779585629629, 1.1656172221091613168),
-        (-0.35385700823585967675, 4.006930817216348359),
-        (-0.63374286779510976975, 7.0943737847872557879),
-    ]),
-    (5.0, 1.0, [
-        (0.60682644565652878212, 2.2013310474255503156),
-        (-0.46246896641125392901, 7.9217330103453699707),
-        (-1.0391771309671031363, 14.134395189684423805),
-    ]),
-    (1.0, 1.0, [
-        (-0.60502091729270661113, 1.7881880413836292023),
-        (-2.0528264820715919562, 7.7184137887709177921),
-        (-2.6473552235298248574, 14.020204573895337054),
-    ]),
-    (0.5, 3.0, [
-        (-0.25568727261042905377, 0.77801897067917401468),
-        (-0.56305926287507997422, 2.6720237652124232984),
-        (-0.749492797904780694, 4.7300261894081058004),
-    ]),
-    (10.0, 0.2, [
-        (0.58641624417260797474, 8.7506941052213073463),
-        (-6.7993518797462853297, 38.522801641454151247),
-        (-9.7729417100006710948, 70.063001086700887226),
-    ]),
+/// (K, T, the three rightmost upper roots as (re, im)).
+type LambertCase = (f64, f64, [(f64, f64); 3]);
+
+const LAMBERT: &[LambertCase] = &[
+    (
+        2.0,
+        0.5,
+        [
+            (-0.9310186622288393076, 3.1849035750475891727),
+            (-4.1107933644079072454, 15.306969768434307419),
+            (-5.2992733101340052357, 27.969293332533513557),
+        ],
+    ),
+    (
+        2.0,
+        2.0,
+        [
+            (0.10883499779585629629, 1.1656172221091613168),
+            (-0.35385700823585967675, 4.006930817216348359),
+            (-0.63374286779510976975, 7.0943737847872557879),
+        ],
+    ),
+    (
+        5.0,
+        1.0,
+        [
+            (0.60682644565652878212, 2.2013310474255503156),
+            (-0.46246896641125392901, 7.9217330103453699707),
+            (-1.0391771309671031363, 14.134395189684423805),
+        ],
+    ),
+    (
+        1.0,
+        1.0,
+        [
+            (-0.60502091729270661113, 1.7881880413836292023),
+            (-2.0528264820715919562, 7.7184137887709177921),
+            (-2.6473552235298248574, 14.020204573895337054),
+        ],
+    ),
+    (
+        0.5,
+        3.0,
+        [
+            (-0.25568727261042905377, 0.77801897067917401468),
+            (-0.56305926287507997422, 2.6720237652124232984),
+            (-0.749492797904780694, 4.7300261894081058004),
+        ],
+    ),
+    (
+        10.0,
+        0.2,
+        [
+            (0.58641624417260797474, 8.7506941052213073463),
+            (-6.7993518797462853297, 38.522801641454151247),
+            (-9.7729417100006710948, 70.063001086700887226),
+        ],
+    ),
 ];
 
 #[test]
@@ -259,6 +306,115 @@ fn rightmost_roots_of_the_first_order_loop_match_lambert_w() {
     }
 }
 
+#[test]
+fn long_delays_find_every_unstable_root() {
+    // 10 e^(−sT)/(s + 1) at T = 20 and 60: T_k = (arccos(−0.1) + 2πk)/√99 < T for
+    // k < (T√99 − arccos(−0.1))/2π, i.e. 32 and 95 crossings: 64 and 190 unstable roots
+    let f = loop_of(&[10.0], &[1.0, 1.0]);
+    let d = f.delay_stability().unwrap();
+    for (t, n) in [(20.0, 64), (60.0, 190)] {
+        let k = ((t * 99f64.sqrt() - (-0.1f64).acos()) / TAU).ceil() as usize;
+        assert_eq!(2 * k, n);
+        assert_eq!(d.unstable_roots_at(t).unwrap(), n);
+        assert_eq!(f.delayed_nyquist_count(t).unwrap(), n);
+        let r = f.closed_loop_delay_roots(t, 10).unwrap();
+        assert!(r.agrees, "{:?}", r.note);
+        assert_eq!(r.unstable_found, n);
+        assert!(r.roots.iter().all(|q| q.relative_residual <= 1e-12));
+    }
+}
+
+#[test]
+fn neutral_loop_with_small_high_frequency_gain() {
+    // L = 0.5(s − 3)/(s + 1): bi-proper, |L(∞)| = 0.5 < 1 (neutral type, analysed).
+    // W(x) = x + 1 − 0.25(x + 9) = 0.75x − 1.25: ω_c = √(5/3), W′ > 0 (destabilizing).
+    // L(0) = −1.5: D + N = 1.5s − 0.5 has the root 1/3: unstable without delay (1 root).
+    // Counts: 1, plus 2 per crossing delay passed (each pair adds to the real root): never stable.
+    let f = loop_of(&[0.5, -1.5], &[1.0, 1.0]);
+    let d = f.delay_stability().unwrap();
+    assert_eq!(d.neutral, Some(0.5));
+    assert!(d.notes.iter().any(|n| n.contains("neutral")));
+    assert_eq!(d.unstable_at_zero, 1);
+    assert_eq!(d.crossings.len(), 1);
+    let w = (5.0f64 / 3.0).sqrt();
+    assert!(rel(d.crossings[0].frequency, w) < 1e-15);
+    // θ = arg(−L(jω)) = π + arg(jω − 3) − arg(jω + 1)
+    let theta = (PI + (w).atan2(-3.0) - w.atan()).rem_euclid(TAU);
+    assert!(rel(d.crossings[0].delay(0), theta / w) < 1e-14);
+    assert!(d.stable_intervals.is_empty() && d.critical_delay.is_none());
+    for t in [0.3, 0.99 * theta / w, 1.01 * theta / w, 10.0] {
+        let n = d.unstable_roots_at(t).unwrap();
+        let passed = usize::from(t > theta / w) + usize::from(t > (theta + TAU) / w);
+        assert_eq!(n, 1 + 2 * passed, "T = {t}");
+        assert_eq!(f.delayed_nyquist_count(t).unwrap(), n, "T = {t}");
+        let r = f.closed_loop_delay_roots(t, 4).unwrap();
+        assert!(r.agrees, "T = {t}: {:?}", r.note);
+    }
+}
+
+#[test]
+fn root_at_the_origin_and_hidden_modes_are_reported() {
+    // L = −1/(s + 1): L(0) = −1, so D(0) + N(0) = 0 and s = 0 is a root for every T
+    let f = loop_of(&[-1.0], &[1.0, 1.0]);
+    let d = f.delay_stability().unwrap();
+    assert!(d.root_at_origin && !d.stable_without_delay);
+    assert!(d.stable_intervals.is_empty() && d.critical_delay.is_none());
+    assert!(!d.is_stable_at(0.5).unwrap());
+    let r = f.closed_loop_delay_roots(3.0, 3).unwrap();
+    assert_eq!(r.roots[0].value, c(0.0, 0.0));
+    assert!(r.agrees);
+    // L = (s − 2)/((s − 2)(s + 1)) · 2: the mode s = 2 cancels; 2/(s + 1) is analysed and the
+    // hidden mode listed (unstable whatever the delay)
+    let f = loop_of(&[2.0, -4.0], &[1.0, -1.0, -2.0]);
+    let d = f.delay_stability().unwrap();
+    assert_eq!(d.hidden_modes.len(), 1);
+    assert!((d.hidden_modes[0].value - c(2.0, 0.0)).norm() < 1e-12);
+    assert!(d.notes.iter().any(|n| n.contains("cancels the modes")));
+    assert!(rel(d.critical_delay.unwrap(), first_order_crossing(2.0, 0)) < 1e-12);
+}
+
+#[test]
+fn unstable_for_every_delay_without_crossings() {
+    // L = 0.5/(s − 1): D + N = s − 0.5, one unstable root; W = x + 1 − 0.25 > 0: no crossing,
+    // so the count is 1 for every delay
+    let d = stability(&[0.5], &[1.0, -1.0]);
+    assert!(d.crossings.is_empty());
+    assert_eq!(d.critical_delay, None);
+    for t in [0.0, 1.0, 100.0] {
+        assert_eq!(d.unstable_roots_at(t).unwrap(), 1);
+    }
+    // 1/s²: D + N = s² + 1 on the axis at T = 0, the pair at ω = 1 (θ = 0) leaves to the
+    // right at once: 2 unstable roots for every T > 0
+    let d = stability(&[1.0], &[1.0, 0.0, 0.0]);
+    assert_eq!(d.crossings[0].phase, 0.0);
+    assert_eq!(d.unstable_roots_at(1e-6).unwrap(), 2);
+    assert!(d.stable_intervals.is_empty());
+}
+
+#[test]
+fn nearly_equal_crossing_frequencies_stop_the_merge_at_its_limit() {
+    // s² + 0.1s + 1 + c e^(−sT) with c² = 0.009975 + 1e-12: W = x² − 1.99x + 1 − c² has the
+    // discriminant 4e-12, so ω₊ − ω₋ ≈ 1e-6 and the destabilizing delays outrun the
+    // stabilizing ones only after ~10⁶ s: more than MAX_DELAY_EVENTS delays to merge.
+    let cc = (0.009975f64 + 1e-12).sqrt();
+    let d = stability(&[cc], &[1.0, 0.1, 1.0]);
+    assert_eq!(d.crossings.len(), 2);
+    assert!(!d.complete);
+    assert!(d.horizon.is_finite() && d.horizon > 0.0);
+    assert!(
+        d.notes.iter().any(|n| n.contains("MAX_DELAY_EVENTS")),
+        "{:?}",
+        d.notes
+    );
+    // the counts stay closed forms beyond the horizon: 2 more per destabilizing delay, 2 less
+    // per stabilizing one
+    let t = 10.0 * d.horizon;
+    let passed = |w: f64, th: f64| ((t * w - th) / TAU).ceil();
+    let (lo, hi) = (d.crossings[0], d.crossings[1]);
+    let want = 2.0 * (passed(hi.frequency, hi.phase) - passed(lo.frequency, lo.phase));
+    assert_eq!(d.unstable_roots_at(t).unwrap() as f64, want);
+}
+
 // ---------------------------------------------------------------------------------------
 // Bad input
 // ---------------------------------------------------------------------------------------
@@ -283,19 +439,32 @@ fn bad_inputs_give_one_clear_error_each() {
     let e = zero.delay_stability().unwrap_err().to_string();
     assert!(e.contains("zero"), "{e}");
     // improper
-    let e = loop_of(&[1.0, 0.0, 1.0], &[1.0, 1.0]).delay_stability().unwrap_err();
+    let e = loop_of(&[1.0, 0.0, 1.0], &[1.0, 1.0])
+        .delay_stability()
+        .unwrap_err();
     assert!(matches!(e, LtiError::Improper { .. }), "{e}");
     // neutral with |L(∞)| ≥ 1
     for num in [[2.0, 1.0], [1.0, 3.0], [-1.0, 0.5]] {
-        let e = loop_of(&num, &[1.0, 1.0]).delay_stability().unwrap_err().to_string();
+        let e = loop_of(&num, &[1.0, 1.0])
+            .delay_stability()
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("neutral") && e.contains("|L(∞)|"), "{e}");
     }
     // all-pass (s − 1)/(s + 1): |L(jω)| = 1 everywhere, refused as neutral with |L(∞)| = 1
-    let e = loop_of(&[1.0, -1.0], &[1.0, 1.0]).delay_stability().unwrap_err().to_string();
+    let e = loop_of(&[1.0, -1.0], &[1.0, 1.0])
+        .delay_stability()
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("approaches the imaginary axis"), "{e}");
     // discrete time
     let dz = loop_of(&[1.0], &[1.0, -0.5]).with_domain(ltikit::lti::Domain::discrete(0.1).unwrap());
-    assert!(dz.delay_stability().unwrap_err().to_string().contains("continuous"));
+    assert!(
+        dz.delay_stability()
+            .unwrap_err()
+            .to_string()
+            .contains("continuous")
+    );
     // huge order: 300 poles from factors
     let big = Factored::from_zpk(&[], &[Root::new(c(-1.0, 0.0), 300)], 1.0).unwrap();
     assert!(matches!(

@@ -61,7 +61,7 @@ impl DelayedLoop {
         if let Some(c) = l.at_infinity()
             && c.abs() >= 1.0
         {
-            let kind = if c.abs() == 1.0 {
+            let kind = if c.abs() <= 1.0 {
                 "a chain of characteristic roots approaches the imaginary axis for every delay T > 0 (never exponentially stable)"
             } else {
                 "infinitely many characteristic roots lie in the right half plane for every delay T > 0 (unstable for every delay)"
@@ -117,11 +117,12 @@ impl DelayedLoop {
     /// (θ + 2πk)/ω. The arguments are summed factor by factor.
     pub(super) fn phase(&self, w: f64) -> f64 {
         let s = Complex64::new(0.0, w);
-        let mut a = std::f64::consts::PI + if self.gain < 0.0 {
-            std::f64::consts::PI
-        } else {
-            0.0
-        };
+        let mut a = std::f64::consts::PI
+            + if self.gain < 0.0 {
+                std::f64::consts::PI
+            } else {
+                0.0
+            };
         for &z in &self.zeros {
             a += (s - z).arg();
         }
@@ -135,8 +136,16 @@ impl DelayedLoop {
     pub(super) fn at_zero(&self) -> f64 {
         let v = crate::analysis::factored::series::eval_factors(
             self.gain,
-            &self.zeros.iter().map(|&z| Root::new(z, 1)).collect::<Vec<_>>(),
-            &self.poles.iter().map(|&p| Root::new(p, 1)).collect::<Vec<_>>(),
+            &self
+                .zeros
+                .iter()
+                .map(|&z| Root::new(z, 1))
+                .collect::<Vec<_>>(),
+            &self
+                .poles
+                .iter()
+                .map(|&p| Root::new(p, 1))
+                .collect::<Vec<_>>(),
             Complex64::new(0.0, 0.0),
         );
         v.re
@@ -223,14 +232,20 @@ mod tests {
         let l = parts(&[3.0], &[1.0, 1.0, 2.0]);
         let w = l.crossing_poly(1.0).unwrap();
         let c = w.coeffs();
-        assert!((c[0] - 1.0).abs() < 1e-15 && (c[1] + 3.0).abs() < 1e-14, "{c:?}");
+        assert!(
+            (c[0] - 1.0).abs() < 1e-15 && (c[1] + 3.0).abs() < 1e-14,
+            "{c:?}"
+        );
         assert!((c[2] + 5.0).abs() < 1e-14, "{c:?}");
         // scaled: x = 4y → (16y² − 12y − 5)/16
         let w4 = l.crossing_poly(4.0).unwrap();
-        assert!((w4.coeffs()[1] + 0.75).abs() < 1e-15 && (w4.coeffs()[2] + 5.0 / 16.0).abs() < 1e-15);
+        assert!(
+            (w4.coeffs()[1] + 0.75).abs() < 1e-15 && (w4.coeffs()[2] + 5.0 / 16.0).abs() < 1e-15
+        );
     }
 
     #[test]
+    #[allow(clippy::float_cmp)] // L(0) = 2 exactly
     fn gap_and_phase_of_a_first_order_loop() {
         // L = 2/(s + 1): g(√3) = ln 2 − ln 2 = 0, θ = arg(−L(j√3)) = 2π/3
         let l = parts(&[2.0], &[1.0, 1.0]);

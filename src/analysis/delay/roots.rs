@@ -18,6 +18,15 @@ use crate::poly::{HalfPlane, Poly, half_plane, same_root};
 const MAX_PADE: usize = 96;
 
 /// A characteristic root of D(s) + N(s)·e^(−sT) with the quality of its value.
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// // 1/s with T = 0: the root −1 (the residual is the rounding of e^(−jπ) in the evaluation)
+/// let f = TransferFunction::from_descending(&[1.0], &[1.0, 0.0]).unwrap().factored().unwrap();
+/// let r = f.closed_loop_delay_roots(0.0, 1).unwrap().roots[0];
+/// assert_eq!(r.value.re, -1.0);
+/// assert!(r.relative_residual < 1e-16);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CharacteristicRoot {
     /// The root s.
@@ -28,6 +37,16 @@ pub struct CharacteristicRoot {
 }
 
 /// The rightmost characteristic roots at one delay (see [`Factored::closed_loop_delay_roots`]).
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// // 1/s with T = 2 > π/2: one unstable pair, found
+/// let f = TransferFunction::from_descending(&[1.0], &[1.0, 0.0]).unwrap().factored().unwrap();
+/// let r = f.closed_loop_delay_roots(2.0, 2).unwrap();
+/// assert_eq!((r.unstable_found, r.unstable_expected), (2, 2));
+/// assert!(r.agrees && r.note.is_none());
+/// assert_eq!(r.roots[0].value, r.roots[1].value.conj());
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DelayRoots {
     /// The delay T (s).
@@ -61,13 +80,14 @@ impl Factored {
     ///
     /// ```
     /// use ltikit::TransferFunction;
-    /// // s + 1 + e^(−s) = 0 (K = 1, T = 1): s = −1 + W₀(e)/1 = 0 … is −1 + W₀(e) = 0
-    /// let f = TransferFunction::from_descending(&[1.0], &[1.0, 1.0]).unwrap().factored().unwrap();
-    /// let r = f.closed_loop_delay_roots(1.0, 3).unwrap();
-    /// assert!(r.agrees);
+    /// // s + 1 + 2e^(−2s) = 0: s = −1 + W_k(−4e²)/2 (Lambert W); the rightmost pair from
+    /// // mpmath's lambertw: 0.108834997795856 ± 1.165617222109161j, unstable (T > 1.209)
+    /// let f = TransferFunction::from_descending(&[2.0], &[1.0, 1.0]).unwrap().factored().unwrap();
+    /// let r = f.closed_loop_delay_roots(2.0, 4).unwrap();
+    /// assert!(r.agrees && r.unstable_found == 2);
+    /// let s = r.roots[0].value;
+    /// assert!((s.re - 0.108834997795856).abs() < 1e-13 && (s.im - 1.165617222109161).abs() < 1e-13);
     /// assert!(r.roots[0].relative_residual < 1e-14);
-    /// // the rightmost root: s + 1 + e^(−s) = 0 has the real root s = −1 + W₀(1/e)·… ≈ −0.5 ± …
-    /// assert!(r.roots[0].value.re < 0.0);
     /// ```
     pub fn closed_loop_delay_roots(&self, delay: f64, count: usize) -> Result<DelayRoots> {
         let t = check_delay(delay)?;
@@ -88,12 +108,19 @@ impl Factored {
         if p0.degree() > 0 {
             base.extend(crate::poly::roots::flatten(&p0.roots()?));
         }
+        let top = 1.5
+            * stability
+                .crossings
+                .iter()
+                .map(|c| c.frequency)
+                .fold(l.frequency_scale(), f64::max);
+        base.extend(chain_starts(&l, t, top));
         let room = MAX_ORDER.saturating_sub(l.poles.len()).clamp(2, MAX_PADE);
         let mut n = (8 + expected).min(room);
         loop {
             let mut starts = base.clone();
             starts.extend(pade_starts(&l, t, n)?);
-            let found = refine_all(&l, t, &starts);
+            let found = refine_all(&l, t, &starts, l.frequency_scale());
             let unstable = found
                 .iter()
                 .filter(|r| half_plane(r.value) == HalfPlane::Right)
@@ -158,10 +185,49 @@ fn pade_starts(l: &DelayedLoop, t: f64, n: usize) -> Result<Vec<Complex64>> {
         .collect())
 }
 
-/// Newton from every starting point in the closed upper half plane; converged roots merged,
-/// sorted, conjugates added.
-fn refine_all(l: &DelayedLoop, t: f64, starts: &[Complex64]) -> Vec<CharacteristicRoot> {
-    let mut upper: Vec<CharacteristicRoot> = Vec::new();
+/// Starting points for long delays: along the axis the roots of 1 + L(s)e^(−sT) lie near
+/// s = ln|L(jω)|/T + jω where ωT − arg(−L(jω)) is a multiple of 2π (|e^(−sT)| = 1/|L|, and
+/// the phase condition); one per multiple up to the frequency `top`.
+fn chain_starts(l: &DelayedLoop, t: f64, top: f64) -> Vec<Complex64> {
+    if t == 0.0 || top.is_nan() || top <= 0.0 || !top.is_finite() {
+        return Vec::new();
+    }
+    let tau = std::f64::consts::TAU;
+    let steps = (top * t / (std::f64::consts::PI / 4.0))
+        .ceil()
+        .clamp(1.0, MAX_CHAIN_STEPS);
+    let h = top / steps;
+    let wrapped = |w: f64| (w * t - l.phase(w)).rem_euclid(tau);
+    let mut out = Vec::new();
+    let mut prev = wrapped(0.5 * h);
+    for i in 1..steps as usize {
+        let w = (i as f64 + 0.5) * h;
+        let r = wrapped(w);
+        if r < prev - std::f64::consts::PI {
+            let a = w - h + h * (tau - prev) / (r + tau - prev);
+            let sigma = l.log_loop(Complex64::new(0.0, a)).re / t;
+            if sigma.is_finite() {
+                out.push(Complex64::new(sigma, a));
+            }
+        }
+        prev = r;
+    }
+    out
+}
+
+/// Most grid steps of [`chain_starts`].
+const MAX_CHAIN_STEPS: f64 = 200_000.0;
+
+/// Newton from every starting point in the closed upper half plane; converged roots merged
+/// (within 1e-8 relative, or 1e-12 of the loop's frequency `scale` near s = 0), sorted,
+/// conjugates added.
+fn refine_all(
+    l: &DelayedLoop,
+    t: f64,
+    starts: &[Complex64],
+    scale: f64,
+) -> Vec<CharacteristicRoot> {
+    let mut found: Vec<CharacteristicRoot> = Vec::new();
     for &s0 in starts.iter().filter(|s| s.im >= 0.0) {
         let Some(mut r) = newton(l, t, s0) else {
             continue;
@@ -176,7 +242,27 @@ fn refine_all(l: &DelayedLoop, t: f64, starts: &[Complex64]) -> Vec<Characterist
                 _ => {}
             }
         }
-        match upper.iter_mut().find(|q| same_root(q.value, r.value)) {
+        if r.value.norm() <= 1e-13 * scale {
+            // the root at the origin (L(0) = −1), exactly
+            r = CharacteristicRoot {
+                value: Complex64::new(0.0, 0.0),
+                relative_residual: residual(l, t, Complex64::new(0.0, 0.0)),
+            };
+        }
+        found.push(r);
+    }
+    // merge duplicates: sorted by imaginary part, each compared with its neighbours
+    found.sort_by(|a, b| a.value.im.total_cmp(&b.value.im));
+    let near = |a: Complex64, b: Complex64| same_root(a, b) || (a - b).norm() <= 1e-12 * scale;
+    let mut upper: Vec<CharacteristicRoot> = Vec::new();
+    for r in found {
+        let window = 1e-8 * r.value.norm() + 1e-12 * scale;
+        let twin = upper
+            .iter_mut()
+            .rev()
+            .take_while(|q| r.value.im - q.value.im <= window)
+            .find(|q| near(q.value, r.value));
+        match twin {
             Some(q) => {
                 if r.relative_residual < q.relative_residual {
                     *q = r;

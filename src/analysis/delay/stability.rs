@@ -1,14 +1,6 @@
-//! Stability in the delay: for which dead times T ≥ 0 is the closed loop
-//! Δ(s, T) = D(s) + N(s)·e^(−sT) of a rational loop L = N/D in negative unity feedback stable?
-//!
-//! The number of characteristic roots in the open right half plane changes only when a pair
-//! crosses the imaginary axis at ±jω_c. There |D(jω_c)| = |N(jω_c)|: ω_c² is a positive root
-//! of W(x) = |D(jω)|² − |N(jω)|² (x = ω², a polynomial from the factors, each root polished
-//! on ln|D(jω)| − ln|N(jω)|), and e^(−jω_c·T) = −D(jω_c)/N(jω_c) fixes the delays
-//! T_k = (θ + 2πk)/ω_c, θ = arg(−L(jω_c)) ∈ [0, 2π). The pair moves right as T grows where
-//! W′(ω_c²) > 0 and left where W′ < 0 (Cooke & van den Driessche, 1986: sign Re ds/dT =
-//! sign W′); a multiple root of W is a tangency, reported and not counted. The count at T is
-//! the count of D + N at T = 0 plus ±2 per crossing delay passed.
+//! Stability in the delay over all T ≥ 0: the crossing frequencies, their delays and
+//! directions, the count of unstable roots at any delay, the stable intervals (the method is
+//! described in the [module docs](super)).
 
 use std::f64::consts::TAU;
 
@@ -23,9 +15,23 @@ use crate::poly::{HalfPlane, Poly, Root, half_plane};
 /// Most crossing delays merged into the stable intervals; beyond it the intervals stop at the
 /// last merged delay and [`DelayStability::complete`] is false (the counts at any delay stay
 /// exact: they are closed forms).
+///
+/// ```
+/// assert_eq!(ltikit::analysis::delay::MAX_DELAY_EVENTS, 100_000);
+/// ```
 pub const MAX_DELAY_EVENTS: usize = 100_000;
 
 /// Which way a pair of characteristic roots crosses the imaginary axis as the delay grows.
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// use ltikit::analysis::CrossingDirection;
+/// // 0.5/(s² + 0.1s + 4): the lower crossing frequency stabilizes, the upper destabilizes
+/// let f = TransferFunction::from_descending(&[0.5], &[1.0, 0.1, 4.0]).unwrap().factored().unwrap();
+/// let c = f.delay_stability().unwrap().crossings;
+/// assert_eq!(c[0].direction, CrossingDirection::Stabilizing);
+/// assert_eq!(c[1].direction, CrossingDirection::Destabilizing);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum CrossingDirection {
@@ -108,6 +114,15 @@ impl DelayCrossing {
 
 /// A range of delays on which the closed loop is stable: open, except that `from = 0`
 /// includes T = 0 when the loop is stable without delay; `to` may be ∞.
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// // 0.5/(s + 1): |L(jω)| < 1 everywhere, stable for every delay
+/// let f = TransferFunction::from_descending(&[0.5], &[1.0, 1.0]).unwrap().factored().unwrap();
+/// let iv = f.delay_stability().unwrap().stable_intervals;
+/// assert_eq!((iv[0].from, iv[0].to), (0.0, f64::INFINITY));
+/// assert!(iv[0].contains(1e9));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DelayInterval {
     /// Lower end (s).
@@ -124,7 +139,17 @@ impl DelayInterval {
 }
 
 /// Stability in the delay of the closed loop D(s) + N(s)·e^(−sT) for every T ≥ 0 (see the
-/// [module docs](self) and [`Factored::delay_stability`]).
+/// [module docs](super) and [`Factored::delay_stability`]).
+///
+/// ```
+/// use ltikit::TransferFunction;
+/// // 0.5/(s² + 0.1s + 4) with a delay: stable, unstable, stable again, … (switches)
+/// let f = TransferFunction::from_descending(&[0.5], &[1.0, 0.1, 4.0]).unwrap().factored().unwrap();
+/// let d = f.delay_stability().unwrap();
+/// assert!(d.stable_without_delay && d.stability_switches && d.complete);
+/// assert!(d.stable_intervals.len() > 2);
+/// assert!(d.is_stable_at(2.0).unwrap() && !d.is_stable_at(1.0).unwrap());
+/// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DelayStability {
     /// Roots of D + N (the loop without delay) in the open right half plane.
@@ -177,7 +202,6 @@ pub(super) fn check_delay(delay: f64) -> Result<f64> {
     }
     Ok(delay)
 }
-
 
 impl DelayStability {
     /// The number of characteristic roots of D + N·e^(−sT) in the open right half plane at
@@ -239,7 +263,7 @@ impl Factored {
     /// a dead time e^(−sT) in negative unity feedback, Δ(s, T) = D(s) + N(s)·e^(−sT) (D, N
     /// from the reduced poles, zeros and gain): the unstable count without delay, the
     /// crossing frequencies with their delays and directions, the stable delay intervals, the
-    /// critical delay, stability switches (see the [module docs](self)). Modes cancelled in L
+    /// critical delay, stability switches (see the [module docs](super)). Modes cancelled in L
     /// are outside Δ and listed in `hidden_modes`.
     ///
     /// A bi-proper L with |L(∞)| < 1 is a neutral-type equation and analysed alike (noted).
@@ -344,7 +368,12 @@ fn format_root(v: num_complex::Complex64) -> String {
     if v.im == 0.0 {
         fmt_num(v.re)
     } else {
-        format!("{} {} {}j", fmt_num(v.re), if v.im < 0.0 { "−" } else { "+" }, fmt_num(v.im.abs()))
+        format!(
+            "{} {} {}j",
+            fmt_num(v.re),
+            if v.im < 0.0 { "−" } else { "+" },
+            fmt_num(v.im.abs())
+        )
     }
 }
 
@@ -454,11 +483,11 @@ fn polish(l: &DelayedLoop, w0: f64) -> f64 {
         }
         let step = g / dg;
         let next = w - step;
-        if !(next > 0.0) || !next.is_finite() {
+        if next.is_nan() || next <= 0.0 || !next.is_finite() {
             break;
         }
         let (g2, dg2) = l.magnitude_gap(next);
-        if !(g2.abs() < g.abs()) {
+        if g2.is_nan() || g2.abs() >= g.abs() {
             break;
         }
         w = next;
@@ -494,7 +523,8 @@ fn intervals(d: &mut DelayStability) {
             );
         } else {
             d.notes.push(
-                "no crossing frequency: the number of unstable roots is the same for every delay".into(),
+                "no crossing frequency: the number of unstable roots is the same for every delay"
+                    .into(),
             );
         }
     }
@@ -525,7 +555,7 @@ fn intervals(d: &mut DelayStability) {
             .sum()
     };
     let mut limit = horizon;
-    if !(total(limit) <= MAX_DELAY_EVENTS as f64) {
+    if total(limit).is_nan() || total(limit) > MAX_DELAY_EVENTS as f64 {
         // the latest T with at most MAX_DELAY_EVENTS delays below it
         let (mut lo, mut hi) = (0.0_f64, if limit.is_finite() { limit } else { 1.0 });
         while limit.is_infinite() && total(hi) <= MAX_DELAY_EVENTS as f64 {
@@ -582,7 +612,8 @@ fn intervals(d: &mut DelayStability) {
     let mut i = 0;
     while i < events.len() {
         let t = events[i].0;
-        while i < events.len() && events[i].0 == t {
+        // delays of different crossings that coincide exactly switch together
+        while i < events.len() && events[i].0.total_cmp(&t).is_eq() {
             count += events[i].1;
             i += 1;
         }

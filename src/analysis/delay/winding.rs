@@ -95,7 +95,11 @@ fn winding_count(l: &DelayedLoop, t: f64) -> Result<usize> {
         let w = r.im.abs();
         if w > 0.0 && w < omega {
             let d = r.re.abs().max(1e-6 * w);
-            grid.extend((-8..=8).map(|i| w + d * f64::from(i) / 2.0).filter(|&x| x > 0.0));
+            grid.extend(
+                (-8..=8)
+                    .map(|i| w + d * f64::from(i) / 2.0)
+                    .filter(|&x| x > 0.0),
+            );
         }
     }
     grid.push(0.0);
@@ -141,4 +145,89 @@ fn winding_count(l: &DelayedLoop, t: f64) -> Result<usize> {
         )));
     }
     Ok(rounded as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::poly::Root;
+
+    /// A small linear congruential generator: the loops are the same on every run.
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.next()
+        }
+    }
+
+    fn random_loop(g: &mut Lcg) -> Factored {
+        let c = |re: f64, im: f64| Complex64::new(re, im);
+        let mut poles = Vec::new();
+        let n = 1 + (g.next() * 4.0) as usize;
+        while poles.len() < n {
+            if g.next() < 0.5 {
+                poles.push(Root::new(c(g.range(-3.0, 0.5), 0.0), 1));
+            } else {
+                let (re, im) = (g.range(-2.0, 0.3), g.range(0.2, 3.0));
+                poles.push(Root::new(c(re, im), 1));
+                poles.push(Root::new(c(re, -im), 1));
+            }
+        }
+        let mut zeros = Vec::new();
+        if g.next() < 0.5 && poles.len() > 1 {
+            zeros.push(Root::new(c(g.range(-4.0, 2.0), 0.0), 1));
+        }
+        let k = g.range(-6.0, 6.0);
+        Factored::from_zpk(&zeros, &poles, k).unwrap()
+    }
+
+    #[test]
+    fn the_argument_principle_agrees_with_the_crossing_count_on_random_loops() {
+        let mut g = Lcg(21);
+        let mut checked = 0;
+        let mut unstable_seen = 0;
+        let mut stable_seen = 0;
+        for _ in 0..40 {
+            let f = random_loop(&mut g);
+            let d = f.delay_stability().unwrap();
+            for t in [0.0, 0.05, 0.3, 1.0, 2.5, 7.0] {
+                // away from a crossing delay: the pair would sit on the contour
+                let near = d
+                    .crossings
+                    .iter()
+                    .any(|c| (0..200).any(|k| (c.delay(k) - t).abs() <= 1e-3 * t.max(1e-3)));
+                if near {
+                    continue;
+                }
+                let by_crossings = d.unstable_roots_at(t).unwrap();
+                let by_winding = f.delayed_nyquist_count(t).unwrap();
+                assert_eq!(by_crossings, by_winding, "{f:?} at T = {t}: {d:?}");
+                // and the root search finds as many unstable roots, each to its rounding
+                let r = f.closed_loop_delay_roots(t, 4).unwrap();
+                assert!(r.agrees, "{f:?} at T = {t}: {r:?}");
+                assert!(
+                    r.roots.iter().all(|q| q.relative_residual <= 1e-12),
+                    "{r:?}"
+                );
+                checked += 1;
+                if by_crossings == 0 {
+                    stable_seen += 1;
+                } else {
+                    unstable_seen += 1;
+                }
+            }
+        }
+        assert!(checked > 150, "{checked}");
+        assert!(
+            stable_seen > 20 && unstable_seen > 20,
+            "{stable_seen} {unstable_seen}"
+        );
+    }
 }
