@@ -126,6 +126,58 @@ fn integrator_loop_critical_delay() {
 }
 
 // ---------------------------------------------------------------------------------------
+// K e^(−sT)/(s(s + 1)): |jω(jω + 1)| = K ⇔ ω⁴ + ω² − K² = 0, ω_c² = (√(1 + 4K²) − 1)/2;
+// θ = arg(−L(jω_c)) = π − π/2 − arctan ω_c, so T₀ = (π/2 − arctan ω_c)/ω_c: the phase margin
+// over the crossover frequency. Without delay s² + s + K is stable.
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn type_one_loop_critical_delay_is_phase_margin_over_crossover() {
+    for k in [0.2, 1.0, 10.0] {
+        let d = stability(&[k], &[1.0, 1.0, 0.0]);
+        let w = ((1.0f64 + 4.0 * k * k).sqrt() - 1.0) / 2.0;
+        let w = w.sqrt();
+        assert!(rel(d.crossings[0].frequency, w) < 1e-14, "K = {k}");
+        let tc = (PI / 2.0 - w.atan()) / w;
+        assert!(rel(d.critical_delay.unwrap(), tc) < 1e-13, "K = {k}");
+        let f = loop_of(&[k], &[1.0, 1.0, 0.0]);
+        for t in [0.9 * tc, 1.1 * tc] {
+            assert_eq!(
+                f.delayed_nyquist_count(t).unwrap(),
+                d.unstable_roots_at(t).unwrap()
+            );
+            assert!(f.closed_loop_delay_roots(t, 2).unwrap().agrees);
+        }
+    }
+}
+
+#[test]
+fn extreme_delays_stay_bounded_and_say_what_they_missed() {
+    // 3/(s + 1): at T = 1e300 the count is a closed form (saturated), the root search lists
+    // roots near ln 3/T + j(θ + 2πk)/T (|L(jω)| → 3 as ω → 0) and says it did not find them all
+    let f = loop_of(&[3.0], &[1.0, 1.0]);
+    let d = f.delay_stability().unwrap();
+    assert_eq!(d.unstable_roots_at(1e300).unwrap(), usize::MAX);
+    let r = f.closed_loop_delay_roots(1e300, 2).unwrap();
+    assert!(!r.agrees && r.note.is_some());
+    assert!(
+        rel(r.roots[0].value.re, 3f64.ln() / 1e300) < 1e-9,
+        "{:?}",
+        r.roots[0]
+    );
+    // the Nyquist count refuses a contour that long, by name
+    let e = f.delayed_nyquist_count(1e300).unwrap_err().to_string();
+    assert!(
+        e.contains("`delay`") && e.contains("exceeds the limit"),
+        "{e}"
+    );
+    // a tiny delay is the loop without delay: the root −4
+    let r = f.closed_loop_delay_roots(1e-300, 1).unwrap();
+    assert!(r.agrees);
+    assert_eq!(r.roots[0].value, c(-4.0, 0.0));
+}
+
+// ---------------------------------------------------------------------------------------
 // Stability switches (Cooke & Grossman 1982, "Discrete delay, distributed delay and stability
 // switches", J. Math. Anal. Appl. 86): s² + a s + b + c e^(−sT), a = 0.1, b = 1, c = 0.5.
 // W(x) = (b − x)² + a²x − c² = x² + (a² − 2b)x + b² − c² = x² − 1.99x + 0.75, two positive

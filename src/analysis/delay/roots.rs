@@ -116,11 +116,12 @@ impl Factored {
                 .fold(l.frequency_scale(), f64::max);
         base.extend(chain_starts(&l, t, top));
         let room = MAX_ORDER.saturating_sub(l.poles.len()).clamp(2, MAX_PADE);
-        let mut n = (8 + expected).min(room);
+        let mut n = expected.saturating_add(8).min(room);
         loop {
             let mut starts = base.clone();
             starts.extend(pade_starts(&l, t, n)?);
-            let found = refine_all(&l, t, &starts, l.frequency_scale());
+            let origin = stability.root_at_origin.then(|| l.frequency_scale());
+            let found = refine_all(&l, t, &starts, origin);
             let unstable = found
                 .iter()
                 .filter(|r| half_plane(r.value) == HalfPlane::Right)
@@ -219,13 +220,14 @@ fn chain_starts(l: &DelayedLoop, t: f64, top: f64) -> Vec<Complex64> {
 const MAX_CHAIN_STEPS: f64 = 200_000.0;
 
 /// Newton from every starting point in the closed upper half plane; converged roots merged
-/// (within 1e-8 relative, or 1e-12 of the loop's frequency `scale` near s = 0), sorted,
-/// conjugates added.
+/// (within 1e-8 relative), sorted, conjugates added. With a root at the origin (L(0) = −1;
+/// `origin` holds the loop's frequency scale) a root within 1e-13 of the scale is that root,
+/// exactly 0 (elsewhere tiny roots are genuine: a long delay has roots about 2π/T apart).
 fn refine_all(
     l: &DelayedLoop,
     t: f64,
     starts: &[Complex64],
-    scale: f64,
+    origin: Option<f64>,
 ) -> Vec<CharacteristicRoot> {
     let mut found: Vec<CharacteristicRoot> = Vec::new();
     for &s0 in starts.iter().filter(|s| s.im >= 0.0) {
@@ -242,7 +244,7 @@ fn refine_all(
                 _ => {}
             }
         }
-        if r.value.norm() <= 1e-13 * scale {
+        if origin.is_some_and(|scale| r.value.norm() <= 1e-13 * scale) {
             // the root at the origin (L(0) = −1), exactly
             r = CharacteristicRoot {
                 value: Complex64::new(0.0, 0.0),
@@ -253,15 +255,14 @@ fn refine_all(
     }
     // merge duplicates: sorted by imaginary part, each compared with its neighbours
     found.sort_by(|a, b| a.value.im.total_cmp(&b.value.im));
-    let near = |a: Complex64, b: Complex64| same_root(a, b) || (a - b).norm() <= 1e-12 * scale;
     let mut upper: Vec<CharacteristicRoot> = Vec::new();
     for r in found {
-        let window = 1e-8 * r.value.norm() + 1e-12 * scale;
+        let window = 1e-8 * r.value.norm();
         let twin = upper
             .iter_mut()
             .rev()
             .take_while(|q| r.value.im - q.value.im <= window)
-            .find(|q| near(q.value, r.value));
+            .find(|q| same_root(q.value, r.value));
         match twin {
             Some(q) => {
                 if r.relative_residual < q.relative_residual {
