@@ -152,6 +152,29 @@ fn type_one_loop_critical_delay_is_phase_margin_over_crossover() {
 }
 
 #[test]
+fn a_tangency_is_reported_and_not_counted() {
+    // L = 3s/((s + 1)(s + 2)): W(x) = (x + 1)(x + 4) − 9x = (x − 2)², a double root at
+    // ω = √2 where |L(jω)| touches 1 from below (|L| ≤ 1 everywhere). Without delay
+    // s² + 6s + 2 is stable, and no root can cross: stable for every delay.
+    let f = loop_of(&[3.0, 0.0], &[1.0, 3.0, 2.0]);
+    let d = f.delay_stability().unwrap();
+    assert_eq!(d.crossings.len(), 1, "{:?}", d.crossings);
+    assert_eq!(d.crossings[0].direction, CrossingDirection::Tangential);
+    assert!(rel(d.crossings[0].frequency, 2f64.sqrt()) < 1e-15);
+    assert!(
+        d.notes.iter().any(|n| n.contains("touches 1")),
+        "{:?}",
+        d.notes
+    );
+    assert_eq!(d.critical_delay, Some(f64::INFINITY));
+    let touch = d.crossings[0].delay(0);
+    for t in [0.5 * touch, 1.5 * touch, 10.0] {
+        assert_eq!(d.unstable_roots_at(t).unwrap(), 0);
+        assert_eq!(f.delayed_nyquist_count(t).unwrap(), 0, "T = {t}");
+    }
+}
+
+#[test]
 fn extreme_delays_stay_bounded_and_say_what_they_missed() {
     // 3/(s + 1): at T = 1e300 the count is a closed form (saturated), the root search lists
     // roots near ln 3/T + j(θ + 2πk)/T (|L(jω)| → 3 as ω → 0) and says it did not find them all

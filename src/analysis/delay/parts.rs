@@ -190,8 +190,15 @@ impl DelayedLoop {
         };
         let d = side(&self.poles);
         let n = side(&self.zeros);
-        let shift = self.zeros.len() as f64 - self.poles.len() as f64;
-        let k2 = (2.0 * self.gain.abs().ln() + shift * rho.ln()).exp();
+        // k²·ρ^(m−n): exact (ρ is a power of two) unless an intermediate leaves the range
+        let shift = self.zeros.len() as i32 - self.poles.len() as i32;
+        let mut k2 = self.gain * self.gain;
+        for _ in 0..shift.unsigned_abs() {
+            k2 = if shift > 0 { k2 * rho } else { k2 / rho };
+        }
+        if !k2.is_finite() || k2 == 0.0 {
+            k2 = (2.0 * self.gain.abs().ln() + f64::from(shift) * rho.ln()).exp();
+        }
         if !k2.is_finite() || d.coeffs().iter().chain(n.coeffs()).any(|c| !c.is_finite()) {
             return Err(LtiError::Overflow {
                 what: "the crossing polynomial |D(jω)|² − |N(jω)|²".into(),
