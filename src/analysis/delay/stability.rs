@@ -132,7 +132,8 @@ pub struct DelayInterval {
 }
 
 impl DelayInterval {
-    /// True when `delay` lies strictly inside (or is the included T = 0).
+    /// True when `delay` lies strictly inside (from, to) (T = 0 itself: see
+    /// [`DelayStability::is_stable_at`]).
     pub fn contains(&self, delay: f64) -> bool {
         delay > self.from && delay < self.to
     }
