@@ -73,7 +73,7 @@ fn first_order_loop_critical_delay_in_closed_form() {
         let tc = d.critical_delay.unwrap();
         assert!(rel(tc, t0) < 1e-12, "K = {k}: {tc} vs {t0}");
         assert!(rel(cr.delay(1), t1) < 1e-12);
-        // mpmath (tests' script /tmp/dstab/lw.py): Tc = 1.2091995761561452337 (K = 2),
+        // mpmath 1.3, mp.dps = 40: acos(-1/K)/sqrt(K*K - 1) = 1.2091995761561452337 (K = 2),
         // 0.36173947100747126721 (K = 5), 0.16793817546235016522 (K = 10)
         let mp = match k as u32 {
             2 => 1.2091995761561452337,
@@ -207,7 +207,8 @@ fn extreme_delays_stay_bounded_and_say_what_they_missed() {
 // roots x± = (1.99 ± √(1.99² − 3))/2; W′(x₊) > 0 (destabilizing), W′(x₋) < 0 (stabilizing).
 // At ω, e^(−jωT) = −(b − ω² + jaω)/c: cos ωT = (ω² − b)/c, sin ωT = aω/c > 0, so
 // T_k = (arccos((ω² − b)/c) + 2πk)/ω. Without delay: s² + 0.1s + 1.5, stable.
-// mpmath (/tmp/dstab/cg.py, 40 digits): stable for T in [0, 0.20203477) ∪ (4.2198192, 5.358212).
+// mpmath 1.3 (mp.dps = 40: the same closed forms, delays for k < 12 merged, printed to 8
+// digits): stable for T in [0, 0.20203477) ∪ (4.2198192, 5.358212).
 // ---------------------------------------------------------------------------------------
 
 fn switch_delays(a: f64, b: f64, cc: f64) -> Vec<(f64, i64)> {
@@ -292,7 +293,8 @@ fn cooke_grossman_stability_switches() {
 
 // ---------------------------------------------------------------------------------------
 // Rightmost roots against Lambert W: s + 1 + K e^(−sT) = 0 ⇔ (s + 1)T·e^((s+1)T) = −KT·e^T,
-// so s = −1 + W_k(−K T e^T)/T. mpmath 1.3 lambertw, 40 digits (/tmp/dstab/lw.py), branches
+// so s = −1 + W_k(−K T e^T)/T. mpmath 1.3, mp.dps = 40:
+// `[-1 + lambertw(-K*T*exp(T), k)/T for k in range(-6, 7)]` (residuals < 1e-38), branches
 // k = −6…6 sorted by real part, the first three (upper members):
 // ---------------------------------------------------------------------------------------
 
