@@ -68,6 +68,10 @@ fn the_documented_limits_are_the_code_s() {
             "numeric::lstsq::MAX_SVD_ITER",
             ltikit::numeric::lstsq::MAX_SVD_ITER as u64,
         ),
+        (
+            "analysis::delay::MAX_DELAY_EVENTS",
+            ltikit::analysis::delay::MAX_DELAY_EVENTS as u64,
+        ),
     ];
     for (name, value) in cases {
         let r = row(section, name);

@@ -14,6 +14,7 @@
 //! | | frequency response, margins, Nyquist, Bode asymptotes | [`Factored::freq_response`], [`Factored::margins`], [`Factored::nyquist`], [`Factored::bode_asymptotes`] |
 //! | | time responses, closed forms | [`Factored::step_response`], [`Factored::response`], [`Factored::partial_fractions`] |
 //! | | closed loops, root locus | [`ClosedLoop::new`], [`Factored::feedback`], [`Factored::root_locus`] |
+//! | | stability with a dead time in the loop, roots at a delay | [`Factored::delay_stability`], [`Factored::closed_loop_delay_roots`] |
 //! | a state-space model | its whole analysis (eigen structure, minimal realisation, zeros) | [`crate::StateSpace::analysis`] |
 //! | | MIMO responses | [`crate::StateSpace::step_response_from`], [`crate::StateSpace::freq_response_mimo`] |
 //! | a polynomial in z, a sampled loop | Jury table, exact unit-circle counts, stable gains | [`jury()`], [`jury_exact`], [`discrete_stable_gains`] |
@@ -48,7 +49,10 @@ pub mod time;
 pub use asymptotes::{BodeAsymptotes, CornerFrequency, bode_asymptotes};
 pub use closed_form::{ClosedForm, ClosedFormTerm, SequenceForm, SequenceTerm};
 pub use closed_loop::{ClosedLoop, InternalStability, LoopSystem, Peak, Robustness};
-pub use delay::{DelayedClosedForm, DelayedResponse, MAX_DELAY_PIECES};
+pub use delay::{
+    CharacteristicRoot, CrossingDirection, DelayCrossing, DelayInterval, DelayRoots,
+    DelayStability, DelayedClosedForm, DelayedResponse, MAX_DELAY_PIECES,
+};
 pub use factored::{
     Factored, Feedback, MAX_FACTORED_ORDER, NEAR_PAIR_REL, NearPair, PoleZero, StructurePath,
     factorizations_on_this_thread,

@@ -99,7 +99,22 @@ pub fn pade(t: f64, n: usize) -> Result<TransferFunction> {
     if t == 0.0 {
         return TransferFunction::from_descending(&[1.0], &[1.0]);
     }
-    // c_k by the ratio c_k / c_(k−1) = (n − k + 1) / (k (2n − k + 1)), ascending powers of s
+    let (p, q) = pade_coefficients(t, n);
+    if q.iter().any(|x| !x.is_finite() || *x == 0.0) {
+        return Err(LtiError::InvalidInput(format!(
+            "`pade`: the [{n}/{n}] approximant of a {} s delay has coefficients beyond the \
+             range of a double",
+            fmt_num(t)
+        )));
+    }
+    TransferFunction::new(Poly::from_descending(&p)?, Poly::from_descending(&q)?)
+}
+
+/// Numerator and denominator of the [n/n] Padé approximant of e^(−sT) in descending powers
+/// of s, any order (no checks: the root search of `analysis::delay` uses high orders at
+/// T = 1 for its starting points): Q(s) = Σ cₖ (sT)^k, P(s) = Q(−s),
+/// cₖ = (2n − k)!·n! / ((2n)!·k!·(n − k)!), by the ratio cₖ/cₖ₋₁ = (n − k + 1)/(k(2n − k + 1)).
+pub(crate) fn pade_coefficients(t: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut q = vec![1.0];
     let mut c = 1.0_f64;
     let mut tk = 1.0_f64;
@@ -112,15 +127,10 @@ pub fn pade(t: f64, n: usize) -> Result<TransferFunction> {
         .iter()
         .enumerate()
         .map(|(k, &x)| if k % 2 == 1 { -x } else { x })
+        .rev()
         .collect();
-    if q.iter().any(|x| !x.is_finite() || *x == 0.0) {
-        return Err(LtiError::InvalidInput(format!(
-            "`pade`: the [{n}/{n}] approximant of a {} s delay has coefficients beyond the \
-             range of a double",
-            fmt_num(t)
-        )));
-    }
-    TransferFunction::new(Poly::from_ascending(&p)?, Poly::from_ascending(&q)?)
+    q.reverse();
+    (p, q)
 }
 
 /// The delay of a parallel connection: both branches must have the same dead time (then
@@ -196,6 +206,17 @@ mod tests {
             last = err;
         }
         assert!(last < 1e-15);
+    }
+
+    #[test]
+    fn high_order_coefficients_match_the_exponential() {
+        // [8/8] at T = 1 against e^(−x) on the real axis
+        let (num, den) = pade_coefficients(1.0, 8);
+        let ev = |c: &[f64], x: f64| c.iter().fold(0.0, |a, &v| a * x + v);
+        for x in [0.1, 0.5, 1.0, 1.5] {
+            let r = ev(&num, x) / ev(&den, x);
+            assert!((r - (-x).exp()).abs() < 1e-14, "x = {x}: {r}");
+        }
     }
 
     #[test]

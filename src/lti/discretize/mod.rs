@@ -552,7 +552,7 @@ pub fn require_zoh_for_fraction(method: Discretization, delay: f64, dt: f64) -> 
     }
     Err(LtiError::invalid(format!(
         "c2d: the dead time {} s is not a whole number of periods (dt = {} s); only zoh samples \
-         a fractional delay (the modified z-transform) — use --method zoh, or a period that \
+         a fractional delay (the modified z-transform) — use `method` zoh, or a period that \
          divides the delay",
         crate::fmt::fmt_num(delay),
         crate::fmt::fmt_num(dt)
