@@ -356,3 +356,95 @@ fn a_fraction_of_a_period_is_sampled_by_the_modified_z_transform() {
         .to_string();
     assert!(e.contains("only zoh"), "{e}");
 }
+
+/// The command line on a loop around a dead time: the delayed loop is analysed exactly —
+/// stability in the delay (K = 2, T = 0.5 in L = 2/(s + 1): critical delay
+/// arccos(−1/2)/√3 = 1.2092 s), the closed-loop response by the method of steps (on
+/// [T, 2T] the first piece 2(1 − e^(−(t − T)))), and the margins of L·e^(−sT).
+#[cfg(feature = "cli")]
+#[test]
+fn the_command_line_closes_the_loop_around_the_delay_exactly() {
+    let plant = [
+        "--num",
+        "2",
+        "--den",
+        "1 1",
+        "--delay",
+        "0.5",
+        "--controller",
+        "p:kp=1",
+    ];
+    let run = |extra: &[&str]| {
+        let mut args = extra.to_vec();
+        args.extend_from_slice(&plant);
+        let out = common::ltikit(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let doc: serde_json::Value = serde_json::from_str(&run(&["analyze", "--json"])).unwrap();
+    assert_eq!(doc["delay"], 0.5);
+    let st = &doc["stability_in_delay"];
+    let critical = st["critical_delay"].as_f64().unwrap();
+    assert!(rel(critical, (-0.5f64).acos() / 3f64.sqrt()) < 1e-12);
+    assert_eq!(st["stable"], true);
+    let y_inf = doc["step_info"]["steady_state"].as_f64().unwrap();
+    assert!(rel(y_inf, 2.0 / 3.0) < 1e-14);
+    let r: serde_json::Value =
+        serde_json::from_str(&run(&["response", "--json", "--t", "0.2 0.8"])).unwrap();
+    assert_eq!(r["y"][0], 0.0);
+    let y = r["y"][1].as_f64().unwrap();
+    assert!((y - 2.0 * (1.0 - (-0.3f64).exp())).abs() < 1e-14, "{y}");
+    // unstable beyond the critical delay; the margins are those of L·e^(−sT)
+    let out = common::ltikit(&[
+        "analyze",
+        "--num",
+        "2",
+        "--den",
+        "1 1",
+        "--delay",
+        "1.3",
+        "--controller",
+        "p:kp=1",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("unstable: 2 characteristic roots"), "{text}");
+    let m: serde_json::Value = serde_json::from_str(&run(&["margins", "--json"])).unwrap();
+    assert!(rel(m["delay_margin"].as_f64().unwrap(), critical - 0.5) < 1e-12);
+    // C·S is refused with the way out, and a picture is drawn
+    let out = common::ltikit(&[
+        "analyze",
+        "--num",
+        "2",
+        "--den",
+        "1 1",
+        "--delay",
+        "0.5",
+        "--controller",
+        "p:kp=1",
+        "--control-sensitivity",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--pade"));
+    let png = std::env::temp_dir().join(format!("ltikit-delay-step-{}.png", std::process::id()));
+    let mut args = vec!["step", "-o", png.to_str().unwrap()];
+    args.extend_from_slice(&plant);
+    assert!(common::ltikit(&args).status.success());
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    std::fs::remove_file(&png).ok();
+    // `ltikit pade`
+    let p: serde_json::Value = serde_json::from_str(
+        &String::from_utf8(
+            common::ltikit(&["pade", "--delay", "1", "--order", "2", "--json"]).stdout,
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        p["den"][2].as_f64().unwrap() / p["den"][0].as_f64().unwrap(),
+        12.0
+    );
+}

@@ -264,6 +264,19 @@ pub fn select(plant: &Plant, g: Factored) -> Result<(Factored, Option<ClosedLoop
         Some(dt) => cf.c2d(dt, c.method())?,
         None => cf,
     };
+    if g.delay() > 0.0 {
+        // L·e^(−sT) is the loop; its closed loop is not rational (`analysis::delay`)
+        if which == LoopSystem::Loop {
+            return Ok((cf.series(&g)?, None));
+        }
+        return Err(LtiError::invalid(format!(
+            "{} around a dead time e^(-{} s) is not a rational transfer function: this \
+             analysis needs one (analyze, step and response treat the delayed loop exactly; \
+             or replace the delay by a Padé approximant, `pade`)",
+            which.formula(),
+            crate::fmt::fmt_num(g.delay())
+        )));
+    }
     let cl = ClosedLoop::new(&cf, &g).map_err(|e| match e {
         LtiError::Improper { .. } if c.is_improper() => LtiError::invalid(format!(
             "{e}: the controller {c} has an unfiltered derivative; give its filter time constant (e.g. tf=0.01)"

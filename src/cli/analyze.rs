@@ -42,6 +42,9 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         return super::batch::run(src);
     }
     let plant = a.plant.single()?;
+    if let Some(dl) = super::delayed::of(&a.plant, &plant)? {
+        return super::delayed::analyze(&plant, &dl, a.json);
+    }
     let chans = a.plant.channels(&plant)?;
     let whole = whole_model::for_plant(&plant, a.plant.channel()?.is_some());
     if whole.is_none() && (a.modes || a.shapes) {
@@ -276,7 +279,7 @@ fn near_text(near: &[crate::analysis::NearPair]) -> String {
 
 /// The step metrics in words; a metric that could not be computed reads "not computed"
 /// and its note follows.
-fn step_text(si: &StepInfo) -> String {
+pub(super) fn step_text(si: &StepInfo) -> String {
     let v = |x: Option<f64>| x.map_or_else(|| "not computed".to_string(), |x| fmt_sig(x, 7));
     let peak_at = match si.peak_time {
         Some(t) if t.is_finite() => format!("at t = {} s", fmt_sig(t, 7)),

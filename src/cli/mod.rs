@@ -6,6 +6,7 @@ mod batch;
 mod c2d;
 mod channels;
 mod commands;
+mod delayed;
 mod demo;
 mod exit;
 mod freq;

@@ -58,6 +58,20 @@ fn route(a: &ResponseArgs, plant: &Plant) -> Result<Route> {
 /// Runs `ltikit response`.
 pub fn run(a: &ResponseArgs) -> Result<()> {
     let plant = a.plant.single()?;
+    if let Some(dl) = crate::cli::delayed::of(&a.plant, &plant)? {
+        if a.ic.is_some() || a.x0.is_some() || a.states || a.input_file.is_some() {
+            bail!(
+                "a loop around a dead time responds from rest to a standard input: leave out \
+                 --ic, --x0, --states and --input-file"
+            );
+        }
+        let input: crate::analysis::Input = a.input.parse()?;
+        let t =
+            a.t.as_deref()
+                .map(|s| crate::cli::parse::numbers(s, "--t"))
+                .transpose()?;
+        return crate::cli::delayed::response(&plant, &dl, &input, t, a.json);
+    }
     match route(a, &plant)? {
         Route::ClosedForm => closed_form::run(a, &plant),
         Route::StateSpace => state_space::run(a, &plant),
