@@ -20,7 +20,7 @@ use crate::lti::controller::{Controller, LoopSystem};
 /// How many characteristic roots the reports list.
 const ROOTS_LISTED: usize = 4;
 /// Most delays a default horizon spans (the method of steps adds one piece per delay).
-const HORIZON_DELAYS: f64 = 40.0;
+const HORIZON_DELAYS: f64 = 30.0;
 
 /// A controller in unity feedback around a plant with a dead time.
 pub struct DelayedLoop {
@@ -43,13 +43,18 @@ pub fn of(args: &PlantArgs, plant: &Plant) -> Result<Option<DelayedLoop>> {
     if which == LoopSystem::Loop || args.pade.is_some() || args.sample.is_some() {
         return Ok(None);
     }
+    // the delay from the model itself (no factorisation only to ask)
+    let delay = match (&plant.model, args.channel()?) {
+        (crate::lti::Model::Ss(ss), Some((i, o))) => ss.channel_delay(i, o),
+        _ => plant.delay(),
+    };
+    if delay == 0.0 || plant.domain().is_discrete() {
+        return Ok(None);
+    }
     let g = match args.channel()? {
         Some((i, o)) => plant.factored_channel(i, o)?,
         None => plant.factored()?,
     };
-    if g.delay() == 0.0 || g.domain().is_discrete() {
-        return Ok(None);
-    }
     if which == LoopSystem::ControlSensitivity {
         bail!(
             "the control sensitivity C·S of a loop with a dead time is not available exactly: \
@@ -92,7 +97,7 @@ impl DelayedLoop {
             .map(|r| r.value.re)
             .fold(f64::NEG_INFINITY, f64::max);
         let t = if slowest < 0.0 {
-            self.delay + 8.0 / -slowest
+            self.delay + 6.0 / -slowest
         } else {
             10.0 * self.delay
         };

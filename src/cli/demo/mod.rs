@@ -7,6 +7,7 @@
 
 mod closed_loop;
 mod context;
+mod dead_time;
 mod digital;
 mod lattice;
 mod lattice_channel;

@@ -11,7 +11,7 @@ use std::time::Instant;
 use super::context::Ctx;
 use super::md::Md;
 use super::verify::Checks;
-use super::{closed_loop, digital, lattice, linear, mechanics, nonlinear, seed};
+use super::{closed_loop, dead_time, digital, lattice, linear, mechanics, nonlinear, seed};
 use crate::fmt::fmt_sig;
 
 #[derive(Args, Debug)]
@@ -133,6 +133,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     closed_loop::section(&mut ctx, &mut md, plants.len() + 5)?;
     ctx.progress("digital control");
     digital::section(&mut ctx, &mut md, plants.len() + 6)?;
+    ctx.progress("dead time");
+    dead_time::section(&mut ctx, &mut md, plants.len() + 7)?;
 
     ctx.progress("verification");
     ctx.checks.render(&mut md);
