@@ -16,8 +16,9 @@ line's one-line message.
 
 from __future__ import annotations
 
+import json
 import math
-from typing import Any, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -68,27 +69,43 @@ class Record:
     """
 
     def __init__(self, fields: Mapping[str, Any]) -> None:
+        self._fill(fields)
+
+    def _fill(self, fields: Mapping[str, Any]) -> None:
         for k, v in fields.items():
             self.__dict__[k] = _wrap(v)
 
+    def _load(self) -> Dict[str, Any]:
+        """The fields (a document still held as JSON text is read now)."""
+        d = self.__dict__
+        raw = d.pop("_raw", None)
+        if raw is not None:
+            self._fill(json.loads(raw))
+        return d
+
     def __getattr__(self, name: str) -> Any:
+        if name.startswith("__"):
+            raise AttributeError(name)
+        d = self._load()
+        if name in d:
+            return d[name]
         raise AttributeError(
-            f"{type(self).__name__} has no field {name!r} (fields: {', '.join(self.__dict__)})"
+            f"{type(self).__name__} has no field {name!r} (fields: {', '.join(d)})"
         )
 
     def __getitem__(self, key: str) -> Any:
-        return self.__dict__[key]
+        return self._load()[key]
 
     def __contains__(self, key: object) -> bool:
-        return key in self.__dict__
+        return key in self._load()
 
     def keys(self) -> Any:
         """The field names, in the document's order."""
-        return self.__dict__.keys()
+        return self._load().keys()
 
     def to_dict(self) -> dict:
         """The record as plain dicts and lists (arrays stay numpy arrays)."""
-        return {k: _unwrap(v) for k, v in self.__dict__.items()}
+        return {k: _unwrap(v) for k, v in self._load().items()}
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Record):
@@ -98,7 +115,7 @@ class Record:
     __hash__ = None  # type: ignore[assignment]
 
     def __repr__(self) -> str:
-        body = ", ".join(f"{k}={_short(v)}" for k, v in self.__dict__.items())
+        body = ", ".join(f"{k}={_short(v)}" for k, v in self._load().items())
         return f"{type(self).__name__}({body})"
 
 
@@ -151,23 +168,30 @@ class Analysis(Record):
     ``None`` with ``step_info_note``); from :func:`batch` also ``margins`` (or ``None`` with
     ``margins_note``), or ``error`` alone for a model that could not be analysed."""
 
-    def __init__(self, doc: Mapping[str, Any]) -> None:
-        doc = dict(doc)
+    def __init__(self, doc: Union[str, Mapping[str, Any]]) -> None:
+        if isinstance(doc, str):
+            self.__dict__["_raw"] = doc  # from batch: read at the first access
+        else:
+            self._fill(doc)
+
+    def _fill(self, fields: Mapping[str, Any]) -> None:
+        doc = dict(fields)
         for key in ("poles", "zeros", "cancelled"):
             if key in doc:
                 doc[key] = _complex(doc[key])
-        super().__init__(doc)
-        for m in self.__dict__.get("modes", []):
+        super()._fill(doc)
+        d = self.__dict__
+        for m in d.get("modes", []):
             m.__dict__["pole"] = complex(*m.pole)
-        for n in self.__dict__.get("near_cancellations", []):
+        for n in d.get("near_cancellations", []):
             n.__dict__["zero"] = complex(*n.zero)
             n.__dict__["pole"] = complex(*n.pole)
-        si = self.__dict__.get("step_info")
+        si = d.get("step_info")
         if isinstance(si, Record):
-            self.__dict__["step_info"] = StepInfo(si.to_dict())
-        mg = self.__dict__.get("margins")
+            d["step_info"] = StepInfo(si.to_dict())
+        mg = d.get("margins")
         if isinstance(mg, Record):
-            self.__dict__["margins"] = Margins(mg.to_dict())
+            d["margins"] = Margins(mg.to_dict())
 
 
 class StepInfo(Record):

@@ -34,15 +34,19 @@ fn record(m: &Model) -> Value {
     result.unwrap_or_else(|e| json!({ "error": e }))
 }
 
-/// Analyses `models` on all cores (the GIL released while they are computed): one dict per
-/// model, in order — the `analyze` document plus `margins`, or `{"error": "…"}`.
+/// Analyses `models` on all cores (the GIL released while they are computed and written):
+/// one JSON document per model, in order — the `analyze` document plus `margins`, or
+/// `{"error": "…"}` — as text, which `ltikit.Analysis` reads when a field is first asked for.
 #[pyfunction]
 pub fn batch<'py>(py: Python<'py>, models: Vec<PyRef<'py, Model>>) -> PyResult<Bound<'py, PyList>> {
     let refs: Vec<&Model> = models.iter().map(|m| &**m).collect();
-    let values: Vec<Value> = py.detach(|| refs.par_iter().map(|m| record(m)).collect());
-    let out = PyList::empty(py);
-    for v in &values {
-        out.append(crate::convert::to_py(py, v)?)?;
-    }
-    Ok(out)
+    let docs: Vec<String> = py.detach(|| {
+        refs.par_iter()
+            .map(|m| {
+                serde_json::to_string(&record(m))
+                    .unwrap_or_else(|e| json!({ "error": e.to_string() }).to_string())
+            })
+            .collect()
+    });
+    PyList::new(py, docs)
 }

@@ -530,6 +530,12 @@ impl Model {
     /// the reason.
     fn step_info<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Option<String>)> {
         let f = self.factored()?;
+        // the metrics alone; the whole analysis only to say why there are none
+        if f.is_proper()
+            && let Ok(Some(si)) = attempt(|| f.step_info())
+        {
+            return Ok((to_py(py, &step_info_json(&si))?, None));
+        }
         let a = guard(|| f.analyze())?;
         let v = a
             .step_info
