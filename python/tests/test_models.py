@@ -147,3 +147,25 @@ def test_tfdata_and_ssdata():
     np.testing.assert_array_equal(den, [1, 0.8, 4])
     a, b, c, d = g.ssdata()
     assert a.shape == (2, 2) and b.shape == (2, 1) and c.shape == (1, 2) and d.shape == (1, 1)
+
+
+def test_every_public_name_has_a_docstring():
+    import inspect
+
+    missing = []
+    for name in lk.__all__:
+        obj = getattr(lk, name)
+        if name == "__version__":
+            continue
+        if not (obj.__doc__ or "").strip():
+            missing.append(name)
+        if inspect.isclass(obj):
+            for attr, member in vars(obj).items():
+                if attr.startswith("_") or not (inspect.isfunction(member) or isinstance(member, property)):
+                    continue
+                if not (member.__doc__ or "").strip():
+                    missing.append(f"{name}.{attr}")
+    for attr in dir(lk._core.Model):
+        if not attr.startswith("_") and not (getattr(lk._core.Model, attr).__doc__ or "").strip():
+            missing.append(f"_core.Model.{attr}")
+    assert missing == []
