@@ -509,6 +509,19 @@ class System:
     def __rsub__(self, other: float) -> "System":
         return _as_system(other) + (-self)
 
+    # sampling
+    def c2d(self, dt: float, method: str = "zoh", prewarp: Optional[float] = None) -> "System":
+        """The model sampled with period ``dt``: ``method`` ``"zoh"``, ``"foh"``,
+        ``"tustin"`` (``prewarp`` rad/s optional), ``"matched"`` or ``"impulse"``."""
+        p = None if prewarp is None else _number(prewarp, "prewarp")
+        d = _number(dt, "dt")
+        return System(self._m.c2d(d, str(method), p), ("c2d", self, d, str(method), p))
+
+    def d2c(self, method: str = "zoh", prewarp: Optional[float] = None) -> "System":
+        """The continuous model whose ``method`` sampling is this discrete one."""
+        p = None if prewarp is None else _number(prewarp, "prewarp")
+        return System(self._m.d2c(str(method), p), ("d2c", self, str(method), p))
+
     # pictures (ltikit's own rasteriser)
     def bode_png(
         self,
@@ -603,6 +616,10 @@ def _rebuild(recipe: Tuple[Any, ...]) -> System:
         return System(args[0]._m.feedback(args[1]._m, args[2]), recipe)
     if kind == "channel":
         return System(args[0]._m.channel(args[1], args[2]), recipe)
+    if kind == "c2d":
+        return System(args[0]._m.c2d(args[1], args[2], args[3]), recipe)
+    if kind == "d2c":
+        return System(args[0]._m.d2c(args[1], args[2]), recipe)
     return System(getattr(_core.Model, kind)(*args), recipe)
 
 

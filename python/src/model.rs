@@ -668,6 +668,43 @@ impl Model {
         )
     }
 
+    // ---- sampling -----------------------------------------------------------------------
+
+    /// The model sampled with period `dt` by `method` (`zoh`, `foh`, `tustin` with an
+    /// optional `prewarp` frequency, `matched`, `impulse`): a state-space model's matrices, a
+    /// transfer function's factored form (its poles mapped as e^(pT), not re-rooted).
+    #[pyo3(signature = (dt, method="zoh", prewarp=None))]
+    fn c2d(&self, dt: f64, method: &str, prewarp: Option<f64>) -> PyResult<Model> {
+        let method = guard(|| ltikit::lti::Discretization::parse(method, prewarp))?;
+        match &self.source {
+            Source::Plant(p) if matches!(p.model, LtiModel::Ss(_)) => {
+                guard(|| Plant::from_state_space(p.state_space()?.c2d(dt, method)?, None))
+                    .map(Model::of_plant)
+            }
+            _ => {
+                let f = self.factored()?;
+                guard(|| f.c2d(dt, method)).map(Model::of_factored)
+            }
+        }
+    }
+
+    /// The continuous model whose `method` sampling is this discrete one (`zoh` by the matrix
+    /// logarithm, `tustin` by the inverse bilinear map).
+    #[pyo3(signature = (method="zoh", prewarp=None))]
+    fn d2c(&self, method: &str, prewarp: Option<f64>) -> PyResult<Model> {
+        let method = guard(|| ltikit::lti::Discretization::parse(method, prewarp))?;
+        match &self.source {
+            Source::Plant(p) if matches!(p.model, LtiModel::Ss(_)) => {
+                guard(|| Plant::from_state_space(p.state_space()?.d2c(method)?, None))
+                    .map(Model::of_plant)
+            }
+            _ => {
+                let f = self.factored()?;
+                guard(|| f.d2c(method)).map(Model::of_factored)
+            }
+        }
+    }
+
     // ---- pictures -----------------------------------------------------------------------
 
     /// Bode diagram (PNG) with the margins marked.

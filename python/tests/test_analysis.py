@@ -154,3 +154,26 @@ def test_discrete_step_closed_form():
 
 def test_eval(g):
     assert g(1j) == pytest.approx(4 / (3 + 0.8j), rel=1e-15)
+
+
+def test_c2d_zoh_closed_form_and_back():
+    # ZOH of 1/(s + 1) with T: (1 - e^-T)/(z - e^-T)
+    T = 0.1
+    d = lk.tf([1], [1, 1]).c2d(T)
+    assert d.dt == T
+    np.testing.assert_allclose(d.poles(), [math.exp(-T)], rtol=1e-15)
+    assert d.gain == pytest.approx(1 - math.exp(-T), rel=1e-14)
+    assert d.dc_gain() == pytest.approx(1.0, rel=1e-14)
+    back = d.d2c()
+    assert back.dt is None
+    np.testing.assert_allclose(back.poles(), [-1], rtol=1e-13)
+    # a state-space model keeps its matrices: A_d = e^(A T)
+    s = lk.ss([[-2.0]], [[1.0]], [[1.0]]).c2d(T, "tustin")
+    a, b, c, dd = s.ssdata()
+    assert s.dt == T and a.shape == (1, 1)
+    # Tustin: z = (1 + s T/2)/(1 - s T/2) at s = -2
+    np.testing.assert_allclose(s.poles(), [(1 - T) / (1 + T)], rtol=1e-14)
+    with pytest.raises(lk.LtiError):
+        lk.tf([1], [1, 1]).c2d(0.1, "wobble")
+    with pytest.raises(lk.LtiError):
+        lk.tf([1], [1, 1]).d2c()  # not discrete

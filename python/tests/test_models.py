@@ -134,7 +134,7 @@ def test_pid_on_the_spring_mass_damper():
 def test_pickle_round_trip():
     g = lk.tf([4], [1, 0.8, 4])
     h = (g * lk.zpk([], [-2], 2.0)).feedback(0.5)
-    for m in (g, h, lk.model("rc"), lk.ss([[-1]], [[1]], [[1]])):
+    for m in (g, h, lk.model("rc"), lk.ss([[-1]], [[1]], [[1]]), g.c2d(0.1), g.c2d(0.1).d2c()):
         r = pickle.loads(pickle.dumps(m))
         np.testing.assert_array_equal(r.poles(), m.poles())
         assert repr(r) == repr(m)
