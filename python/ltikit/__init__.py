@@ -261,8 +261,9 @@ def _first_line(e: BaseException) -> str:
     return str(e).splitlines()[0] if str(e) else type(e).__name__
 
 
-def _vector(x: ArrayLike, name: str, dtype: Any = float) -> list:
-    """A flat list of numbers from a list, tuple, scalar or numpy array."""
+def _vector(x: ArrayLike, name: str, dtype: Any = float, limit: Any = None) -> list:
+    """A flat list of numbers from a list, tuple, scalar or numpy array; ``limit`` (one of
+    the library's limits, :func:`_points` or :func:`_order`) is checked before it is copied."""
     if isinstance(x, (str, bytes)):
         raise LtiError(f"`{name}` must be a list of numbers (found a string)")
     try:
@@ -275,7 +276,20 @@ def _vector(x: ArrayLike, name: str, dtype: Any = float) -> list:
         a = a.reshape(1)
     if a.ndim != 1:
         raise LtiError(f"`{name}` must be a flat list of numbers (found shape {a.shape})")
+    if limit is not None:
+        limit(f"`{name}`", a)
     return a.tolist()
+
+
+def _points(name: str, a: np.ndarray) -> None:
+    """The library's limit on sample points (MAX_POINTS), before a long array is copied."""
+    _core.check_points(name, a.size)
+
+
+def _order(name: str, a: np.ndarray) -> None:
+    """The library's limit on the order (MAX_ORDER), leading zeros not counted."""
+    nonzero = np.flatnonzero(a)
+    _core.check_order(name, a.size - int(nonzero[0]) if nonzero.size else 0)
 
 
 def _matrix(x: ArrayLike, name: str) -> list:
@@ -433,12 +447,12 @@ class System:
         """The response to ``u``: a standard input by name (``"step"``, ``"impulse"``,
         ``"ramp"``, ``"exp:A"``, ``"sin:W"``, ``"cos:W"``) with its closed form, or input
         samples at the times ``t`` (``hold="foh"`` linear between samples, ``"zoh"`` held)."""
-        tt = None if t is None else _vector(t, "t")
+        tt = None if t is None else _vector(t, "t", limit=_points)
         if isinstance(u, str):
             return TimeResponse(self._m.response(u, tt))
         if tt is None:
             raise LtiError("`t`: give the times of the input samples `u`")
-        y = self._m.lsim(_vector(u, "u"), tt, hold)
+        y = self._m.lsim(_vector(u, "u", limit=_points), tt, hold)
         return TimeResponse({"t": np.asarray(tt), "y": y})
 
     def step_info(self) -> StepInfo:
@@ -452,7 +466,7 @@ class System:
     def freq(self, w: Optional[ArrayLike] = None) -> FrequencyResponse:
         """Frequency response at ``w`` rad/s (an automatic grid when ``None``): magnitude,
         phase in degrees (continuous in ω), and the complex values."""
-        ww, mag, phase, g = self._m.freq(None if w is None else _vector(w, "w"))
+        ww, mag, phase, g = self._m.freq(None if w is None else _vector(w, "w", limit=_points))
         with np.errstate(divide="ignore"):
             db = 20.0 * np.log10(mag)
         return FrequencyResponse(
@@ -532,7 +546,7 @@ class System:
         size: Optional[Tuple[int, int]] = None,
     ) -> None:
         """Writes a Bode diagram (PNG) with the margins marked."""
-        self._m.bode_png(str(path), None if w is None else _vector(w, "w"), margins, title, size)
+        self._m.bode_png(str(path), None if w is None else _vector(w, "w", limit=_points), margins, title, size)
 
     def step_png(
         self,
@@ -630,7 +644,7 @@ def tf(num: ArrayLike, den: ArrayLike, dt: Optional[float] = None) -> System:
     """A transfer function from its coefficients in descending powers of s (of z with
     ``dt``): ``tf([4], [1, 0.8, 4])`` is 4/(s² + 0.8 s + 4). Numbers are read like a plant
     file's (their shortest decimal text decides the structure exactly)."""
-    args = (_vector(num, "num"), _vector(den, "den"), _dt(dt))
+    args = (_vector(num, "num", limit=_order), _vector(den, "den", limit=_order), _dt(dt))
     return System(_core.Model.from_tf(*args), ("from_tf",) + args)
 
 
@@ -638,8 +652,8 @@ def zpk(zeros: ArrayLike, poles: ArrayLike, gain: float, dt: Optional[float] = N
     """A model from its zeros, poles (conjugate pairs complete; repeated roots repeated) and
     gain k of G = k·Π(s − z)/Π(s − p). No root finding: the multiplicities are as given."""
     args = (
-        _vector(zeros, "zeros", complex),
-        _vector(poles, "poles", complex),
+        _vector(zeros, "zeros", complex, limit=_points),
+        _vector(poles, "poles", complex, limit=_points),
         _number(gain, "gain"),
         _dt(dt),
     )

@@ -72,7 +72,28 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::batch, m)?)?;
     m.add_function(wrap_pyfunction!(model::model_names, m)?)?;
     m.add_function(wrap_pyfunction!(panic_for_test, m)?)?;
+    m.add_function(wrap_pyfunction!(check_points, m)?)?;
+    m.add_function(wrap_pyfunction!(check_order, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
+
+/// The library's limit on sample points (`MAX_POINTS`) for the field `what` (`` `t` ``):
+/// checked before a long array is converted.
+#[pyfunction]
+fn check_points(what: &str, n: usize) -> PyResult<()> {
+    guard(|| ltikit::limits::POINTS.check_usize(what, n).map(|_| ()))
+}
+
+/// The library's limit on the number of coefficients of a polynomial (`MAX_ORDER` + 1).
+#[pyfunction]
+fn check_order(what: &str, n: usize) -> PyResult<()> {
+    if n > ltikit::MAX_ORDER + 1 {
+        return Err(LtiError::new_err(format!(
+            "{what}: {n} coefficients exceed the supported maximum order {}",
+            ltikit::MAX_ORDER
+        )));
+    }
     Ok(())
 }
 

@@ -142,3 +142,18 @@ def test_a_rust_panic_becomes_lti_error():
 def test_batch_rejects_non_models():
     with pytest.raises(lk.LtiError):
         lk.batch([lk.tf([1], [1, 1]), 3])  # type: ignore[list-item]
+
+
+def test_huge_arrays_are_refused_before_they_are_copied():
+    g = lk.tf([1], [1, 1])
+    with pytest.raises(lk.LtiError) as e:
+        g.step(np.zeros(2_000_001))
+    assert one_line(e) == "`t`: 2000001 exceeds the limit of 1 000 000 sample points (MAX_POINTS)"
+    with pytest.raises(lk.LtiError) as e:
+        g.freq(np.ones(10**7))
+    assert "`w`" in one_line(e)
+    with pytest.raises(lk.LtiError) as e:
+        lk.tf([1], np.ones(10**6))
+    assert "maximum order 200" in one_line(e)
+    # leading zeros do not count
+    assert lk.tf([1], [0.0] * 300 + [1, 1]).dc_gain() == 1.0
