@@ -50,7 +50,8 @@ fn temp_path(path: &Path) -> Result<PathBuf> {
 }
 
 /// Writes `bytes` to `path` atomically (a temporary sibling, then a rename): an error leaves
-/// no file (the plant files of `c2d`/`d2c -o`).
+/// no file (the plant files of `c2d`/`d2c -o`; used by the command line only).
+#[cfg(feature = "cli")]
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let tmp = temp_path(path)?;
     let result = (|| -> Result<()> {

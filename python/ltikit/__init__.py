@@ -1,0 +1,740 @@
+"""ltikit for Python: LTI models with exact poles and zeros, closed-form responses, margins
+and headless plots, computed by the ltikit Rust library.
+
+>>> import ltikit as lk
+>>> G = lk.tf([4], [1, 0.8, 4])
+>>> G
+G(s) = 4 / (s^2 + 0.8 s + 4)
+>>> G.poles()                                   # doctest: +SKIP
+array([-0.4+1.95959179j, -0.4-1.95959179j])
+
+Models: :func:`tf`, :func:`zpk`, :func:`ss`, :func:`model`, :func:`plant`, :func:`pid`,
+:func:`controller`; every analysis is a method of :class:`System`; :func:`batch` analyses
+many models on all cores. Errors are :class:`LtiError` (a ``ValueError``) with the command
+line's one-line message.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._core import LtiError
+
+__all__ = [
+    "LtiError",
+    "System",
+    "Record",
+    "Analysis",
+    "StepInfo",
+    "Margins",
+    "Stability",
+    "TimeResponse",
+    "FrequencyResponse",
+    "Nyquist",
+    "RootLocus",
+    "Residue",
+    "tf",
+    "zpk",
+    "ss",
+    "model",
+    "models",
+    "plant",
+    "plant_line",
+    "pid",
+    "controller",
+    "batch",
+    "from_control",
+    "from_scipy",
+    "__version__",
+]
+
+__version__: str = _core.__version__
+
+ArrayLike = Any
+"""Numbers as a list, tuple or numpy array."""
+
+
+# ---- results ------------------------------------------------------------------------------
+
+
+class Record:
+    """A result with attribute access (``r.rise_time``) and item access (``r["rise_time"]``).
+
+    Nested documents are records too; :meth:`to_dict` gives plain dicts back.
+    """
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
+        self._fill(fields)
+
+    def _fill(self, fields: Mapping[str, Any]) -> None:
+        for k, v in fields.items():
+            self.__dict__[k] = _wrap(v)
+
+    def _load(self) -> Dict[str, Any]:
+        """The fields (a document still held as JSON text is read now)."""
+        d = self.__dict__
+        raw = d.pop("_raw", None)
+        if raw is not None:
+            self._fill(json.loads(raw))
+        return d
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("__"):
+            raise AttributeError(name)
+        d = self._load()
+        if name in d:
+            return d[name]
+        raise AttributeError(
+            f"{type(self).__name__} has no field {name!r} (fields: {', '.join(d)})"
+        )
+
+    def __getitem__(self, key: str) -> Any:
+        return self._load()[key]
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._load()
+
+    def keys(self) -> Any:
+        """The field names, in the document's order."""
+        return self._load().keys()
+
+    def to_dict(self) -> dict:
+        """The record as plain dicts and lists (arrays stay numpy arrays)."""
+        return {k: _unwrap(v) for k, v in self._load().items()}
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Record):
+            return NotImplemented
+        return _equal(self.to_dict(), other.to_dict())
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        body = ", ".join(f"{k}={_short(v)}" for k, v in self._load().items())
+        return f"{type(self).__name__}({body})"
+
+
+def _wrap(v: Any) -> Any:
+    if isinstance(v, dict):
+        return Record(v)
+    if isinstance(v, list):
+        return [_wrap(x) for x in v]
+    return v
+
+
+def _unwrap(v: Any) -> Any:
+    if isinstance(v, Record):
+        return v.to_dict()
+    if isinstance(v, list):
+        return [_unwrap(x) for x in v]
+    return v
+
+
+def _equal(a: Any, b: Any) -> bool:
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return bool(np.array_equal(np.asarray(a), np.asarray(b)))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_equal(a[k], b[k]) for k in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_equal(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return bool(a == b)
+
+
+def _short(v: Any) -> str:
+    if isinstance(v, np.ndarray):
+        return f"array(shape={v.shape})" if v.size > 6 else np.array2string(v, precision=6)
+    text = repr(v)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _complex(pairs: Any) -> np.ndarray:
+    """``[[re, im], …]`` (the JSON contract's complex numbers) as a complex array."""
+    a = np.asarray(pairs, dtype=float).reshape(-1, 2)
+    return a[:, 0] + 1j * a[:, 1]
+
+
+class Analysis(Record):
+    """What ``ltikit analyze --json`` reports, with attribute access: ``order``,
+    ``relative_degree``, ``poles``/``zeros``/``cancelled`` (complex arrays, repeated roots
+    repeated), ``dc_gain`` (``None`` when infinite), ``bibo_stable``, ``internally_stable``,
+    ``stability_reason``, ``structure``, ``modes``, ``second_order``, ``step_info`` (or
+    ``None`` with ``step_info_note``); from :func:`batch` also ``margins`` (or ``None`` with
+    ``margins_note``), or ``error`` alone for a model that could not be analysed."""
+
+    def __init__(self, doc: Union[str, Mapping[str, Any]]) -> None:
+        if isinstance(doc, str):
+            self.__dict__["_raw"] = doc  # from batch: read at the first access
+        else:
+            self._fill(doc)
+
+    def _fill(self, fields: Mapping[str, Any]) -> None:
+        doc = dict(fields)
+        for key in ("poles", "zeros", "cancelled"):
+            if key in doc:
+                doc[key] = _complex(doc[key])
+        super()._fill(doc)
+        d = self.__dict__
+        for m in d.get("modes", []):
+            m.__dict__["pole"] = complex(*m.pole)
+        for n in d.get("near_cancellations", []):
+            n.__dict__["zero"] = complex(*n.zero)
+            n.__dict__["pole"] = complex(*n.pole)
+        si = d.get("step_info")
+        if isinstance(si, Record):
+            d["step_info"] = StepInfo(si.to_dict())
+        mg = d.get("margins")
+        if isinstance(mg, Record):
+            d["margins"] = Margins(mg.to_dict())
+
+
+class StepInfo(Record):
+    """Step metrics (MATLAB ``stepinfo``): ``rise_time``, ``settling_time``,
+    ``overshoot_percent``, ``peak``, ``peak_time``, ``steady_state``, ``transient_time``,
+    ``settling_min``, ``settling_max``, ``undershoot_percent``; a metric that could not be
+    computed is ``None`` with ``<name>_note`` beside it."""
+
+
+class Margins(Record):
+    """Stability margins: ``gain_margin`` (ratio, ``None`` when infinite),
+    ``gain_margin_db``, ``phase_crossover``, ``phase_margin_deg``, ``gain_crossover``, every
+    crossing (``gain_crossings``, ``phase_crossings``), ``bandwidth``, ``resonant_peak``,
+    ``resonant_frequency``, ``delay_margin`` and ``delay_margin_w``."""
+
+
+class Stability(Record):
+    """BIBO and internal stability with the reasons (``reason``, ``bibo_reason``,
+    ``internal_reason``). True when internally stable (every pole, cancelled ones included,
+    in the open left half plane or inside the unit circle)."""
+
+    def __bool__(self) -> bool:
+        return bool(self.__dict__["internally_stable"])
+
+
+class TimeResponse(Record):
+    """A time response: ``t``, ``y`` (exact values), and for a standard input the closed form
+    (``closed_form``, ``transient``, ``steady_state`` as text; ``closed_form_values`` sampled,
+    ``closed_form_error`` the largest disagreement with ``y``) and ``final_value``.
+    Unpacks as ``t, y = G.step()``."""
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        return iter((self.__dict__["t"], self.__dict__["y"]))
+
+
+class FrequencyResponse(Record):
+    """A frequency response: ``w`` (rad/s), ``magnitude``, ``magnitude_db``, ``phase_deg``
+    (continuous in ω), ``response`` (complex G(jω)). Unpacks as
+    ``w, mag, phase = G.freq()``."""
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        d = self.__dict__
+        return iter((d["w"], d["magnitude"], d["phase_deg"]))
+
+
+class Nyquist(Record):
+    """The Nyquist contour: ``s`` (its points; z on the unit circle in discrete time), ``g``
+    (G there), ``open_loop_rhp_poles`` (P), ``encirclements`` (N, clockwise, of −1),
+    ``closed_loop_rhp_poles`` (Z = N + P), ``g_at_infinity``, ``axis_poles``, ``region``."""
+
+
+class RootLocus(Record):
+    """The root locus of 1 + K·G: ``gains`` (K, increasing in |K|), ``branches`` (one row per
+    closed-loop pole, one column per gain), ``poles``, ``zeros``, ``asymptotes``,
+    ``break_points``, ``crossings``, ``departures``, ``arrivals``, ``notes``."""
+
+
+class Residue(Record):
+    """Partial fractions G = Σ r/(s − p)^k + direct: ``terms`` as (pole, power, residue)
+    tuples, ``direct`` the polynomial part (descending coefficients)."""
+
+
+# ---- argument checks ----------------------------------------------------------------------
+
+
+def _first_line(e: BaseException) -> str:
+    return str(e).splitlines()[0] if str(e) else type(e).__name__
+
+
+def _vector(x: ArrayLike, name: str, dtype: Any = float, limit: Any = None) -> list:
+    """A flat list of numbers from a list, tuple, scalar or numpy array; ``limit`` (one of
+    the library's limits, :func:`_points` or :func:`_order`) is checked before it is copied."""
+    if isinstance(x, (str, bytes)):
+        raise LtiError(f"`{name}` must be a list of numbers (found a string)")
+    try:
+        a = np.asarray(x, dtype=dtype)
+    except (ValueError, TypeError) as e:
+        raise LtiError(
+            f"`{name}` must be a list of numbers ({_first_line(e)})"
+        ) from None
+    if a.ndim == 0:
+        a = a.reshape(1)
+    if a.ndim != 1:
+        raise LtiError(f"`{name}` must be a flat list of numbers (found shape {a.shape})")
+    if limit is not None:
+        limit(f"`{name}`", a)
+    return a.tolist()
+
+
+def _points(name: str, a: np.ndarray) -> None:
+    """The library's limit on sample points (MAX_POINTS), before a long array is copied."""
+    _core.check_points(name, a.size)
+
+
+def _order(name: str, a: np.ndarray) -> None:
+    """The library's limit on the order (MAX_ORDER), leading zeros not counted."""
+    nonzero = np.flatnonzero(a)
+    _core.check_order(name, a.size - int(nonzero[0]) if nonzero.size else 0)
+
+
+def _matrix(x: ArrayLike, name: str) -> list:
+    """Rows of numbers from nested lists or a 2-D array (a scalar is 1×1)."""
+    if isinstance(x, (str, bytes)):
+        raise LtiError(f"`{name}` must be a matrix of numbers (found a string)")
+    try:
+        a = np.asarray(x, dtype=float)
+    except (ValueError, TypeError) as e:
+        raise LtiError(
+            f"`{name}` must be a matrix of numbers, rows of equal length ({_first_line(e)})"
+        ) from None
+    if a.ndim == 0:
+        a = a.reshape(1, 1)
+    if a.ndim != 2:
+        raise LtiError(f"`{name}` must be a 2-D matrix (found shape {a.shape})")
+    return a.tolist()
+
+
+def _number(x: Any, name: str) -> float:
+    try:
+        return float(x)
+    except (ValueError, TypeError):
+        raise LtiError(f"`{name}` must be a number (found {_short(x)})") from None
+
+
+def _dt(dt: Any) -> Optional[float]:
+    if dt is None or dt is False:
+        return None
+    if dt is True:
+        raise LtiError("`dt` must be a sampling period in seconds (True leaves it unspecified)")
+    return _number(dt, "dt")
+
+
+# ---- the model ----------------------------------------------------------------------------
+
+
+class System:
+    """An LTI model: SISO or MIMO, continuous or discrete time. Build it with :func:`tf`,
+    :func:`zpk`, :func:`ss`, :func:`model`, :func:`plant` or :func:`pid`.
+
+    Operators: ``G * H`` (series: H first, then G — the product of transfer functions),
+    ``G + H`` (parallel), ``-G``, ``G - H``, and :meth:`feedback`; numbers act as constant
+    gains. ``G[out, in]`` is one channel of a MIMO model. The factorisation (poles and zeros
+    with exact multiplicities) is computed once, at the first analysis.
+    """
+
+    __slots__ = ("_m", "_recipe")
+
+    def __init__(self, core: _core.Model, recipe: Tuple[Any, ...]) -> None:
+        self._m = core
+        self._recipe = recipe
+
+    # what it is
+    def __repr__(self) -> str:
+        return self._m.text()
+
+    @property
+    def name(self) -> str:
+        """The model's name: its transfer function, the model with its parameters, the file."""
+        return self._m.name()
+
+    @property
+    def dt(self) -> Optional[float]:
+        """The sampling period in seconds (``None``: continuous time)."""
+        return self._m.dt()
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """(outputs, inputs)."""
+        return self._m.shape()
+
+    def is_siso(self) -> bool:
+        """True for one input and one output."""
+        return self._m.shape() == (1, 1)
+
+    def __getitem__(self, index: Tuple[int, int]) -> "System":
+        """``G[out, in]``: the channel from input ``in`` to output ``out`` (0-based)."""
+        if not (isinstance(index, tuple) and len(index) == 2):
+            raise LtiError("index a model by G[out, in] (two integers)")
+        out, inp = index
+        try:
+            o, i = int(out), int(inp)
+        except (TypeError, ValueError):
+            raise LtiError("index a model by G[out, in] (two integers)") from None
+        p, m = self.shape
+        o, i = (o + p if o < 0 else o), (i + m if i < 0 else i)
+        if o < 0 or i < 0:
+            raise LtiError(f"channel [{out}, {inp}] does not exist: the model is {p}×{m}")
+        return System(self._m.channel(o, i), ("channel", self, o, i))
+
+    def tfdata(self) -> Tuple[np.ndarray, np.ndarray]:
+        """Numerator and denominator coefficients (descending powers) of a SISO transfer
+        function (of the factors expanded for a model built from them)."""
+        c = self._m.coefficients()
+        if c is None:
+            raise LtiError("a state-space model has no coefficients here: use ssdata()")
+        return c
+
+    def ssdata(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The matrices A, B, C, D (a transfer function in controllable canonical form)."""
+        return self._m.matrices()
+
+    # analyses
+    def poles(self) -> np.ndarray:
+        """The poles (roots of the characteristic polynomial, cancelled ones included), a
+        complex array with repeated poles repeated, sorted by decreasing real part."""
+        return self._m.poles()
+
+    def zeros(self) -> np.ndarray:
+        """The finite zeros, a complex array with repeated zeros repeated."""
+        return self._m.zeros()
+
+    def pole_multiplicities(self) -> List[Tuple[complex, int]]:
+        """Distinct poles with their exact multiplicities: ``[(pole, m), …]``."""
+        return self._m.pole_multiplicities()
+
+    def zero_multiplicities(self) -> List[Tuple[complex, int]]:
+        """Distinct zeros with their exact multiplicities: ``[(zero, m), …]``."""
+        return self._m.zero_multiplicities()
+
+    @property
+    def gain(self) -> float:
+        """The gain k of G = k·Π(s − z)/Π(s − p)."""
+        return self._m.gain()
+
+    def dc_gain(self) -> float:
+        """The dc gain G(0) of the reduced G (G(1) in discrete time); ``inf`` when infinite."""
+        return self._m.dc_gain()
+
+    def is_stable(self) -> Stability:
+        """Stability with the reason; true when internally stable (``bool(G.is_stable())``)."""
+        return Stability(self._m.stability())
+
+    def analyze(self) -> Analysis:
+        """Everything ``ltikit analyze --json`` reports, as an :class:`Analysis`."""
+        return Analysis(self._m.analyze())
+
+    def residue(self) -> Residue:
+        """Partial fractions of G (exact multiplicities, conjugate residues exactly conjugate)."""
+        return Residue(self._m.residue())
+
+    def step(self, t: Optional[ArrayLike] = None) -> TimeResponse:
+        """Unit-step response at the times ``t`` (an automatic grid when ``None``), with the
+        closed form."""
+        return self.response("step", t)
+
+    def impulse(self, t: Optional[ArrayLike] = None) -> TimeResponse:
+        """Unit-impulse response at the times ``t`` (a D·δ(t) term is not in the values)."""
+        return self.response("impulse", t)
+
+    def response(
+        self, u: Union[str, ArrayLike], t: Optional[ArrayLike] = None, hold: str = "foh"
+    ) -> TimeResponse:
+        """The response to ``u``: a standard input by name (``"step"``, ``"impulse"``,
+        ``"ramp"``, ``"exp:A"``, ``"sin:W"``, ``"cos:W"``) with its closed form, or input
+        samples at the times ``t`` (``hold="foh"`` linear between samples, ``"zoh"`` held)."""
+        tt = None if t is None else _vector(t, "t", limit=_points)
+        if isinstance(u, str):
+            return TimeResponse(self._m.response(u, tt))
+        if tt is None:
+            raise LtiError("`t`: give the times of the input samples `u`")
+        y = self._m.lsim(_vector(u, "u", limit=_points), tt, hold)
+        return TimeResponse({"t": np.asarray(tt), "y": y})
+
+    def step_info(self) -> StepInfo:
+        """Step metrics (MATLAB ``stepinfo``); ``LtiError`` with the reason when there are
+        none (the response does not settle, settles to 0, or G is improper)."""
+        info, note = self._m.step_info()
+        if info is None:
+            raise LtiError(note or "no step metrics")
+        return StepInfo(info)
+
+    def freq(self, w: Optional[ArrayLike] = None) -> FrequencyResponse:
+        """Frequency response at ``w`` rad/s (an automatic grid when ``None``): magnitude,
+        phase in degrees (continuous in ω), and the complex values."""
+        ww, mag, phase, g = self._m.freq(None if w is None else _vector(w, "w", limit=_points))
+        with np.errstate(divide="ignore"):
+            db = 20.0 * np.log10(mag)
+        return FrequencyResponse(
+            {"w": ww, "magnitude": mag, "magnitude_db": db, "phase_deg": phase, "response": g}
+        )
+
+    def margins(self) -> Margins:
+        """Gain and phase margins (MATLAB ``margin``), every crossing, bandwidth, resonance
+        and the delay margin."""
+        return Margins(self._m.margins())
+
+    def nyquist(self) -> Nyquist:
+        """The Nyquist contour and the criterion's counts."""
+        s, g, meta = self._m.nyquist()
+        return Nyquist({"s": s, "g": g, **meta})
+
+    def rlocus(self, negative: bool = False) -> RootLocus:
+        """The root locus of 1 + K·G for K ≥ 0 (``negative=True``: K ≤ 0)."""
+        gains, branches, rest = self._m.rlocus(bool(negative))
+        return RootLocus({"gains": gains, "branches": branches, **rest})
+
+    def __call__(self, s: complex) -> complex:
+        """G(s) at one complex point."""
+        return self._m.eval(complex(s))
+
+    # interconnections
+    def feedback(self, h: Union["System", float] = 1.0, sign: float = -1.0) -> "System":
+        """The closed loop through ``h`` (u = r + sign·h·y; ``sign=-1`` negative feedback):
+        G/(1 − sign·G·H), its poles found once from every factor as given."""
+        hh = _as_system(h)
+        s = _number(sign, "sign")
+        return System(self._m.feedback(hh._m, s), ("feedback", self, hh, s))
+
+    def __mul__(self, other: Union["System", float]) -> "System":
+        o = _as_system(other)
+        return System(o._m.series(self._m), ("series", o, self))
+
+    def __rmul__(self, other: float) -> "System":
+        o = _as_system(other)
+        return System(self._m.series(o._m), ("series", self, o))
+
+    def __add__(self, other: Union["System", float]) -> "System":
+        o = _as_system(other)
+        return System(self._m.parallel(o._m), ("parallel", self, o))
+
+    __radd__ = __add__
+
+    def __neg__(self) -> "System":
+        return self * -1.0
+
+    def __sub__(self, other: Union["System", float]) -> "System":
+        return self + (-_as_system(other))
+
+    def __rsub__(self, other: float) -> "System":
+        return _as_system(other) + (-self)
+
+    # sampling
+    def c2d(self, dt: float, method: str = "zoh", prewarp: Optional[float] = None) -> "System":
+        """The model sampled with period ``dt``: ``method`` ``"zoh"``, ``"foh"``,
+        ``"tustin"`` (``prewarp`` rad/s optional), ``"matched"`` or ``"impulse"``."""
+        p = None if prewarp is None else _number(prewarp, "prewarp")
+        d = _number(dt, "dt")
+        return System(self._m.c2d(d, str(method), p), ("c2d", self, d, str(method), p))
+
+    def d2c(self, method: str = "zoh", prewarp: Optional[float] = None) -> "System":
+        """The continuous model whose ``method`` sampling is this discrete one."""
+        p = None if prewarp is None else _number(prewarp, "prewarp")
+        return System(self._m.d2c(str(method), p), ("d2c", self, str(method), p))
+
+    # pictures (ltikit's own rasteriser)
+    def bode_png(
+        self,
+        path: str,
+        w: Optional[ArrayLike] = None,
+        margins: bool = True,
+        title: Optional[str] = None,
+        size: Optional[Tuple[int, int]] = None,
+    ) -> None:
+        """Writes a Bode diagram (PNG) with the margins marked."""
+        self._m.bode_png(str(path), None if w is None else _vector(w, "w", limit=_points), margins, title, size)
+
+    def step_png(
+        self,
+        path: str,
+        input: str = "step",
+        t_end: Optional[float] = None,
+        title: Optional[str] = None,
+        size: Optional[Tuple[int, int]] = None,
+    ) -> None:
+        """Writes the step (or ``input``) response (PNG) with the step metrics marked."""
+        self._m.step_png(str(path), input, t_end, title, size)
+
+    def pzmap_png(
+        self,
+        path: str,
+        guides: bool = True,
+        title: Optional[str] = None,
+        size: Optional[Tuple[int, int]] = None,
+    ) -> None:
+        """Writes the pole-zero map (PNG)."""
+        self._m.pzmap_png(str(path), guides, title, size)
+
+    def nyquist_png(
+        self, path: str, title: Optional[str] = None, size: Optional[Tuple[int, int]] = None
+    ) -> None:
+        """Writes the Nyquist diagram (PNG)."""
+        self._m.nyquist_png(str(path), title, size)
+
+    def rlocus_png(
+        self,
+        path: str,
+        negative: bool = False,
+        title: Optional[str] = None,
+        size: Optional[Tuple[int, int]] = None,
+    ) -> None:
+        """Writes the root locus (PNG)."""
+        self._m.rlocus_png(str(path), negative, title, size)
+
+    # matplotlib
+    def plot_bode(self, ax: Any = None, w: Optional[ArrayLike] = None) -> Any:
+        """Draws |G| in dB and the phase on matplotlib axes: ``ax`` a pair (magnitude, phase)
+        or ``None`` (a new figure). Returns the pair of axes."""
+        from ._mpl import plot_bode
+
+        return plot_bode(self, ax, w)
+
+    def plot_step(self, ax: Any = None, t: Optional[ArrayLike] = None) -> Any:
+        """Draws the step response on matplotlib axes (a new figure when ``None``)."""
+        from ._mpl import plot_step
+
+        return plot_step(self, ax, t)
+
+    # interop
+    def to_control(self) -> Any:
+        """The model as a python-control ``TransferFunction`` (or ``StateSpace`` for a
+        state-space model)."""
+        from ._interop import to_control
+
+        return to_control(self)
+
+    def __reduce__(self) -> Any:
+        return (_rebuild, (self._recipe,))
+
+
+def _as_system(x: Union[System, float]) -> System:
+    if isinstance(x, System):
+        return x
+    if isinstance(x, (int, float, np.integer, np.floating)):
+        return tf([float(x)], [1.0])
+    raise LtiError(f"cannot combine a model with {type(x).__name__}: give a System or a number")
+
+
+def _rebuild(recipe: Tuple[Any, ...]) -> System:
+    """A model from its recipe (pickling)."""
+    kind, *args = recipe
+    if kind == "series":
+        return System(args[1]._m.series(args[0]._m), recipe)
+    if kind == "parallel":
+        return System(args[0]._m.parallel(args[1]._m), recipe)
+    if kind == "feedback":
+        return System(args[0]._m.feedback(args[1]._m, args[2]), recipe)
+    if kind == "channel":
+        return System(args[0]._m.channel(args[1], args[2]), recipe)
+    if kind == "c2d":
+        return System(args[0]._m.c2d(args[1], args[2], args[3]), recipe)
+    if kind == "d2c":
+        return System(args[0]._m.d2c(args[1], args[2]), recipe)
+    return System(getattr(_core.Model, kind)(*args), recipe)
+
+
+# ---- constructors -------------------------------------------------------------------------
+
+
+def tf(num: ArrayLike, den: ArrayLike, dt: Optional[float] = None) -> System:
+    """A transfer function from its coefficients in descending powers of s (of z with
+    ``dt``): ``tf([4], [1, 0.8, 4])`` is 4/(s² + 0.8 s + 4). Numbers are read like a plant
+    file's (their shortest decimal text decides the structure exactly)."""
+    args = (_vector(num, "num", limit=_order), _vector(den, "den", limit=_order), _dt(dt))
+    return System(_core.Model.from_tf(*args), ("from_tf",) + args)
+
+
+def zpk(zeros: ArrayLike, poles: ArrayLike, gain: float, dt: Optional[float] = None) -> System:
+    """A model from its zeros, poles (conjugate pairs complete; repeated roots repeated) and
+    gain k of G = k·Π(s − z)/Π(s − p). No root finding: the multiplicities are as given."""
+    args = (
+        _vector(zeros, "zeros", complex, limit=_points),
+        _vector(poles, "poles", complex, limit=_points),
+        _number(gain, "gain"),
+        _dt(dt),
+    )
+    return System(_core.Model.from_zpk(*args), ("from_zpk",) + args)
+
+
+def ss(
+    A: ArrayLike, B: ArrayLike, C: ArrayLike, D: ArrayLike = None, dt: Optional[float] = None
+) -> System:
+    """A state-space model ẋ = Ax + Bu, y = Cx + Du (x[k+1] = … with ``dt``); D zero when
+    omitted (a scalar D fills the p×m matrix)."""
+    a, b, c = _matrix(A, "a"), _matrix(B, "b"), _matrix(C, "c")
+    d: Optional[list] = None
+    if D is not None:
+        if np.ndim(D) == 0:
+            value = _number(D, "d")
+            inputs = len(b[0]) if b else 0
+            d = None if value == 0 else [[value] * inputs for _ in c]
+        else:
+            d = _matrix(D, "d")
+    args = (a, b, c, d, _dt(dt))
+    return System(_core.Model.from_ss(*args), ("from_ss",) + args)
+
+
+def model(name: str, **params: float) -> System:
+    """A textbook model of the seed with parameters: ``model("spring-mass-damper", M=1,
+    C=0.4, K=4)``; :func:`models` lists them with their defaults."""
+    p = [(str(k), _number(v, k)) for k, v in params.items()]
+    return System(_core.Model.from_model(str(name), p), ("from_model", str(name), p))
+
+
+def models() -> dict:
+    """The textbook models and their parameters with default values."""
+    return {name: dict(params) for name, params in _core.model_names()}
+
+
+def plant(path: str) -> System:
+    """A plant file (TOML: ``num``/``den``, matrices ``a``…``d``, or ``model`` with
+    ``[params]``; optional ``dt``)."""
+    return System(_core.Model.from_plant_file(str(path)), ("from_plant_file", str(path)))
+
+
+def plant_line(line: str) -> System:
+    """A batch line (one JSON record, the plant-file schema)."""
+    return System(_core.Model.from_json_line(str(line)), ("from_json_line", str(line)))
+
+
+def controller(kind: str, **params: float) -> System:
+    """A controller as a transfer function: ``p`` (kp), ``pi`` (kp, ki), ``pd`` (kp, kd,
+    tf), ``pid`` (kp, ki, kd, tf), ``lead``/``lag`` (k, z, p)."""
+    p = [(str(k), _number(v, k)) for k, v in params.items()]
+    return System(_core.Model.from_controller(str(kind), p), ("from_controller", str(kind), p))
+
+
+def pid(kp: float = 0.0, ki: float = 0.0, kd: float = 0.0, tf: float = 0.0) -> System:
+    """PID controller kp + ki/s + kd·s/(tf·s + 1) (MATLAB's Tf; a zero gain leaves its term
+    out)."""
+    params = {"kp": kp, "ki": ki, "kd": kd, "tf": tf}
+    return controller("pid", **{k: v for k, v in params.items() if k == "kp" or v != 0})
+
+
+def batch(plants: Sequence[System]) -> List[Analysis]:
+    """Analyses ``plants`` on all cores with the GIL released: one :class:`Analysis` per
+    plant (the ``analyze`` document plus ``margins``), or one with ``error`` alone."""
+    cores = []
+    for i, p in enumerate(plants):
+        if not isinstance(p, System):
+            raise LtiError(f"`plants`: item {i} is a {type(p).__name__}, not a System")
+        cores.append(p._m)
+    return [Analysis(d) for d in _core.batch(cores)]
+
+
+def from_control(sys: Any) -> System:
+    """A python-control ``TransferFunction`` or ``StateSpace`` as a :class:`System`."""
+    from ._interop import from_control as f
+
+    return f(sys)
+
+
+def from_scipy(sys: Any) -> System:
+    """A scipy.signal ``lti``/``dlti`` (TransferFunction, ZerosPolesGain or StateSpace)."""
+    from ._interop import from_scipy as f
+
+    return f(sys)

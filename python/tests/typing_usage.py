@@ -1,0 +1,34 @@
+"""Checked by mypy in CI (not a test module): the public API's types as a user sees them."""
+
+from typing import List, Optional, Tuple
+
+import numpy as np
+
+import ltikit as lk
+
+
+def usage() -> None:
+    g: lk.System = lk.tf([4], [1, 0.8, 4])
+    h: lk.System = lk.zpk([], [-1, -2], 2.0) * g + 1.0
+    t: lk.System = h.feedback(lk.pid(kp=1.0, ki=0.5), sign=-1)
+    p: np.ndarray = t.poles()
+    m: List[Tuple[complex, int]] = g.pole_multiplicities()
+    a: lk.Analysis = g.analyze()
+    order: int = a.order
+    s: lk.Stability = g.is_stable()
+    ok: bool = bool(s)
+    r: lk.TimeResponse = g.step(np.linspace(0, 10, 11))
+    tt, yy = r
+    fr: lk.FrequencyResponse = g.freq()
+    mg: lk.Margins = g.margins()
+    gm: Optional[float] = mg.gain_margin
+    results: List[lk.Analysis] = lk.batch([g, h])
+    dt: Optional[float] = lk.tf([1], [1, -0.5], dt=0.1).dt
+    shape: Tuple[int, int] = lk.ss([[-1]], [[1]], [[1]]).shape
+    ch: lk.System = lk.model("spring-mass-damper", M=1.0)[0, 0]
+    g.bode_png("/tmp/x.png", size=(400, 300))
+    try:
+        lk.tf([1], [])
+    except lk.LtiError as e:
+        msg: str = str(e)
+    print(p, m, order, ok, tt, yy, fr, gm, results, dt, shape, ch, msg)
