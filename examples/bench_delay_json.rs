@@ -41,11 +41,27 @@ fn median_time<T>(repeat: usize, min_time: f64, mut f: impl FnMut() -> T) -> f64
 }
 
 /// The loops of the comparison: (name, num, den, delay, kp, ki, horizon).
-type Case = (&'static str, &'static [f64], &'static [f64], f64, f64, f64, f64);
+type Case = (
+    &'static str,
+    &'static [f64],
+    &'static [f64],
+    f64,
+    f64,
+    f64,
+    f64,
+);
 const LOOPS: &[Case] = &[
     ("fopdt", &[1.0], &[1.0, 1.0], 1.0, 0.5, 1.0 / 3.0, 10.0),
     ("tank", &[1.0], &[1.0, 0.5], 2.0, 0.4, 0.15, 20.0),
-    ("second_order", &[1.0], &[1.0, 1.0, 1.0], 1.0, 0.3, 0.2, 10.0),
+    (
+        "second_order",
+        &[1.0],
+        &[1.0, 1.0, 1.0],
+        1.0,
+        0.3,
+        0.2,
+        10.0,
+    ),
 ];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -58,7 +74,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let l = c.series(&g)?;
         let ld = l.clone().with_delay(delay)?;
         let n = 10_000;
-        let t: Vec<f64> = (0..n).map(|i| horizon * i as f64 / (n - 1) as f64).collect();
+        let t: Vec<f64> = (0..n)
+            .map(|i| horizon * i as f64 / (n - 1) as f64)
+            .collect();
         let step = l.delayed_feedback_response(delay, &Input::Step, &t)?;
         let time = median_time(7, 0.5, || {
             l.delayed_feedback_response(delay, &Input::Step, &t)

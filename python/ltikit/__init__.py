@@ -640,11 +640,23 @@ def _rebuild(recipe: Tuple[Any, ...]) -> System:
 # ---- constructors -------------------------------------------------------------------------
 
 
-def tf(num: ArrayLike, den: ArrayLike, dt: Optional[float] = None) -> System:
+def tf(
+    num: ArrayLike,
+    den: ArrayLike,
+    dt: Optional[float] = None,
+    delay: Optional[float] = None,
+) -> System:
     """A transfer function from its coefficients in descending powers of s (of z with
     ``dt``): ``tf([4], [1, 0.8, 4])`` is 4/(s² + 0.8 s + 4). Numbers are read like a plant
-    file's (their shortest decimal text decides the structure exactly)."""
-    args = (_vector(num, "num", limit=_order), _vector(den, "den", limit=_order), _dt(dt))
+    file's (their shortest decimal text decides the structure exactly). ``delay=T`` is a dead
+    time e^(−sT), kept exact (the phase loses ωT, responses are shifted, margins list the
+    delayed crossings); in discrete time a whole number of periods, z^(−d)."""
+    args = (
+        _vector(num, "num", limit=_order),
+        _vector(den, "den", limit=_order),
+        _dt(dt),
+        None if delay is None else _number(delay, "delay"),
+    )
     return System(_core.Model.from_tf(*args), ("from_tf",) + args)
 
 

@@ -17,7 +17,12 @@ class Model:
     """One LTI model as the library holds it (wrapped by ``ltikit.System``)."""
 
     @staticmethod
-    def from_tf(num: Sequence[float], den: Sequence[float], dt: Optional[float] = None) -> Model: ...
+    def from_tf(
+        num: Sequence[float],
+        den: Sequence[float],
+        dt: Optional[float] = None,
+        delay: Optional[float] = None,
+    ) -> Model: ...
     @staticmethod
     def from_zpk(
         zeros: Sequence[complex], poles: Sequence[complex], gain: float, dt: Optional[float] = None

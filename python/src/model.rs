@@ -173,8 +173,13 @@ impl Model {
     /// A transfer function from coefficients in descending powers (read like a plant file's
     /// lists: the exact path decides the structure from their shortest decimal text).
     #[staticmethod]
-    #[pyo3(signature = (num, den, dt=None))]
-    fn from_tf(num: Vec<f64>, den: Vec<f64>, dt: Option<f64>) -> PyResult<Model> {
+    #[pyo3(signature = (num, den, dt=None, delay=None))]
+    fn from_tf(
+        num: Vec<f64>,
+        den: Vec<f64>,
+        dt: Option<f64>,
+        delay: Option<f64>,
+    ) -> PyResult<Model> {
         guard(|| {
             if den.is_empty() {
                 return Err(LtiError::invalid("`den`: no numbers given"));
@@ -183,7 +188,8 @@ impl Model {
                 return Err(LtiError::invalid("`num`: no numbers given"));
             }
             let p = Plant::from_coefficients(coefficients_of(&num), coefficients_of(&den), None)?;
-            p.with_domain(domain_of(dt)?)
+            p.with_domain(domain_of(dt)?)?
+                .with_delay(delay.unwrap_or(0.0))
         })
         .map(Model::of_plant)
     }

@@ -177,3 +177,19 @@ def test_c2d_zoh_closed_form_and_back():
         lk.tf([1], [1, 1]).c2d(0.1, "wobble")
     with pytest.raises(lk.LtiError):
         lk.tf([1], [1, 1]).d2c()  # not discrete
+
+
+def test_a_dead_time_is_kept_exact():
+    # e^(−0.5 s)·2/(s + 1): |G| unchanged, phase −atan ω − 0.5 ω; the step is 0 before 0.5 s;
+    # the phase margin 120° − √3·0.5 rad and the delay margin 2π/(3√3) − 0.5 (closed forms)
+    import math
+    g = lk.tf([2], [1, 1], delay=0.5)
+    f = g.freq([1.0])
+    assert abs(f.phase_deg[0] - math.degrees(-math.atan(1.0) - 0.5)) < 1e-12
+    y = g.step(np.array([0.25, 1.5])).y
+    assert y[0] == 0.0 and abs(y[1] - 2 * (1 - math.exp(-1.0))) < 1e-14
+    m = g.margins()
+    assert abs(m.phase_margin_deg - (120 - math.degrees(math.sqrt(3) * 0.5))) < 1e-10
+    assert abs(m.delay_margin - (2 * math.pi / (3 * math.sqrt(3)) - 0.5)) < 1e-12
+    with pytest.raises(lk.LtiError):
+        lk.tf([1], [1, 1], delay=-1)

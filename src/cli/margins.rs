@@ -181,7 +181,13 @@ pub fn report(m: &Margins) -> String {
     }
     if m.phase_crossings.len() > 1 || m.gain_crossings.len() > 1 {
         s.push_str("All crossings:\n");
-        for c in &m.phase_crossings {
+        // a dead time makes them endless: the first few in the text (all listed in --json)
+        let shown = if m.crossings_listed_to.is_some() {
+            6
+        } else {
+            usize::MAX
+        };
+        for c in m.phase_crossings.iter().take(shown) {
             s.push_str(&format!(
                 "  phase -180° at w = {} rad/s: gain margin {} ({} dB)\n",
                 fmt_sig(c.w, 7),
@@ -198,10 +204,17 @@ pub fn report(m: &Margins) -> String {
         }
     }
     if let Some(w) = m.crossings_listed_to {
+        let more = m.phase_crossings.len().saturating_sub(6);
         s.push_str(&format!(
-            "  (the dead time makes the phase cross -180° infinitely often: the crossings up to \
-             w = {} rad/s are listed)\n",
-            fmt_sig(w, 7)
+            "  (the dead time makes the phase cross -180° infinitely often: {} crossings up to \
+             w = {} rad/s{}, all in --json)\n",
+            m.phase_crossings.len(),
+            fmt_sig(w, 7),
+            if more > 0 {
+                format!(", {more} not shown")
+            } else {
+                String::new()
+            }
         ));
     }
     s.push_str(&format!(
