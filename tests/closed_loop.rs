@@ -371,3 +371,29 @@ fn plant_file_controller_section() {
     let e = Plant::from_record(&bad).unwrap_err().to_string();
     assert!(e.contains("parameters: kp, ki"), "{e}");
 }
+
+/// A digital controller given in z (`tf:NUM/DEN`) is used as given in front of a discrete
+/// plant, not discretised: G(z) = 0.1/(z − 0.9), C(z) = (0.5 z − 0.4)/(z − 1) close to
+/// (z − 0.9)(z − 1) + 0.1(0.5 z − 0.4) = z² − 1.85 z + 0.86, poles 0.925 ± j·√0.0175/2
+/// (|z|² = 0.86). In front of a continuous plant the same spec is C(s).
+#[test]
+fn a_controller_given_in_z_is_used_as_given() {
+    use ltikit::analysis::LoopSystem;
+    use ltikit::analysis::closed_loop::select;
+    use ltikit::lti::{Controller, Domain, Plant};
+    let mut p = Plant::from_text(Some("0.1"), "1 -0.9")
+        .unwrap()
+        .with_domain(Domain::discrete(0.1).unwrap())
+        .unwrap();
+    p.controller = Some(Controller::parse("tf:0.5 -0.4/1 -1").unwrap());
+    p.selection = Some(LoopSystem::ClosedLoop);
+    let (t, _) = select(&p, p.factored().unwrap()).unwrap();
+    let pole = t.poles().iter().find(|r| r.value.im > 0.0).unwrap().value;
+    assert!((pole.re - 0.925).abs() < 1e-14);
+    assert!((pole.im - 0.0175f64.sqrt() / 2.0).abs() < 1e-14);
+    assert!((pole.norm_sqr() - 0.86).abs() < 1e-14);
+    // bad specs name the problem
+    for bad in ["tf:1 2", "tf:1/0", "tf:x/1", "tf:1/nan"] {
+        assert!(Controller::parse(bad).is_err(), "{bad}");
+    }
+}

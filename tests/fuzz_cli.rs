@@ -438,6 +438,22 @@ fn controller(r: &mut Rng) -> String {
     if r.one_in(15) {
         return long_text(r);
     }
+    if r.one_in(6) {
+        // a controller given by its coefficients, in the loop's own variable
+        return r
+            .pick(&[
+                "tf:0.5 -0.4/1 -1",
+                "tf:1/1 0",
+                "tf:1 2 3/1",
+                "tf:1/0",
+                "tf:/1",
+                "tf:1e300/1e-300 1",
+                "tf:nan/1",
+                "tf:1",
+                "tf:1 x/1",
+            ])
+            .into();
+    }
     let v = || ["0", "1", "-1", "2.5", "1e300", "1e-300", "nan", "-0.01"];
     let kind = r.pick(&["p", "pi", "pd", "pid", "lead", "lag", "pidd", "", "pid:"]);
     let keys: &[&str] = match kind {

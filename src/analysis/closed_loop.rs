@@ -261,6 +261,10 @@ pub fn select(plant: &Plant, g: Factored) -> Result<(Factored, Option<ClosedLoop
     // a continuous controller in front of a discrete-time plant: C(z) by its method
     let cf = c.tf()?.factored()?;
     let cf = match g.domain().dt() {
+        // a controller given by coefficients is already in the loop's variable: C(z)
+        Some(dt) if c.is_given_in_loop_variable() => {
+            cf.with_domain(crate::lti::Domain::discrete(dt)?)
+        }
         Some(dt) => cf.c2d(dt, c.method())?,
         None => cf,
     };

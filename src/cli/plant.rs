@@ -77,7 +77,9 @@ pub struct PlantArgs {
     pub channel: Option<String>,
     /// A controller C in front of the plant, unity negative feedback: KIND:NAME=VALUE,… with
     /// p:kp | pi:kp,ki | pd:kp,kd,tf | pid:kp,ki,kd,tf (tf: derivative filter time constant,
-    /// 0 = none) | lead:k,z,p (0<z<p) | lag:k,z,p (0<p<z), e.g. "pid:kp=2,ki=1,kd=0.5,tf=0.01".
+    /// 0 = none) | lead:k,z,p (0<z<p) | lag:k,z,p (0<p<z), e.g. "pid:kp=2,ki=1,kd=0.5,tf=0.01";
+    /// or tf:NUM/DEN, coefficients in the loop's own variable (in z for a discrete plant, used
+    /// as given), e.g. "tf:0.5 -0.4/1 -1".
     /// With a controller, margins, bode and nyquist read the loop L = C·G and the other
     /// commands the closed loop T = L/(1+L) unless one of the options below is given.
     #[arg(long, value_name = "KIND:PARAMS")]
@@ -179,7 +181,9 @@ impl PlantArgs {
                 let c = p.controller.as_ref().map_or_else(
                     || "1".to_string(),
                     |c| {
-                        if discrete {
+                        if discrete && c.is_given_in_loop_variable() {
+                            format!("{c} (given in z)")
+                        } else if discrete {
                             format!("{c} ({}, in z)", c.method().name())
                         } else {
                             c.to_string()

@@ -10,6 +10,7 @@
 //! | `pid` | `kp`, `ki`, `kd`, `tf` (≥ 0, default 0) | kp + ki/s + kd·s/(tf·s + 1) |
 //! | `lead` | `k`, `z`, `p` (0 < z < p) | k·(s + z)/(s + p) |
 //! | `lag` | `k`, `z`, `p` (0 < p < z) | k·(s + z)/(s + p) |
+//! | `tf` | `tf:NUM/DEN`, coefficient lists in descending powers | NUM/DEN **in the loop's own variable**: s for a continuous plant, z for a discrete one (a controller given in z is used as given, not discretised) |
 //!
 //! `tf` is the time constant of the derivative filter (MATLAB's `Tf` of `pid(Kp, Ki, Kd, Tf)`);
 //! `tf = 0` leaves the derivative unfiltered, an improper controller that only a plant with
@@ -78,6 +79,9 @@ pub struct Controller {
     params: Vec<(&'static str, f64)>,
     /// How C(s) becomes C(z) in front of a discrete-time plant (Tustin by default).
     method: Discretization,
+    /// The `tf` kind: its coefficients (numerator, denominator, descending powers), read in
+    /// the loop's variable.
+    coefficients: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Controller {
@@ -88,6 +92,27 @@ impl Controller {
     /// number, a parameter given twice, and those of [`Controller::new`].
     pub fn parse(spec: &str) -> Result<Controller> {
         let (kind, rest) = spec.split_once(':').unwrap_or((spec, ""));
+        if kind.trim().eq_ignore_ascii_case("tf") {
+            let Some((num, den)) = rest.split_once('/') else {
+                return Err(LtiError::invalid(
+                    "`controller` tf:NUM/DEN: give the numerator and the denominator \
+                     coefficients separated by '/', e.g. tf:0.5 -0.4/1 -1",
+                ));
+            };
+            let list = |text: &str, what: &str| -> Result<Vec<f64>> {
+                text.split([' ', ','])
+                    .filter(|t| !t.is_empty())
+                    .map(|t| {
+                        t.parse::<f64>()
+                            .map_err(|_| LtiError::bad_number(what, t, "is not a number"))
+                    })
+                    .collect()
+            };
+            return Controller::from_coefficients(
+                &list(num, "`controller` numerator")?,
+                &list(den, "`controller` denominator")?,
+            );
+        }
         let mut params = Vec::new();
         for item in rest.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             let Some((k, v)) = item.split_once('=') else {
@@ -106,6 +131,37 @@ impl Controller {
         Self::new(kind.trim(), &params)
     }
 
+    /// A controller given by its transfer-function coefficients (descending powers), read in
+    /// the loop's own variable: s in front of a continuous plant, z in front of a discrete one
+    /// (there it is used as given, not discretised — a digital controller designed in z).
+    ///
+    /// Errors: those of [`TransferFunction::from_descending`] (empty or zero denominator,
+    /// NaN/∞).
+    ///
+    /// ```
+    /// use ltikit::lti::Controller;
+    /// // a digital PI in z: C(z) = (0.5 z − 0.4)/(z − 1)
+    /// let c = Controller::parse("tf:0.5 -0.4/1 -1").unwrap();
+    /// assert_eq!(c.tf().unwrap().to_string(), "(0.5 s - 0.4) / (s - 1)");
+    /// assert_eq!(c.to_string(), "tf:0.5 -0.4/1 -1");
+    /// assert!(c.is_given_in_loop_variable());
+    /// ```
+    pub fn from_coefficients(num: &[f64], den: &[f64]) -> Result<Controller> {
+        let g = TransferFunction::from_descending(num, den)?;
+        Ok(Controller {
+            kind: "tf",
+            params: Vec::new(),
+            method: Discretization::Tustin { prewarp: None },
+            coefficients: Some((g.num().coeffs().to_vec(), g.den().coeffs().to_vec())),
+        })
+    }
+
+    /// True for a controller given by coefficients (`tf`): read in the loop's variable, so in
+    /// front of a discrete plant it is already C(z).
+    pub fn is_given_in_loop_variable(&self) -> bool {
+        self.coefficients.is_some()
+    }
+
     /// A controller of `kind` with `params` (names as in the [module docs](self)).
     ///
     /// Errors: an unknown kind or parameter, a parameter given twice, a NaN or infinite value,
@@ -115,7 +171,7 @@ impl Controller {
         let lower = kind.to_ascii_lowercase();
         let Some(&(kind, names)) = KINDS.iter().find(|(k, _)| *k == lower) else {
             return Err(LtiError::invalid(format!(
-                "unknown controller kind '{}' (known: {})",
+                "unknown controller kind '{}' (known: {}, tf)",
                 abbreviate(kind),
                 KINDS.iter().map(|(k, _)| *k).collect::<Vec<_>>().join(", ")
             )));
@@ -147,6 +203,7 @@ impl Controller {
             kind,
             params: out,
             method: Discretization::Tustin { prewarp: None },
+            coefficients: None,
         };
         c.validate()?;
         Ok(c)
@@ -240,6 +297,9 @@ impl Controller {
     ///
     /// Errors: none for a validated controller beyond those of [`TransferFunction::new`].
     pub fn tf(&self) -> Result<TransferFunction> {
+        if let Some((num, den)) = &self.coefficients {
+            return TransferFunction::from_descending(num, den);
+        }
         if let "lead" | "lag" = self.kind {
             return TransferFunction::from_descending(
                 &[self.get("k"), self.get("k") * self.get("z")],
@@ -275,6 +335,10 @@ impl Controller {
 impl fmt::Display for Controller {
     /// The spec that reads back as this controller: `pid:kp=2,ki=1,kd=0.5,tf=0.01`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some((num, den)) = &self.coefficients {
+            let text = |c: &[f64]| c.iter().map(|x| fmt_num(*x)).collect::<Vec<_>>().join(" ");
+            return write!(f, "tf:{}/{}", text(num), text(den));
+        }
         let list: Vec<String> = self
             .params
             .iter()
