@@ -20,7 +20,7 @@ use crate::lti::controller::{Controller, LoopSystem};
 /// How many characteristic roots the reports list.
 const ROOTS_LISTED: usize = 4;
 /// Most delays a default horizon spans (the method of steps adds one piece per delay).
-const HORIZON_DELAYS: f64 = 30.0;
+const HORIZON_DELAYS: f64 = 1000.0;
 
 /// A controller in unity feedback around a plant with a dead time.
 pub struct DelayedLoop {

@@ -28,6 +28,7 @@
 //! A bi-proper L makes Δ of neutral type: analysed when |L(∞)| < 1, refused when ≥ 1 (then
 //! roots lie in, or approach, the right half plane for every T > 0).
 
+pub mod march;
 mod parts;
 mod roots;
 mod stability;
@@ -35,8 +36,12 @@ pub mod steps;
 pub mod steps_info;
 mod winding;
 
+pub use march::{DelayMarch, MAX_MARCH_INTERVALS, MAX_MARCH_NODES};
 pub use roots::{CharacteristicRoot, DelayRoots};
 pub use stability::{
     CrossingDirection, DelayCrossing, DelayInterval, DelayStability, MAX_DELAY_EVENTS,
 };
-pub use steps::{DelayedClosedForm, DelayedResponse, MAX_DELAY_PIECES};
+pub use steps::{
+    CLOSED_FORM_PIECES, CROSS_CHECK_PIECES, DelayMethod, DelayedClosedForm, DelayedResponse,
+    MAX_DELAY_PIECES,
+};
