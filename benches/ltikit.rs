@@ -364,4 +364,29 @@ mod delay {
             t.iter().map(|&x| y.eval(x)).sum::<f64>()
         });
     }
+
+    /// Over 1000 delays (T = 0.01 s, horizon 10 s) at 10⁴ samples: the Chebyshev collocation
+    /// march of the delay equation (`analysis::delay::march`), with the first 10 pieces'
+    /// closed form as its cross-check.
+    #[divan::bench(sample_count = 20)]
+    fn step_1000_delays_10k_samples(bencher: Bencher) {
+        let l = pi_fopdt();
+        let t: Vec<f64> = (0..10_000).map(|i| i as f64 * 10.0 / 9_999.0).collect();
+        bencher.bench(|| {
+            black_box(&l)
+                .delayed_feedback_response(0.01, &Input::Step, black_box(&t))
+                .unwrap()
+        });
+    }
+
+    /// Step metrics over 1000 delays (T = 0.01 s, horizon 10 s) on the collocation march.
+    #[divan::bench(sample_count = 20)]
+    fn step_info_1000_delays(bencher: Bencher) {
+        let l = pi_fopdt();
+        bencher.bench(|| {
+            black_box(&l)
+                .delayed_step_info(0.01, 10.0, true, &Default::default())
+                .unwrap()
+        });
+    }
 }

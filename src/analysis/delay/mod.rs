@@ -10,6 +10,7 @@
 //! | an independent count by the delayed Nyquist criterion | [`Factored::delayed_nyquist_count`](crate::analysis::Factored::delayed_nyquist_count) |
 //! | the closed-loop response, exact (method of steps) | [`Factored::delayed_feedback_response`](crate::analysis::Factored::delayed_feedback_response) |
 //! | its step metrics over a horizon | [`Factored::delayed_step_info`](crate::analysis::Factored::delayed_step_info) |
+//! | the response over many delays (a delay short against the dynamics) | the same calls: beyond [`CLOSED_FORM_PIECES`] delays they march the delay equation ([`march`], [`DelayMarch`]) |
 //!
 //! The delay is an argument here; nothing is stored on the loop. D and N are the reduced
 //! poles (D monic) and the reduced zeros with the gain of the factored loop; modes cancelled

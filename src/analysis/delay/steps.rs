@@ -41,13 +41,22 @@
 //! Over longer horizons the closed form degrades first: 40 pieces of the first-order loop
 //! (|L(0)| = 2): closed form off by 7e-5, march bound 2.4e-10; 60 pieces of the PI loop:
 //! closed form useless (off by 6e2), march within 4.8e-9 of y∞ (bound 6e-8); the march itself
-//! fails by 100 pieces (bound 4e-3), hence [`MAX_DELAY_PIECES`]. A long horizon
-//! against a short delay is better served by a Padé approximant of the delay.
+//! fails by 100 pieces (bound 4e-3), hence [`MAX_DELAY_PIECES`] for [`DelayedClosedForm`].
+//!
+//! # Long horizons
+//! [`Factored::delayed_feedback_response`] uses the pieces up to [`CLOSED_FORM_PIECES`] delays
+//! while their estimated error (closed form against march, and the cancellation bound) stays
+//! within 1e-10 of max(1, |y|); beyond, or when they lose accuracy, it takes the values from
+//! the Chebyshev collocation march of the delay equation ([`crate::analysis::delay::march`]),
+//! which has no alternating sum and reaches [`crate::analysis::delay::MAX_MARCH_INTERVALS`]
+//! delays. The result says which ([`DelayedResponse::method`]) and how accurate
+//! ([`DelayedResponse::estimated_error`]); with the march the closed form keeps the first
+//! [`CROSS_CHECK_PIECES`] pieces as the text and cross-check.
 //!
 //! # Limits
-//! At most [`MAX_DELAY_PIECES`] pieces (⌊t_end/T⌋), and the order of L^k (k times the order
-//! of L) at most [`crate::analysis::MAX_FACTORED_ORDER`]; beyond either, an error with the
-//! numbers (shorten the horizon, or use a Padé approximant of the delay).
+//! The closed form: at most [`MAX_DELAY_PIECES`] pieces (⌊t_end/T⌋), and the order of L^k (k
+//! times the order of L) at most [`crate::analysis::MAX_FACTORED_ORDER`]; beyond either, an
+//! error with the numbers. The response: those of the march.
 
 use std::fmt;
 
@@ -62,8 +71,8 @@ use crate::analysis::time::check_times;
 use crate::error::{LtiError, Result, check_finite};
 use crate::poly::Root;
 
-/// The most pieces (delays within the horizon, ⌊t_end/T⌋) a delayed closed loop is expanded
-/// into. Beyond it the alternating pieces have lost their accuracy for any loop with |L| ≳ 1
+/// The most pieces (delays within the horizon, ⌊t_end/T⌋) a [`DelayedClosedForm`] is expanded
+/// into (the response and step metrics go beyond on the collocation march). Beyond it the alternating pieces have lost their accuracy for any loop with |L| ≳ 1
 /// at low frequency, and the exact march of L^k (order k·n) costs O(k³) per piece: for the
 /// PI/FOPDT loop of `tests/delay_steps.rs`, 50 pieces keep y to 3.5e-9, 100 pieces only to
 /// 4e-3 (and take seconds).
@@ -379,14 +388,17 @@ impl Factored {
     /// The closed-loop response y of this loop L (continuous time, proper) with dead time
     /// `delay` > 0 in negative unity feedback, Y = L e^(−sT)/(1 + L e^(−sT))·R, to the `input`
     /// (step, impulse, ramp, exponential, sine, cosine), at the times `t` (any order, finite,
-    /// ≥ 0): exact, by the method of steps (see [`crate::analysis::delay::steps`]). The
-    /// closed form covers 0 ≤ t ≤ max(t); the values march each piece exactly and report
-    /// how far the closed form agrees.
+    /// ≥ 0), by the method of steps (see [`crate::analysis::delay::steps`]). Up to
+    /// [`CLOSED_FORM_PIECES`] delays the closed form covers 0 ≤ t ≤ max(t) and the values
+    /// march each piece exactly, reporting how far the closed form agrees; beyond (or when
+    /// the pieces lose accuracy) the values come from the collocation march
+    /// ([`crate::analysis::delay::march`]), the closed form keeping its first pieces.
     ///
     /// Zero delay is refused: the rational closed loop is [`Factored::feedback`].
     ///
-    /// Errors: those of [`DelayedClosedForm::new`], negative or non-finite times, values that
-    /// overflow.
+    /// Errors: a discrete-time or improper loop, an invalid delay or input, negative or
+    /// non-finite times, more than [`crate::analysis::delay::MAX_MARCH_INTERVALS`] delays or
+    /// [`crate::analysis::delay::MAX_MARCH_NODES`] collocation nodes, values that overflow.
     ///
     /// ```
     /// use ltikit::analysis::{Factored, Input};

@@ -42,8 +42,13 @@ impl Factored {
     /// `None` when the caller says the loop is not `stable` (the final value then does not
     /// exist). The final value is L(0)/(1 + L(0)).
     ///
-    /// Errors: those of [`DelayedClosedForm::new`], invalid options, a zero final value
-    /// (L(0) = 0), a grid beyond 4·10⁶ steps.
+    /// Up to [`CLOSED_FORM_PIECES`] delays the metrics are found on the closed form when it
+    /// agrees with the exact march of its pieces; otherwise (and over longer horizons, up to
+    /// [`crate::analysis::delay::MAX_MARCH_INTERVALS`] delays) on the collocation march
+    /// ([`DelayMarch::step_info`]).
+    ///
+    /// Errors: an invalid loop, delay or horizon, invalid options, a zero final value
+    /// (L(0) = 0), a grid beyond 4·10⁶ steps, the limits of the march.
     ///
     /// ```
     /// use ltikit::analysis::{Factored, StepInfoOptions};
