@@ -72,8 +72,8 @@ use crate::error::{LtiError, Result, check_finite};
 use crate::poly::Root;
 
 /// The most pieces (delays within the horizon, ⌊t_end/T⌋) a [`DelayedClosedForm`] is expanded
-/// into (the response and step metrics go beyond on the collocation march). Beyond it the alternating pieces have lost their accuracy for any loop with |L| ≳ 1
-/// at low frequency, and the exact march of L^k (order k·n) costs O(k³) per piece: for the
+/// into (the response and step metrics go beyond on the collocation march). Beyond it the
+/// alternating pieces have lost their accuracy for any loop with |L| ≳ 1 at low frequency, and the exact march of L^k (order k·n) costs O(k³) per piece: for the
 /// PI/FOPDT loop of `tests/delay_steps.rs`, 50 pieces keep y to 3.5e-9, 100 pieces only to
 /// 4e-3 (and take seconds).
 pub const MAX_DELAY_PIECES: usize = 100;
