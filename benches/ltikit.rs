@@ -364,4 +364,43 @@ mod delay {
             t.iter().map(|&x| y.eval(x)).sum::<f64>()
         });
     }
+
+    /// The collocation march alone over the same 10 delays at 10⁴ samples (what the pieces'
+    /// path above costs against it).
+    #[divan::bench(sample_count = 20)]
+    fn march_10_delays_10k_evals(bencher: Bencher) {
+        let l = pi_fopdt();
+        let t: Vec<f64> = (0..10_000).map(|i| i as f64 * 10.0 / 9_999.0).collect();
+        bencher.bench(|| {
+            let m =
+                ltikit::analysis::delay::DelayMarch::new(black_box(&l), 1.0, &Input::Step, 10.0)
+                    .unwrap();
+            t.iter().map(|&x| m.eval(x)).sum::<f64>()
+        });
+    }
+
+    /// Over 1000 delays (T = 0.01 s, horizon 10 s) at 10⁴ samples: the Chebyshev collocation
+    /// march of the delay equation (`analysis::delay::march`), with the first 10 pieces'
+    /// closed form as its cross-check.
+    #[divan::bench(sample_count = 20)]
+    fn step_1000_delays_10k_samples(bencher: Bencher) {
+        let l = pi_fopdt();
+        let t: Vec<f64> = (0..10_000).map(|i| i as f64 * 10.0 / 9_999.0).collect();
+        bencher.bench(|| {
+            black_box(&l)
+                .delayed_feedback_response(0.01, &Input::Step, black_box(&t))
+                .unwrap()
+        });
+    }
+
+    /// Step metrics over 1000 delays (T = 0.01 s, horizon 10 s) on the collocation march.
+    #[divan::bench(sample_count = 20)]
+    fn step_info_1000_delays(bencher: Bencher) {
+        let l = pi_fopdt();
+        bencher.bench(|| {
+            black_box(&l)
+                .delayed_step_info(0.01, 10.0, true, &Default::default())
+                .unwrap()
+        });
+    }
 }

@@ -494,7 +494,7 @@ fn bad_input_is_refused_clearly() {
     assert!(msg(0.5, &[-1.0]).contains("≥ 0"));
     let e = msg(0.001, &[100.0]);
     assert!(
-        e.contains("100000") && e.contains("MAX_DELAY_PIECES"),
+        e.contains("100001") && e.contains("MAX_MARCH_INTERVALS"),
         "{e}"
     );
     // a discrete-time loop

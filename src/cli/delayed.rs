@@ -10,6 +10,7 @@ use serde_json::{Value, json};
 
 use super::PlantArgs;
 use super::output::{pair, print, print_json};
+use crate::analysis::delay::{CLOSED_FORM_PIECES, DelayMethod};
 use crate::analysis::{
     CrossingDirection, DelayRoots, DelayStability, Factored, Input, StepInfo, StepInfoOptions,
 };
@@ -19,8 +20,8 @@ use crate::lti::controller::{Controller, LoopSystem};
 
 /// How many characteristic roots the reports list.
 const ROOTS_LISTED: usize = 4;
-/// Most delays a default horizon spans (the method of steps adds one piece per delay).
-const HORIZON_DELAYS: f64 = 30.0;
+/// Most delays a default horizon spans (beyond `CLOSED_FORM_PIECES` the collocation march).
+const HORIZON_DELAYS: f64 = 1000.0;
 
 /// A controller in unity feedback around a plant with a dead time.
 pub struct DelayedLoop {
@@ -290,8 +291,13 @@ pub fn analyze(plant: &Plant, dl: &DelayedLoop, as_json: bool) -> Result<()> {
         Ok(Some(i)) => {
             s.push_str(&super::analyze::step_text(&i));
             s.push_str(&format!(
-                "  (the closed loop by the method of steps, exact, over t ≤ {} s)\n",
-                fmt_sig(horizon, 4)
+                "  (the closed loop by the method of steps over t ≤ {} s: {})\n",
+                fmt_sig(horizon, 4),
+                if horizon / dl.delay > CLOSED_FORM_PIECES as f64 {
+                    "a Chebyshev collocation march of the delay equation, interval by interval"
+                } else {
+                    "exact pieces"
+                }
             ));
         }
         Ok(None) => {
@@ -332,6 +338,8 @@ pub fn response(
             "t": r.t,
             "y": y,
             "cancellation_bound": r.cancellation_bound,
+            "method": r.method,
+            "estimated_error": r.estimated_error,
         }));
     }
     let mut s = format!("{}\nInput: {}\n\n", dl.heading(plant), input.title());
@@ -344,11 +352,21 @@ pub fn response(
             fmt_sig(*yi, 10)
         ));
     }
-    s.push_str(&format!(
-        "\nValues exact (each piece stepped by the matrix exponential, the closed form beside \
-         it agrees to {}; rounding bound of the alternating sum {}).\n",
-        fmt_sig(r.closed_form_error, 2),
-        fmt_sig(r.max_cancellation_bound, 2)
-    ));
+    s.push_str(&match r.method {
+        DelayMethod::Pieces => format!(
+            "\nValues exact (each piece stepped by the matrix exponential, the closed form beside \
+             it agrees to {}; rounding bound of the alternating sum {}).\n",
+            fmt_sig(r.closed_form_error, 2),
+            fmt_sig(r.max_cancellation_bound, 2)
+        ),
+        DelayMethod::CollocationMarch => format!(
+            "\nValues by a Chebyshev collocation march of the delay equation, interval by \
+             interval (the closed form above covers the first {} pieces only and agrees with it \
+             to {}; estimated error {}).\n",
+            r.closed_form.len(),
+            fmt_sig(r.closed_form_error, 2),
+            fmt_sig(r.estimated_error, 2)
+        ),
+    });
     print(&s)
 }

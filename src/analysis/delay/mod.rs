@@ -10,6 +10,7 @@
 //! | an independent count by the delayed Nyquist criterion | [`Factored::delayed_nyquist_count`](crate::analysis::Factored::delayed_nyquist_count) |
 //! | the closed-loop response, exact (method of steps) | [`Factored::delayed_feedback_response`](crate::analysis::Factored::delayed_feedback_response) |
 //! | its step metrics over a horizon | [`Factored::delayed_step_info`](crate::analysis::Factored::delayed_step_info) |
+//! | the response over many delays (a delay short against the dynamics) | the same calls: beyond [`CLOSED_FORM_PIECES`] delays they march the delay equation ([`march`], [`DelayMarch`]) |
 //!
 //! The delay is an argument here; nothing is stored on the loop. D and N are the reduced
 //! poles (D monic) and the reduced zeros with the gain of the factored loop; modes cancelled
@@ -28,6 +29,7 @@
 //! A bi-proper L makes Δ of neutral type: analysed when |L(∞)| < 1, refused when ≥ 1 (then
 //! roots lie in, or approach, the right half plane for every T > 0).
 
+pub mod march;
 mod parts;
 mod roots;
 mod stability;
@@ -35,8 +37,12 @@ pub mod steps;
 pub mod steps_info;
 mod winding;
 
+pub use march::{DelayMarch, MAX_MARCH_INTERVALS, MAX_MARCH_NODES};
 pub use roots::{CharacteristicRoot, DelayRoots};
 pub use stability::{
     CrossingDirection, DelayCrossing, DelayInterval, DelayStability, MAX_DELAY_EVENTS,
 };
-pub use steps::{DelayedClosedForm, DelayedResponse, MAX_DELAY_PIECES};
+pub use steps::{
+    CLOSED_FORM_PIECES, CROSS_CHECK_PIECES, DelayMethod, DelayedClosedForm, DelayedResponse,
+    MAX_DELAY_PIECES,
+};

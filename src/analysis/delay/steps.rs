@@ -41,19 +41,29 @@
 //! Over longer horizons the closed form degrades first: 40 pieces of the first-order loop
 //! (|L(0)| = 2): closed form off by 7e-5, march bound 2.4e-10; 60 pieces of the PI loop:
 //! closed form useless (off by 6e2), march within 4.8e-9 of y∞ (bound 6e-8); the march itself
-//! fails by 100 pieces (bound 4e-3), hence [`MAX_DELAY_PIECES`]. A long horizon
-//! against a short delay is better served by a Padé approximant of the delay.
+//! fails by 100 pieces (bound 4e-3), hence [`MAX_DELAY_PIECES`] for [`DelayedClosedForm`].
+//!
+//! # Long horizons
+//! [`Factored::delayed_feedback_response`] uses the pieces up to [`CLOSED_FORM_PIECES`] delays
+//! while their estimated error (closed form against march, and the cancellation bound) stays
+//! within 1e-10 of max(1, |y|); beyond, or when they lose accuracy, it takes the values from
+//! the Chebyshev collocation march of the delay equation ([`crate::analysis::delay::march`]),
+//! which has no alternating sum and reaches [`crate::analysis::delay::MAX_MARCH_INTERVALS`]
+//! delays. The result says which ([`DelayedResponse::method`]) and how accurate
+//! ([`DelayedResponse::estimated_error`]); with the march the closed form keeps the first
+//! [`CROSS_CHECK_PIECES`] pieces as the text and cross-check.
 //!
 //! # Limits
-//! At most [`MAX_DELAY_PIECES`] pieces (⌊t_end/T⌋), and the order of L^k (k times the order
-//! of L) at most [`crate::analysis::MAX_FACTORED_ORDER`]; beyond either, an error with the
-//! numbers (shorten the horizon, or use a Padé approximant of the delay).
+//! The closed form: at most [`MAX_DELAY_PIECES`] pieces (⌊t_end/T⌋), and the order of L^k (k
+//! times the order of L) at most [`crate::analysis::MAX_FACTORED_ORDER`]; beyond either, an
+//! error with the numbers. The response: those of the march.
 
 use std::fmt;
 
 use serde::Serialize;
 
 use crate::analysis::closed_form::ClosedForm;
+use crate::analysis::delay::march::{DelayMarch, interval_index};
 use crate::analysis::factored::{Factored, MAX_FACTORED_ORDER};
 use crate::analysis::input::Input;
 use crate::analysis::laplace::Decomposition;
@@ -61,9 +71,9 @@ use crate::analysis::time::check_times;
 use crate::error::{LtiError, Result, check_finite};
 use crate::poly::Root;
 
-/// The most pieces (delays within the horizon, ⌊t_end/T⌋) a delayed closed loop is expanded
-/// into. Beyond it the alternating pieces have lost their accuracy for any loop with |L| ≳ 1
-/// at low frequency, and the exact march of L^k (order k·n) costs O(k³) per piece: for the
+/// The most pieces (delays within the horizon, ⌊t_end/T⌋) a [`DelayedClosedForm`] is expanded
+/// into (the response and step metrics go beyond on the collocation march). Beyond it the
+/// alternating pieces have lost their accuracy for any loop with |L| ≳ 1 at low frequency, and the exact march of L^k (order k·n) costs O(k³) per piece: for the
 /// PI/FOPDT loop of `tests/delay_steps.rs`, 50 pieces keep y to 3.5e-9, 100 pieces only to
 /// 4e-3 (and take seconds).
 pub const MAX_DELAY_PIECES: usize = 100;
@@ -341,22 +351,54 @@ pub struct DelayedResponse {
     pub max_cancellation_bound: f64,
     /// max |closed form − exact march| over the probe times (and over every time when the
     /// values are marched): the built-in cross-check of the closed form (its residues for
-    /// k-fold poles carry rounding that the march does not).
+    /// k-fold poles carry rounding that the march does not). With the collocation march
+    /// ([`DelayMethod::CollocationMarch`]): max |closed form − collocation| over the kinks and
+    /// mid-intervals of the closed form's first pieces (at most [`CROSS_CHECK_PIECES`]).
     pub closed_form_error: f64,
+    /// Where `y` comes from.
+    pub method: DelayMethod,
+    /// The estimated error of `y`: max(`closed_form_error`, `max_cancellation_bound`) for
+    /// the pieces; for the collocation march its own estimate ([`DelayMarch::estimated_error`]:
+    /// the unresolved Chebyshev tail plus rounding) and the cross-check on the first pieces.
+    pub estimated_error: f64,
 }
+
+/// How the values of a delayed closed loop were computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DelayMethod {
+    /// The piecewise closed form (or the exact march of its pieces), within
+    /// [`CLOSED_FORM_PIECES`] delays while it stays accurate.
+    Pieces,
+    /// The Chebyshev collocation march of the delay equation
+    /// ([`crate::analysis::delay::march`]), beyond.
+    CollocationMarch,
+}
+
+/// The alternating pieces give the values up to this many delays within the horizon (when
+/// their closed form and exact march agree to 1e-10); the collocation march beyond, up to
+/// [`crate::analysis::delay::MAX_MARCH_INTERVALS`].
+pub const CLOSED_FORM_PIECES: usize = 30;
+
+/// With the collocation march, the closed form keeps this many first pieces, as the text and
+/// the cross-check.
+pub const CROSS_CHECK_PIECES: usize = 10;
 
 impl Factored {
     /// The closed-loop response y of this loop L (continuous time, proper) with dead time
     /// `delay` > 0 in negative unity feedback, Y = L e^(−sT)/(1 + L e^(−sT))·R, to the `input`
     /// (step, impulse, ramp, exponential, sine, cosine), at the times `t` (any order, finite,
-    /// ≥ 0): exact, by the method of steps (see [`crate::analysis::delay::steps`]). The
-    /// closed form covers 0 ≤ t ≤ max(t); the values march each piece exactly and report
-    /// how far the closed form agrees.
+    /// ≥ 0), by the method of steps (see [`crate::analysis::delay::steps`]). Up to
+    /// [`CLOSED_FORM_PIECES`] delays the closed form covers 0 ≤ t ≤ max(t) and the values
+    /// march each piece exactly, reporting how far the closed form agrees; beyond (or when
+    /// the pieces lose accuracy) the values come from the collocation march
+    /// ([`crate::analysis::delay::march`]), the closed form keeping its first pieces.
     ///
     /// Zero delay is refused: the rational closed loop is [`Factored::feedback`].
     ///
-    /// Errors: those of [`DelayedClosedForm::new`], negative or non-finite times, values that
-    /// overflow.
+    /// Errors: a discrete-time or improper loop, an invalid delay or input, negative or
+    /// non-finite times, more than [`crate::analysis::delay::MAX_MARCH_INTERVALS`] delays or
+    /// [`crate::analysis::delay::MAX_MARCH_NODES`] collocation nodes, values that overflow.
     ///
     /// ```
     /// use ltikit::analysis::{Factored, Input};
@@ -381,6 +423,72 @@ impl Factored {
     ) -> Result<DelayedResponse> {
         check_times(t)?;
         let horizon = t.iter().copied().fold(0.0, f64::max);
+        check_loop(self, delay, input, horizon)?;
+        if (horizon / delay).floor() <= CLOSED_FORM_PIECES as f64 {
+            let r = self.pieces_response(delay, input, t, horizon)?;
+            let scale = r.y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+            if r.estimated_error <= CLOSED_FORM_AGREEMENT * scale {
+                return Ok(r);
+            }
+        }
+        self.march_response(delay, input, t, horizon)
+    }
+
+    /// The values by the collocation march, with the first pieces' closed form as text and
+    /// cross-check.
+    fn march_response(
+        &self,
+        delay: f64,
+        input: &Input,
+        t: &[f64],
+        horizon: f64,
+    ) -> Result<DelayedResponse> {
+        let m = DelayMarch::new(self, delay, input, horizon)?;
+        // the closed form's first pieces (fewer for a high order; none when even that fails)
+        let n: usize = self.reduced_poles().iter().map(|p| p.multiplicity).sum();
+        let nu: usize = input.poles().iter().map(|p| p.1).sum();
+        let fit = MAX_FACTORED_ORDER.saturating_sub(nu) / n.max(1);
+        let k = CROSS_CHECK_PIECES
+            .min(fit)
+            .min(interval_index(horizon, delay, 0).min(CROSS_CHECK_PIECES + 1));
+        let cf_horizon = (k as f64 * delay).min(horizon);
+        let closed_form = loop_powers(self, delay, input, cf_horizon)
+            .and_then(|p| DelayedClosedForm::of_powers(&p, delay, input))
+            .or_else(|_| DelayedClosedForm::of_powers(&[], delay, input))?;
+        let probes = probe_times(
+            &closed_form,
+            cf_horizon.min(closed_form.kink(closed_form.len())),
+        );
+        let closed_form_error = probes
+            .iter()
+            .map(|&x| (closed_form.eval(x) - m.eval(x)).abs())
+            .filter(|e| e.is_finite())
+            .fold(0.0, f64::max);
+        let y: Vec<f64> = t.iter().map(|&x| m.eval(x)).collect();
+        let bound: Vec<f64> = t.iter().map(|&x| m.error_at(x)).collect();
+        let error = t.iter().zip(&y).map(|(&x, v)| input.eval(x) - v).collect();
+        let max_cancellation_bound = bound.iter().copied().fold(0.0, f64::max);
+        Ok(DelayedResponse {
+            closed_form,
+            t: t.to_vec(),
+            y,
+            error,
+            cancellation_bound: bound,
+            max_cancellation_bound,
+            closed_form_error,
+            method: DelayMethod::CollocationMarch,
+            estimated_error: m.estimated_error.max(closed_form_error),
+        })
+    }
+
+    /// The values by the alternating pieces (closed form, or their exact march).
+    fn pieces_response(
+        &self,
+        delay: f64,
+        input: &Input,
+        t: &[f64],
+        horizon: f64,
+    ) -> Result<DelayedResponse> {
         let powers = loop_powers(self, delay, input, horizon)?;
         let closed_form = DelayedClosedForm::of_powers(&powers, delay, input)?;
         // The closed form where it agrees with the exact march at the kinks and the middle of
@@ -420,6 +528,8 @@ impl Factored {
             cancellation_bound: marched.bound,
             max_cancellation_bound,
             closed_form_error,
+            method: DelayMethod::Pieces,
+            estimated_error: closed_form_error.max(max_cancellation_bound),
         })
     }
 }
@@ -496,19 +606,7 @@ pub(crate) fn loop_powers(
     input: &Input,
     horizon: f64,
 ) -> Result<Vec<Factored>> {
-    l.domain().require_continuous(
-        "the delayed closed loop by the method of steps (a sampled loop's delay is a power of z)",
-    )?;
-    check_delay(delay)?;
-    check_finite(|| "the horizon".into(), horizon)?;
-    if horizon < 0.0 {
-        return Err(LtiError::InvalidTime {
-            value: horizon,
-            reason: "the horizon must be ≥ 0".into(),
-        });
-    }
-    input.validate()?;
-    l.require_proper("the delayed closed loop", false)?;
+    check_loop(l, delay, input, horizon)?;
     let count = DelayedClosedForm::pieces_for(horizon, delay)?;
     check_order(l, input, count)?;
     let poles = l.reduced_poles();
@@ -534,6 +632,24 @@ pub(crate) fn loop_powers(
     Ok(powers)
 }
 
+/// The checks shared by the closed form and the march: a continuous, proper loop, a delay
+/// > 0, a finite horizon ≥ 0, a valid input.
+pub(crate) fn check_loop(l: &Factored, delay: f64, input: &Input, horizon: f64) -> Result<()> {
+    l.domain().require_continuous(
+        "the delayed closed loop by the method of steps (a sampled loop's delay is a power of z)",
+    )?;
+    check_delay(delay)?;
+    check_finite(|| "the horizon".into(), horizon)?;
+    if horizon < 0.0 {
+        return Err(LtiError::InvalidTime {
+            value: horizon,
+            reason: "the horizon must be ≥ 0".into(),
+        });
+    }
+    input.validate()?;
+    l.require_proper("the delayed closed loop", false)
+}
+
 /// The delay must be a finite number > 0.
 pub(crate) fn check_delay(delay: f64) -> Result<()> {
     check_finite(|| "the delay".into(), delay)?;
@@ -547,19 +663,6 @@ pub(crate) fn check_delay(delay: f64) -> Result<()> {
         });
     }
     Ok(())
-}
-
-/// The k with kT ≤ t < (k + 1)T (T = `delay`, products as [`DelayedClosedForm::kink`]
-/// computes them) from a guess within one of it.
-fn interval_index(t: f64, delay: f64, guess: usize) -> usize {
-    let mut k = guess;
-    while k > 0 && k as f64 * delay > t {
-        k -= 1;
-    }
-    while (k + 1) as f64 * delay <= t {
-        k += 1;
-    }
-    k
 }
 
 fn too_many_pieces(horizon: f64, delay: f64, ratio: f64) -> LtiError {
@@ -651,11 +754,18 @@ mod tests {
             l.delayed_feedback_response(1.0, &Input::Step, &[-1.0])
                 .is_err()
         );
-        let e = l
+        // 10⁴ delays: the collocation march
+        let r = l
             .delayed_feedback_response(1e-3, &Input::Step, &[10.0])
+            .unwrap();
+        assert_eq!(r.method, DelayMethod::CollocationMarch);
+        // y∞ = 1/2, approached as e^(s₁t), s₁ ≈ −2 (s + 1 + e^(−0.001 s) = 0): 0.5·e^(−20) ≈ 1e-9
+        assert!((0.5 - r.y[0] - 1.0e-9).abs() < 1e-10, "{}", r.y[0]);
+        let e = l
+            .delayed_feedback_response(1e-6, &Input::Step, &[10.0])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("10000") && e.contains("100 pieces"), "{e}");
+        assert!(e.contains("MAX_MARCH_INTERVALS"), "{e}");
         let improper = Factored::from_zpk(
             &[Root::new(Complex64::new(-1.0, 0.0), 2)],
             &[Root::new(Complex64::new(-2.0, 0.0), 1)],
@@ -666,13 +776,13 @@ mod tests {
             improper.delayed_feedback_response(1.0, &Input::Step, &[1.0]),
             Err(LtiError::Improper { .. })
         ));
-        // the order limit: 50 poles × 100 pieces
+        // the order limit of the closed form: 50 poles × 100 pieces
         let fifty =
             Factored::from_zpk(&[], &[Root::new(Complex64::new(-1.0, 0.0), 50)], 1.0).unwrap();
-        let e = fifty
-            .delayed_feedback_response(0.01, &Input::Step, &[1.0])
-            .unwrap_err()
-            .to_string();
+        let e = DelayedClosedForm::new(&fifty, 0.01, &Input::Step, 1.0)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
         assert!(e.contains("MAX_FACTORED_ORDER"), "{e}");
     }
 

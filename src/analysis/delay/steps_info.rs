@@ -18,7 +18,10 @@
 //! \[0, t_end\], the settling and transient times the last exits within it — `None` with a
 //! note when y(t_end) is still outside the band. Every result carries a note saying so.
 
-use crate::analysis::delay::steps::{DelayedClosedForm, loop_powers, march_pieces, probe_times};
+use crate::analysis::delay::march::DelayMarch;
+use crate::analysis::delay::steps::{
+    CLOSED_FORM_PIECES, DelayedClosedForm, check_loop, loop_powers, march_pieces, probe_times,
+};
 use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
 use crate::analysis::step_info::search::{crossing, reach_in};
@@ -39,8 +42,13 @@ impl Factored {
     /// `None` when the caller says the loop is not `stable` (the final value then does not
     /// exist). The final value is L(0)/(1 + L(0)).
     ///
-    /// Errors: those of [`DelayedClosedForm::new`], invalid options, a zero final value
-    /// (L(0) = 0), a grid beyond 4·10⁶ steps.
+    /// Up to [`CLOSED_FORM_PIECES`] delays the metrics are found on the closed form when it
+    /// agrees with the exact march of its pieces; otherwise (and over longer horizons, up to
+    /// [`crate::analysis::delay::MAX_MARCH_INTERVALS`] delays) on the collocation march
+    /// ([`DelayMarch::step_info`]).
+    ///
+    /// Errors: an invalid loop, delay or horizon, invalid options, a zero final value
+    /// (L(0) = 0), a grid beyond 4·10⁶ steps, the limits of the march.
     ///
     /// ```
     /// use ltikit::analysis::{Factored, StepInfoOptions};
@@ -62,8 +70,7 @@ impl Factored {
         opts: &StepInfoOptions,
     ) -> Result<Option<StepInfo>> {
         opts.validate()?;
-        let powers = loop_powers(self, delay, &Input::Step, horizon)?;
-        let y = DelayedClosedForm::of_powers(&powers, delay, &Input::Step)?;
+        check_loop(self, delay, &Input::Step, horizon)?;
         if !stable {
             return Ok(None);
         }
@@ -77,8 +84,17 @@ impl Factored {
                 reason: "L(0) = −1: the closed loop has a pole at s = 0".into(),
             });
         }
-        check_against_march(&powers, &y, horizon, y_inf, opts)?;
-        y.step_info(y_inf, horizon, opts).map(Some)
+        // the closed form over a few delays, when it agrees with the exact march of its
+        // pieces; the collocation march otherwise (and over long horizons)
+        if (horizon / delay).floor() <= CLOSED_FORM_PIECES as f64 {
+            let powers = loop_powers(self, delay, &Input::Step, horizon)?;
+            let y = DelayedClosedForm::of_powers(&powers, delay, &Input::Step)?;
+            if check_against_march(&powers, &y, horizon, y_inf, opts).is_ok() {
+                return y.step_info(y_inf, horizon, opts).map(Some);
+            }
+        }
+        let m = DelayMarch::new(self, delay, &Input::Step, horizon)?;
+        m.step_info(y_inf, horizon, opts).map(Some)
     }
 }
 
@@ -249,6 +265,130 @@ impl DelayedClosedForm {
     }
 }
 
+/// A response measured piece by piece: the closed form (piece k = the sum of the first k
+/// pieces) or the collocation march (piece k = sub-interval k).
+trait Curve {
+    /// y on piece k at t (smooth on the piece's closed interval).
+    fn value_in(&self, k: usize, t: f64) -> f64;
+    /// y(t).
+    fn value_at(&self, t: f64) -> f64;
+    /// The rounding or error bound of y(t).
+    fn bound_at(&self, t: f64) -> f64;
+}
+
+impl Curve for DelayedClosedForm {
+    fn value_in(&self, k: usize, t: f64) -> f64 {
+        self.eval_in(k, t)
+    }
+    fn value_at(&self, t: f64) -> f64 {
+        self.eval(t)
+    }
+    fn bound_at(&self, t: f64) -> f64 {
+        self.error_bound(t)
+    }
+}
+
+impl Curve for DelayMarch {
+    fn value_in(&self, k: usize, t: f64) -> f64 {
+        DelayMarch::value_in(self, k, t)
+    }
+    fn value_at(&self, t: f64) -> f64 {
+        self.eval(t)
+    }
+    fn bound_at(&self, t: f64) -> f64 {
+        self.error_at(t)
+    }
+}
+
+/// Derivative samples per sub-interval of the march when its monotone pieces are searched.
+const MARCH_SCAN: usize = 64;
+
+impl DelayMarch {
+    /// Step metrics of this marched step response against the final value `y_inf` ≠ 0
+    /// declared by the caller, over 0 ≤ t ≤ `horizon` (within the march): each sub-interval
+    /// is searched on its interpolant (the derivative's sign changes among 64 samples,
+    /// refined by Brent), the kinks kT and sub-interval ends kept as candidates.
+    ///
+    /// Errors: `y_inf` zero or not finite, a horizon beyond the march, invalid options.
+    pub fn step_info(&self, y_inf: f64, horizon: f64, opts: &StepInfoOptions) -> Result<StepInfo> {
+        opts.validate()?;
+        check_finite(|| "the final value".into(), y_inf)?;
+        check_finite(|| "the horizon".into(), horizon)?;
+        if y_inf == 0.0 {
+            return Err(LtiError::Undefined {
+                what: "step metrics".into(),
+                reason: "the final value is 0".into(),
+            });
+        }
+        if !(horizon >= 0.0 && horizon < self.valid_until()) {
+            return Err(LtiError::InvalidTime {
+                value: horizon,
+                reason: format!(
+                    "the horizon must lie in [0, {}) s, where the march holds",
+                    crate::fmt::fmt_sig(self.valid_until(), 6),
+                ),
+            });
+        }
+        let last = self.piece_of(horizon);
+        let mut out = Vec::new();
+        for g in 0..=last {
+            let (a, b0) = self.bounds(g);
+            let b = if g == last { horizon } else { b0 };
+            if g < self.sub || b <= a {
+                // y = 0 before the first delay has elapsed
+                out.push(Piece { k: g, a, b });
+                continue;
+            }
+            let dn = self.node_derivatives(g);
+            let df = |t: f64| self.derivative_in(g, &dn, t);
+            let mut start = a;
+            let mut t0 = a;
+            let mut d0 = df(a);
+            for i in 1..=MARCH_SCAN {
+                let t1 = if i == MARCH_SCAN {
+                    b
+                } else {
+                    a + (b - a) * (i as f64 / MARCH_SCAN as f64)
+                };
+                let d1 = df(t1);
+                if d0 != 0.0 && d1 != 0.0 && d0.signum() != d1.signum() {
+                    let br = Bracket {
+                        a: t0,
+                        b: t1,
+                        fa: d0,
+                        fb: d1,
+                    };
+                    let c = brent(df, br, 1e-300)?;
+                    out.push(Piece {
+                        k: g,
+                        a: start,
+                        b: c,
+                    });
+                    start = c;
+                } else if d1 == 0.0 && i < MARCH_SCAN {
+                    out.push(Piece {
+                        k: g,
+                        a: start,
+                        b: t1,
+                    });
+                    start = t1;
+                }
+                t0 = t1;
+                d0 = d1;
+            }
+            out.push(Piece { k: g, a: start, b });
+        }
+        Ok(Measure {
+            y: self,
+            pieces: &out,
+            y_inf,
+            horizon,
+            opts,
+        }
+        .compute())
+    }
+}
+
 /// A monotone stretch of y: the sum of the first `k` pieces on \[a, b\].
 #[derive(Debug, Clone, Copy)]
 struct Piece {
@@ -258,17 +398,17 @@ struct Piece {
 }
 
 /// The response being measured.
-struct Measure<'a> {
-    y: &'a DelayedClosedForm,
+struct Measure<'a, C: Curve> {
+    y: &'a C,
     pieces: &'a [Piece],
     y_inf: f64,
     horizon: f64,
     opts: &'a StepInfoOptions,
 }
 
-impl Measure<'_> {
+impl<C: Curve> Measure<'_, C> {
     fn f(&self, p: &Piece, t: f64) -> f64 {
-        self.y.eval_in(p.k, t)
+        self.y.value_in(p.k, t)
     }
 
     fn compute(&self) -> StepInfo {
@@ -392,7 +532,7 @@ impl Measure<'_> {
             max_err: self.y_inf.abs(), // |y(0) − y∞|
         };
         let mut consider = |t: f64, v: f64| {
-            let bound = self.y.error_bound(t);
+            let bound = self.y.bound_at(t);
             if v.abs() > x.peak {
                 x.peak = v.abs();
                 x.peak_time = t;
@@ -412,7 +552,7 @@ impl Measure<'_> {
             x.max_err = x.max_err.max((v - self.y_inf).abs());
         };
         if let Some(r) = rise_end {
-            consider(r, self.y.eval(r));
+            consider(r, self.y.value_at(r));
         }
         for p in self.pieces {
             consider(p.a, self.f(p, p.a));
