@@ -196,7 +196,7 @@ pub enum LtiError {
     },
     /// A size the user controls exceeds its limit ([`crate::limits`]); checked before
     /// anything is allocated.
-    #[error("{field}: {value} exceeds the limit of {} ({limit})", crate::limits::amount(*.max, .unit))]
+    #[error("{field}: {value} exceeds the limit of {} ({limit})", crate::fmt::amount(*.max, .unit))]
     LimitExceeded {
         /// The field, in backquotes (`` `points` ``), or the product that is limited.
         field: String,

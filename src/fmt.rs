@@ -91,6 +91,42 @@ pub fn fmt_root(z: Complex64, sig: usize) -> String {
     }
 }
 
+/// `v` with its digits in groups of three from the right, separated by spaces, for numbers
+/// of five digits or more ("10 000 000", "4096"): how the limits are printed.
+///
+/// ```
+/// assert_eq!(ltikit::fmt::grouped(10_000_000), "10 000 000");
+/// assert_eq!(ltikit::fmt::grouped(4096), "4096");
+/// ```
+pub fn grouped(v: u64) -> String {
+    let s = v.to_string();
+    if v < 10_000 {
+        return s;
+    }
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// "10 000 000 sample points": a limit with its unit, as error messages print it.
+///
+/// ```
+/// assert_eq!(ltikit::fmt::amount(16_384, "px a side"), "16 384 px a side");
+/// assert_eq!(ltikit::fmt::amount(200, ""), "200");
+/// ```
+pub fn amount(max: u64, unit: &str) -> String {
+    if unit.is_empty() {
+        grouped(max)
+    } else {
+        format!("{} {unit}", grouped(max))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -42,9 +42,6 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         return super::batch::run(src);
     }
     let plant = a.plant.single()?;
-    if let Some(dl) = super::delayed::of(&a.plant, &plant)? {
-        return super::delayed::analyze(&plant, &dl, a.json);
-    }
     let chans = a.plant.channels(&plant)?;
     let whole = whole_model::for_plant(&plant, a.plant.channel()?.is_some());
     if whole.is_none() && (a.modes || a.shapes) {

@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, demo, freq, help, jury, linearize, margins, pade, plots, pullin, residue,
-    response, rlocus, routh, simulate,
+    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, plots, pullin,
+    residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -157,7 +157,7 @@ where
 
 pub(crate) fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Analyze(a) => analyze::run(&a),
+        Command::Analyze(a) => delayed::analyze_command(&a),
         Command::Residue(a) => residue::run(&a),
         Command::Response(a) => response::run(&a),
         Command::Freq(a) => freq::run(&a),
@@ -166,7 +166,7 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Jury(a) => jury::run_jury(&a),
         Command::Rlocus(a) => rlocus::run(&a),
         Command::Bode(a) => plots::bode(&a),
-        Command::Step(a) => plots::step(&a),
+        Command::Step(a) => delayed::step_command(&a),
         Command::Pzmap(a) => plots::pzmap(&a),
         Command::Nyquist(a) => plots::nyquist(&a),
         Command::Demo(a) => demo::run(&a),

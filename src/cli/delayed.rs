@@ -5,18 +5,21 @@
 //! the method of steps — instead of the rational closed loop. `--pade N` takes the rational
 //! way instead.
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use serde_json::{Value, json};
 
 use super::PlantArgs;
 use super::output::{pair, print, print_json};
+use super::plots::optional_json;
 use crate::analysis::delay::{CLOSED_FORM_PIECES, DelayMethod};
 use crate::analysis::{
     CrossingDirection, DelayRoots, DelayStability, Factored, Input, StepInfo, StepInfoOptions,
+    TimeResponse,
 };
 use crate::fmt::{fmt_num, fmt_root, fmt_sig};
 use crate::lti::Plant;
 use crate::lti::controller::{Controller, LoopSystem};
+use crate::plot::{PlotOptions, StepSeries, step_png};
 
 /// How many characteristic roots the reports list.
 const ROOTS_LISTED: usize = 4;
@@ -261,6 +264,18 @@ impl DelayedLoop {
     }
 }
 
+/// `ltikit analyze`: a loop closed around a dead time is reported here ([`analyze`]),
+/// everything else by the analyze command itself.
+pub fn analyze_command(a: &super::analyze::AnalyzeArgs) -> Result<()> {
+    if a.batch.is_none() {
+        let plant = a.plant.single()?;
+        if let Some(dl) = of(&a.plant, &plant)? {
+            return analyze(&plant, &dl, a.json);
+        }
+    }
+    super::analyze::run(a)
+}
+
 /// `ltikit analyze` of a delayed loop: the loop, stability in the delay, the rightmost roots
 /// and the step metrics of T over a horizon.
 pub fn analyze(plant: &Plant, dl: &DelayedLoop, as_json: bool) -> Result<()> {
@@ -372,4 +387,86 @@ pub fn response(
         ),
     });
     print(&s)
+}
+
+/// `ltikit step`: a single loop closed around a dead time is drawn here, exactly
+/// ([`delayed_step`]); everything else by the step command itself.
+pub fn step_command(a: &super::plots::StepArgs) -> Result<()> {
+    let input: Input = a.input.parse()?;
+    if !matches!(input, Input::None)
+        && let [p] = a.plant.resolve_for(LoopSystem::ClosedLoop)?.as_slice()
+        && let Some(dl) = of(&a.plant, p)?
+    {
+        let opts = a.plot.options()?;
+        return delayed_step(a, p, &dl, &input, &opts);
+    }
+    super::plots::step(a)
+}
+
+/// The step (or other) response of a loop around a dead time, exact by the method of steps,
+/// with the step metrics of T marked.
+fn delayed_step(
+    a: &super::plots::StepArgs,
+    plant: &crate::lti::Plant,
+    dl: &DelayedLoop,
+    input: &Input,
+    opts: &PlotOptions,
+) -> Result<()> {
+    let roots = dl.roots()?;
+    let t_end = match a.t_end {
+        Some(t) if t.is_finite() && t > 0.0 => t,
+        Some(t) => bail!("--t-end must be > 0, got {}", crate::error::number(t)),
+        None => dl.horizon(&roots),
+    };
+    let t: Vec<f64> = (0..=2000).map(|i| t_end * i as f64 / 2000.0).collect();
+    let y = dl.response(input, &t)?;
+    let stable = dl.unstable()? == 0 && !dl.stability.root_at_origin;
+    let info = if matches!(input, Input::Step) {
+        dl.step_info(t_end)
+            .map_err(|e| super::warn(format!("step metrics not marked: {}", super::one_line(&e))))
+            .ok()
+            .flatten()
+    } else {
+        None
+    };
+    let r = TimeResponse {
+        t,
+        y,
+        final_value: info.as_ref().map(|i| i.steady_state),
+    };
+    let label = format!(
+        "{} (dead time {} s, exact)",
+        dl.which.formula(),
+        crate::fmt::fmt_num(dl.delay)
+    );
+    let mut s = StepSeries::new(&r)
+        .label(&label)
+        .input(*input)
+        .unstable(!stable);
+    if let Some(i) = &info {
+        s = s.info(i);
+    }
+    let mut opts = opts.clone();
+    if opts.title.is_none() {
+        opts.title = Some(format!("{} response of {}", input.title(), plant.name));
+    }
+    step_png(&a.plot.output, &[s], &opts)
+        .with_context(|| format!("response plot {}", a.plot.output.display()))?;
+    if !a.plot.json {
+        return Ok(());
+    }
+    print_json(&json!({
+        "file": a.plot.output.display().to_string(),
+        "input": a.input,
+        "t_end": t_end,
+        "plants": [{
+            "label": label,
+            "step_info": optional_json(
+                info.as_ref()
+                    .map(super::analyze::json::StepInfoJson::from)
+                    .as_ref()
+            )?,
+            "diverges": !stable,
+        }],
+    }))
 }

@@ -472,11 +472,6 @@ pub fn step(a: &StepArgs) -> Result<()> {
     if matches!(input, Input::None) {
         bail!("--input none has no response to draw (use `ltikit response --ic ...`)");
     }
-    if let [p] = a.plant.resolve_for(LoopSystem::ClosedLoop)?.as_slice()
-        && let Some(dl) = super::delayed::of(&a.plant, p)?
-    {
-        return delayed_step(a, p, &dl, &input, &opts);
-    }
     let plants = labelled(&a.plant, LoopSystem::ClosedLoop)?;
     let opts = discrete_title(&opts, &format!("{} response", input.title()), &plants);
     let drawn = step_figure(&a.plot.output, &plants, &input, a.t_end, &opts)
@@ -500,74 +495,6 @@ pub fn step(a: &StepArgs) -> Result<()> {
         "input": a.input,
         "t_end": drawn.t_end,
         "plants": list,
-    }))
-}
-
-/// The step (or other) response of a loop around a dead time, exact by the method of steps,
-/// with the step metrics of T marked.
-fn delayed_step(
-    a: &StepArgs,
-    plant: &crate::lti::Plant,
-    dl: &super::delayed::DelayedLoop,
-    input: &Input,
-    opts: &PlotOptions,
-) -> Result<()> {
-    let roots = dl.roots()?;
-    let t_end = match a.t_end {
-        Some(t) if t.is_finite() && t > 0.0 => t,
-        Some(t) => bail!("--t-end must be > 0, got {}", crate::error::number(t)),
-        None => dl.horizon(&roots),
-    };
-    let t: Vec<f64> = (0..=2000).map(|i| t_end * i as f64 / 2000.0).collect();
-    let y = dl.response(input, &t)?;
-    let stable = dl.unstable()? == 0 && !dl.stability.root_at_origin;
-    let info = if matches!(input, Input::Step) {
-        dl.step_info(t_end)
-            .map_err(|e| super::warn(format!("step metrics not marked: {}", super::one_line(&e))))
-            .ok()
-            .flatten()
-    } else {
-        None
-    };
-    let r = TimeResponse {
-        t,
-        y,
-        final_value: info.as_ref().map(|i| i.steady_state),
-    };
-    let label = format!(
-        "{} (dead time {} s, exact)",
-        dl.which.formula(),
-        crate::fmt::fmt_num(dl.delay)
-    );
-    let mut s = StepSeries::new(&r)
-        .label(&label)
-        .input(*input)
-        .unstable(!stable);
-    if let Some(i) = &info {
-        s = s.info(i);
-    }
-    let mut opts = opts.clone();
-    if opts.title.is_none() {
-        opts.title = Some(format!("{} response of {}", input.title(), plant.name));
-    }
-    step_png(&a.plot.output, &[s], &opts)
-        .with_context(|| format!("response plot {}", a.plot.output.display()))?;
-    if !a.plot.json {
-        return Ok(());
-    }
-    print_json(&json!({
-        "file": a.plot.output.display().to_string(),
-        "input": a.input,
-        "t_end": t_end,
-        "plants": [{
-            "label": label,
-            "step_info": optional_json(
-                info.as_ref()
-                    .map(super::analyze::json::StepInfoJson::from)
-                    .as_ref()
-            )?,
-            "diverges": !stable,
-        }],
     }))
 }
 
@@ -659,7 +586,7 @@ fn labelled_json<T>(
 }
 
 /// A library struct as JSON, `null` when absent.
-fn optional_json<T: serde::Serialize>(x: Option<&T>) -> Result<Value> {
+pub(super) fn optional_json<T: serde::Serialize>(x: Option<&T>) -> Result<Value> {
     Ok(match x {
         Some(x) => json_value(x)?,
         None => Value::Null,

@@ -39,7 +39,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::analysis::delay::steps::check_loop;
+use crate::analysis::delay::checks::check_loop;
 use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
 use crate::error::{LtiError, Result};

@@ -29,6 +29,7 @@
 //! A bi-proper L makes Δ of neutral type: analysed when |L(∞)| < 1, refused when ≥ 1 (then
 //! roots lie in, or approach, the right half plane for every T > 0).
 
+mod checks;
 pub mod march;
 mod parts;
 mod roots;

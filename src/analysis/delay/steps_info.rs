@@ -18,9 +18,10 @@
 //! \[0, t_end\], the settling and transient times the last exits within it — `None` with a
 //! note when y(t_end) is still outside the band. Every result carries a note saying so.
 
+use crate::analysis::delay::checks::check_loop;
 use crate::analysis::delay::march::DelayMarch;
 use crate::analysis::delay::steps::{
-    CLOSED_FORM_PIECES, DelayedClosedForm, check_loop, loop_powers, march_pieces, probe_times,
+    CLOSED_FORM_PIECES, DelayedClosedForm, loop_powers, march_pieces, probe_times,
 };
 use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
