@@ -448,3 +448,22 @@ fn the_command_line_closes_the_loop_around_the_delay_exactly() {
         12.0
     );
 }
+
+/// A batch line takes `delay` and its document says so; the settling time includes it
+/// (1/(s + 1): ln 50 + T).
+#[cfg(feature = "cli")]
+#[test]
+fn batch_lines_carry_the_delay() {
+    let out = common::ltikit_with_stdin(
+        &["analyze", "--batch", "-"],
+        b"{\"num\": [1], \"den\": [1, 1], \"delay\": 0.5}\n{\"num\": [1], \"den\": [1, 1], \"delay\": -1}\n",
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    let doc: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
+    assert_eq!(doc["delay"], 0.5);
+    let ts = doc["step_info"]["settling_time"].as_f64().unwrap();
+    assert!(rel(ts, 50f64.ln() + 0.5) < 1e-12, "{ts}");
+    let bad: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
+    assert!(bad["error"].as_str().unwrap().contains("`delay`"));
+}

@@ -42,6 +42,10 @@ fn record(line: usize, text: &str) -> Value {
     out.insert("line".into(), json!(line));
     // the domain of the record, as in every plant document
     out.insert("dt".into(), json!(plant.domain().dt()));
+    if plant.delay() > 0.0 {
+        // the dead time the analyses read (every instant of the step metrics includes it)
+        out.insert("delay".into(), json!(plant.delay()));
+    }
     // a record's own name, never the generated one
     if let Some(n) = serde_json::from_str::<Value>(text)
         .ok()
