@@ -232,6 +232,24 @@ fn loop_form(c: &Factored, g: &Factored) -> Result<Factored> {
     Factored::from_parts(tf, poles, zeros)
 }
 
+/// The controller of a plant's loop: its own, or C = 1 (`p:kp=1`) when a loop is selected
+/// without one.
+///
+/// ```
+/// use ltikit::lti::{Controller, Plant};
+/// use ltikit::analysis::closed_loop::loop_controller;
+/// let mut p = Plant::from_text(None, "1 1").unwrap();
+/// assert_eq!(loop_controller(&p).unwrap().to_string(), "p:kp=1");
+/// p.controller = Some(Controller::parse("pi:kp=2,ki=1").unwrap());
+/// assert_eq!(loop_controller(&p).unwrap().to_string(), "pi:kp=2,ki=1");
+/// ```
+pub fn loop_controller(plant: &Plant) -> Result<Controller> {
+    match &plant.controller {
+        Some(c) => Ok(c.clone()),
+        None => Controller::parse("p:kp=1"),
+    }
+}
+
 /// What the analyses of `plant` read, given `g` (the plant, or its chosen channel, factored):
 /// `g` itself, or — with a loop selection ([`Plant::selection`]) — that transfer function of
 /// the loop with the plant's controller (C = 1, plain unity feedback, without one), with the
@@ -254,10 +272,7 @@ pub fn select(plant: &Plant, g: Factored) -> Result<(Factored, Option<ClosedLoop
     let Some(which) = plant.selection else {
         return Ok((g, None));
     };
-    let c = match &plant.controller {
-        Some(c) => c.clone(),
-        None => Controller::parse("p:kp=1")?,
-    };
+    let c = loop_controller(plant)?;
     // a continuous controller in front of a discrete-time plant: C(z) by its method
     let cf = c.tf()?.factored()?;
     let cf = match g.domain().dt() {

@@ -13,12 +13,12 @@ use super::output::{pair, print, print_json};
 use super::plots::optional_json;
 use crate::analysis::delay::{CLOSED_FORM_PIECES, DelayMethod};
 use crate::analysis::{
-    CrossingDirection, DelayRoots, DelayStability, Factored, Input, StepInfo, StepInfoOptions,
-    TimeResponse,
+    CrossingDirection, DelayRoots, DelayStability, DelayedResponse, Factored, Input, StepInfo,
+    StepInfoOptions, TimeResponse,
 };
 use crate::fmt::{fmt_num, fmt_root, fmt_sig};
 use crate::lti::Plant;
-use crate::lti::controller::{Controller, LoopSystem};
+use crate::lti::controller::LoopSystem;
 use crate::plot::{PlotOptions, StepSeries, step_png};
 
 /// How many characteristic roots the reports list.
@@ -68,10 +68,7 @@ pub fn of(args: &PlantArgs, plant: &Plant) -> Result<Option<DelayedLoop>> {
              analyse T or S, or replace the delay by a Padé approximant (--pade N)"
         );
     }
-    let c = match &plant.controller {
-        Some(c) => c.clone(),
-        None => Controller::parse("p:kp=1")?,
-    };
+    let c = crate::analysis::closed_loop::loop_controller(plant)?;
     let l = c.tf()?.factored()?.series(&g.rational())?;
     l.require_proper("the loop L = C·G", false)?;
     let stability = l.delay_stability()?;
@@ -114,10 +111,21 @@ impl DelayedLoop {
     /// The closed-loop response (y for T, e = r − y for S) to `input` at the times `t`.
     pub fn response(&self, input: &Input, t: &[f64]) -> Result<Vec<f64>> {
         let r = self.l.delayed_feedback_response(self.delay, input, t)?;
-        Ok(match self.which {
-            LoopSystem::Sensitivity => r.error,
-            _ => r.y,
-        })
+        Ok(self.signal(&r).to_vec())
+    }
+
+    /// The selected signal of a closed-loop response: y for T, the error e = r − y for S.
+    fn signal<'a>(&self, r: &'a DelayedResponse) -> &'a [f64] {
+        match self.which {
+            LoopSystem::Sensitivity => &r.error,
+            _ => &r.y,
+        }
+    }
+
+    /// Asymptotically stable at the loop's own delay: no root in the right half plane and
+    /// none at the origin.
+    pub fn is_stable(&self) -> Result<bool> {
+        Ok(self.unstable()? == 0 && !self.stability.root_at_origin)
     }
 
     /// Step metrics of T over `horizon` (`None` when unstable at the delay, or for S).
@@ -125,7 +133,7 @@ impl DelayedLoop {
         if self.which != LoopSystem::ClosedLoop {
             return Ok(None);
         }
-        let stable = self.unstable()? == 0 && !self.stability.root_at_origin;
+        let stable = self.is_stable()?;
         Ok(self
             .l
             .delayed_step_info(self.delay, horizon, stable, &StepInfoOptions::default())?)
@@ -245,7 +253,7 @@ impl DelayedLoop {
         let st = &self.stability;
         Ok(json!({
             "unstable_roots": self.unstable()?,
-            "stable": self.unstable()? == 0 && !st.root_at_origin,
+            "stable": self.is_stable()?,
             "stable_without_delay": st.stable_without_delay,
             "critical_delay": st.critical_delay.filter(|t| t.is_finite()),
             "stable_intervals": st.stable_intervals.iter().map(|i| {
@@ -346,10 +354,7 @@ pub fn response(
         }
     };
     let r = dl.l.delayed_feedback_response(dl.delay, input, &t)?;
-    let y = match dl.which {
-        LoopSystem::Sensitivity => r.error.clone(),
-        _ => r.y.clone(),
-    };
+    let y = dl.signal(&r).to_vec();
     if as_json {
         return print_json(&json!({
             "closed_form": r.closed_form.to_string(),
@@ -420,7 +425,7 @@ fn delayed_step(
     };
     let t: Vec<f64> = (0..=2000).map(|i| t_end * i as f64 / 2000.0).collect();
     let y = dl.response(input, &t)?;
-    let stable = dl.unstable()? == 0 && !dl.stability.root_at_origin;
+    let stable = dl.is_stable()?;
     let info = if matches!(input, Input::Step) {
         dl.step_info(t_end)
             .map_err(|e| super::warn(format!("step metrics not marked: {}", super::one_line(&e))))

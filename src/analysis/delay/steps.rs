@@ -208,32 +208,29 @@ impl DelayedClosedForm {
     /// y(t) for 0 ≤ t < (K + 1)T (δ terms excluded; at a kink kT the value just after it);
     /// 0 for t < 0; NaN for NaN and beyond the validity.
     pub fn eval(&self, t: f64) -> f64 {
+        self.locate(t).map_or_else(|v| v, |k| self.eval_in(k, t))
+    }
+
+    /// The interval k of t for the evaluations, or what they answer without one: NaN for NaN
+    /// and beyond the validity, 0 before t = 0.
+    fn locate(&self, t: f64) -> std::result::Result<usize, f64> {
         if t.is_nan() {
-            return f64::NAN;
+            return Err(f64::NAN);
         }
         if t < 0.0 {
-            return 0.0;
+            return Err(0.0);
         }
         let k = self.interval_of(t);
         if k > self.pieces.len() {
-            return f64::NAN;
+            return Err(f64::NAN);
         }
-        self.eval_in(k, t)
+        Ok(k)
     }
 
     /// y′(t) like [`DelayedClosedForm::eval`] (at a kink the derivative just after it).
     pub fn eval_derivative(&self, t: f64) -> f64 {
-        if t.is_nan() {
-            return f64::NAN;
-        }
-        if t < 0.0 {
-            return 0.0;
-        }
-        let k = self.interval_of(t);
-        if k > self.pieces.len() {
-            return f64::NAN;
-        }
-        self.derivative_in(k, t)
+        self.locate(t)
+            .map_or_else(|v| v, |k| self.derivative_in(k, t))
     }
 
     /// The rounding of the evaluation [`DelayedClosedForm::eval`] at t: 16·eps times the sum
@@ -242,16 +239,10 @@ impl DelayedClosedForm {
     /// grows with k: [`DelayedResponse::closed_form_error`] measures the whole. NaN where eval
     /// is NaN.
     pub fn error_bound(&self, t: f64) -> f64 {
-        if t.is_nan() {
-            return f64::NAN;
-        }
-        if t < 0.0 {
-            return 0.0;
-        }
-        let k = self.interval_of(t);
-        if k > self.pieces.len() {
-            return f64::NAN;
-        }
+        let k = match self.locate(t) {
+            Ok(k) => k,
+            Err(v) => return v,
+        };
         let sum: f64 = (1..=k)
             .map(|j| self.pieces[j - 1].envelope(t - self.kink(j)))
             .sum();

@@ -37,6 +37,37 @@ const GRID_FACTOR: f64 = 0.2;
 /// At least this many grid steps per interval.
 const MIN_STEPS_PER_INTERVAL: f64 = 16.0;
 
+/// The arguments of the step metrics of a delayed response, checked alike for the closed form
+/// and the march: valid options, a finite final value ≠ 0, a horizon in [0, `valid_until`),
+/// where `holds` ("the 24 pieces hold", "the march holds") says what is valid.
+fn check_metric_args(
+    opts: &StepInfoOptions,
+    y_inf: f64,
+    horizon: f64,
+    valid_until: f64,
+    holds: &str,
+) -> Result<()> {
+    opts.validate()?;
+    check_finite(|| "the final value".into(), y_inf)?;
+    check_finite(|| "the horizon".into(), horizon)?;
+    if y_inf == 0.0 {
+        return Err(LtiError::Undefined {
+            what: "step metrics".into(),
+            reason: "the final value is 0".into(),
+        });
+    }
+    if !(horizon >= 0.0 && horizon < valid_until) {
+        return Err(LtiError::InvalidTime {
+            value: horizon,
+            reason: format!(
+                "the horizon must lie in [0, {}) s, where {holds}",
+                crate::fmt::fmt_sig(valid_until, 6),
+            ),
+        });
+    }
+    Ok(())
+}
+
 impl Factored {
     /// Step metrics of the closed loop of this loop L with dead time `delay` in negative
     /// unity feedback, over 0 ≤ t ≤ `horizon` (see [`crate::analysis::delay::steps_info`]);
@@ -154,25 +185,13 @@ impl DelayedClosedForm {
     /// assert!(s.note("settling_time").unwrap().contains("over the horizon"));
     /// ```
     pub fn step_info(&self, y_inf: f64, horizon: f64, opts: &StepInfoOptions) -> Result<StepInfo> {
-        opts.validate()?;
-        check_finite(|| "the final value".into(), y_inf)?;
-        check_finite(|| "the horizon".into(), horizon)?;
-        if y_inf == 0.0 {
-            return Err(LtiError::Undefined {
-                what: "step metrics".into(),
-                reason: "the final value is 0".into(),
-            });
-        }
-        if !(horizon >= 0.0 && horizon < self.valid_until()) {
-            return Err(LtiError::InvalidTime {
-                value: horizon,
-                reason: format!(
-                    "the horizon must lie in [0, {}) s, where the {} pieces hold",
-                    crate::fmt::fmt_sig(self.valid_until(), 6),
-                    self.len()
-                ),
-            });
-        }
+        check_metric_args(
+            opts,
+            y_inf,
+            horizon,
+            self.valid_until(),
+            &format!("the {} pieces hold", self.len()),
+        )?;
         let pieces = self.monotone_pieces(horizon)?;
         Ok(Measure {
             y: self,
@@ -312,24 +331,7 @@ impl DelayMarch {
     ///
     /// Errors: `y_inf` zero or not finite, a horizon beyond the march, invalid options.
     pub fn step_info(&self, y_inf: f64, horizon: f64, opts: &StepInfoOptions) -> Result<StepInfo> {
-        opts.validate()?;
-        check_finite(|| "the final value".into(), y_inf)?;
-        check_finite(|| "the horizon".into(), horizon)?;
-        if y_inf == 0.0 {
-            return Err(LtiError::Undefined {
-                what: "step metrics".into(),
-                reason: "the final value is 0".into(),
-            });
-        }
-        if !(horizon >= 0.0 && horizon < self.valid_until()) {
-            return Err(LtiError::InvalidTime {
-                value: horizon,
-                reason: format!(
-                    "the horizon must lie in [0, {}) s, where the march holds",
-                    crate::fmt::fmt_sig(self.valid_until(), 6),
-                ),
-            });
-        }
+        check_metric_args(opts, y_inf, horizon, self.valid_until(), "the march holds")?;
         let last = self.piece_of(horizon);
         let mut out = Vec::new();
         for g in 0..=last {
