@@ -32,6 +32,7 @@
 mod checks;
 pub mod march;
 mod parts;
+mod pieces;
 mod roots;
 mod stability;
 pub mod steps;

@@ -20,9 +20,8 @@
 
 use crate::analysis::delay::checks::check_loop;
 use crate::analysis::delay::march::DelayMarch;
-use crate::analysis::delay::steps::{
-    CLOSED_FORM_PIECES, DelayedClosedForm, loop_powers, march_pieces, probe_times,
-};
+use crate::analysis::delay::pieces::{DelayedClosedForm, loop_powers};
+use crate::analysis::delay::steps::{CLOSED_FORM_PIECES, march_pieces, probe_times};
 use crate::analysis::factored::Factored;
 use crate::analysis::input::Input;
 use crate::analysis::step_info::search::{crossing, reach_in};
