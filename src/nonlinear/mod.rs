@@ -27,6 +27,7 @@
 //! | registry | [`model_names`], [`model_info`], [`build_model`] |
 //! | equilibria | [`equilibria()`], [`newton_equilibria`] |
 //! | linearisation | [`linearize()`], [`linearize_at`], [`local_stability`] |
+//! | feedback | [`StateFeedback`]: a model under u = ū + v − K(x − x̄), optionally saturated |
 //! | simulation | [`simulate()`], [`InputSignal`] (built on [`crate::analysis::Input`]), [`sample_times`] (Dormand–Prince in [`crate::numeric::rk45`]) |
 //! | picture data | [`trajectories`], [`pendulum_separatrices`], [`lorenz_divergence`], [`mems_pullin`], [`pendulum_periods`] |
 
@@ -34,6 +35,7 @@ pub mod chaos;
 pub mod elliptic;
 pub mod energy_casimir;
 pub mod equilibria;
+pub mod feedback;
 pub mod linearize;
 pub mod models;
 pub mod period;
@@ -51,6 +53,7 @@ pub use energy_casimir::{EnergyCasimir, Extremum, energy_casimir};
 pub use equilibria::{
     Equilibrium, EquilibriumMethod, EquilibriumSearch, equilibria, newton_equilibria, residual,
 };
+pub use feedback::StateFeedback;
 pub use linearize::{
     ChannelTf, Linearization, LinearizedEquilibrium, LinearizedTf, LocalStability,
     analyze_equilibrium, linearize, linearize_at, local_stability,
