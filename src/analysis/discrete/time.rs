@@ -38,16 +38,17 @@ fn sample_index(t: f64, dt: f64) -> Result<u64> {
     Ok(k as u64)
 }
 
-/// A realisation (A, B, C, D) of the reduced G (proper).
+/// A realisation (A, B, C, D) of the reduced G (proper): the cascade of real first- and
+/// second-order sections of its factors, for every source. The direct form of the
+/// coefficients is what a high-order recursion must not march: on the ZOH of the order-8
+/// bench plant (poles crowding z = 1) it drifted by 1.1e-10·max|y| from a 50-digit recursion
+/// of its own coefficients, the cascade of the (double-double polished) factors by 2e-15.
 fn realisation(f: &Factored) -> Result<StateSpace> {
     f.require_proper(
         "a discrete-time response (an improper G(z) is not causal)",
         false,
     )?;
-    let ss = match f.transfer_function() {
-        Some(_) => StateSpace::from_tf(&f.reduced_tf()?)?,
-        None => StateSpace::from_zpk(f.reduced_zeros(), f.reduced_poles(), f.gain())?,
-    };
+    let ss = StateSpace::from_zpk(f.reduced_zeros(), f.reduced_poles(), f.gain())?;
     Ok(ss.balanced())
 }
 

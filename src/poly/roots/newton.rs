@@ -3,8 +3,35 @@
 
 use num_complex::Complex64;
 
+use crate::numeric::dd::Dd;
 use crate::numeric::tol::EPS;
 use crate::poly::Poly;
+
+/// p(x) by Horner in double-double: the residual of a computed root to ~2⁻¹⁰⁶·Σ|aᵢ||x|ⁱ, so
+/// Newton can reach the root of the coefficients as given instead of stalling where the
+/// `f64` evaluation's rounding (eps·Σ|aᵢ||x|ⁱ) hides p(x).
+fn eval_dd(p: &Poly, x: f64) -> f64 {
+    let xd = Dd::from(x);
+    p.coeffs()
+        .iter()
+        .fold(Dd::ZERO, |r, &a| r * xd + Dd::from(a))
+        .to_f64()
+}
+
+/// p(z) by Horner in double-double real and imaginary parts (see [`eval_dd`]).
+fn eval_dd_complex(p: &Poly, z: Complex64) -> Complex64 {
+    let (zr, zi) = (Dd::from(z.re), Dd::from(z.im));
+    let (re, im) = p
+        .coeffs()
+        .iter()
+        .fold((Dd::ZERO, Dd::ZERO), |(rr, ri), &a| {
+            (rr * zr - ri * zi + Dd::from(a), rr * zi + ri * zr)
+        });
+    Complex64::new(re.to_f64(), im.to_f64())
+}
+
+/// At most this many Newton steps on the double-double residual after the `f64` polish.
+const DD_STEPS: usize = 3;
 
 /// γ in the acceptance test |p^(j)(c)| ≤ γ·(deg + 1)·eps·Σ|aᵢ^(j)||c|ⁱ.
 pub(super) const GAMMA: f64 = 8.0;
@@ -121,6 +148,28 @@ pub(super) fn polish_real(p: &Poly, x0: f64, reach: f64) -> f64 {
             break;
         }
     }
+    // the f64 residual stalls at the evaluation's rounding level: finish on the exact one
+    let mut fx = eval_dd(p, x).abs();
+    for _ in 0..DD_STEPS {
+        let d = dp.eval(x);
+        if fx == 0.0 || d == 0.0 || !d.is_finite() {
+            break;
+        }
+        let xn = x - eval_dd(p, x) / d;
+        let fn_ = eval_dd(p, xn).abs();
+        if fn_.partial_cmp(&fx) != Some(std::cmp::Ordering::Less)
+            || (xn - x0).abs() > reach
+            || !xn.is_finite()
+        {
+            break;
+        }
+        let done = (xn - x).abs() <= 2.0 * EPS * xn.abs();
+        x = xn;
+        fx = fn_;
+        if done {
+            break;
+        }
+    }
     x
 }
 
@@ -140,6 +189,28 @@ pub(super) fn polish_complex(p: &Poly, z0: Complex64, reach: f64) -> Complex64 {
         let fn_ = p.eval_complex(zn).norm();
         let improved = fn_ < fz;
         if !improved || (zn - z0).norm() > reach || !zn.norm().is_finite() {
+            break;
+        }
+        let done = (zn - z).norm() <= 2.0 * EPS * zn.norm();
+        z = zn;
+        fz = fn_;
+        if done {
+            break;
+        }
+    }
+    // the f64 residual stalls at the evaluation's rounding level: finish on the exact one
+    let mut fz = eval_dd_complex(p, z).norm();
+    for _ in 0..DD_STEPS {
+        let d = dp.eval_complex(z);
+        if fz == 0.0 || d.norm() == 0.0 || !d.norm().is_finite() {
+            break;
+        }
+        let zn = z - eval_dd_complex(p, z) / d;
+        let fn_ = eval_dd_complex(p, zn).norm();
+        if fn_.partial_cmp(&fz) != Some(std::cmp::Ordering::Less)
+            || (zn - z0).norm() > reach
+            || !zn.norm().is_finite()
+        {
             break;
         }
         let done = (zn - z).norm() <= 2.0 * EPS * zn.norm();
