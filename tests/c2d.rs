@@ -632,3 +632,40 @@ fn foh_and_impulse_through_the_factored_form() {
     assert!((d.num().coeff(1) - 0.1).abs() < 1e-16 && d.num().coeff(0).abs() < 1e-16);
     assert!((d.den().coeff(0) + (-0.1f64).exp()).abs() < 1e-16);
 }
+
+#[test]
+fn zoh_of_a_second_order_model_from_its_modes_equals_the_dense_exponential() {
+    // The seed's periodic lattice (N = 64, 128 states: free translation, degenerate pairs)
+    // and a Rayleigh-damped copy: c2d(ZOH) takes the modes' path (one 4×4 exponential per
+    // mode); the reference is the exponential of the whole augmented matrix
+    // [[A·T, B·T], [0, 0]] (the path every other model takes).
+    use ltikit::lti::lattice::{Boundary, Lattice, Output};
+    let lattice = Lattice::new(64, Boundary::Periodic, 1.0)
+        .and_then(|l| l.with_input(1))
+        .and_then(|l| l.with_output(Output::Particle(6)))
+        .and_then(|l| l.state_space())
+        .unwrap();
+    let mut damped = lattice.clone();
+    let d = 64;
+    for i in 0..d {
+        for j in 0..d {
+            let g = -lattice.a[(d + i, j)];
+            let identity = if i == j { 1.0 } else { 0.0 };
+            damped.a[(d + i, d + j)] = -(0.02 * identity + 0.05 * g);
+        }
+    }
+    for ss in [&lattice, &damped] {
+        let (n, m) = (ss.order(), ss.b.ncols());
+        for dt in [0.01, 0.1, 2.0] {
+            let zoh = ss.c2d(dt, ZOH).unwrap();
+            let mut aug = DMatrix::zeros(n + m, n + m);
+            aug.view_mut((0, 0), (n, n)).copy_from(&(&ss.a * dt));
+            aug.view_mut((0, n), (n, m)).copy_from(&(&ss.b * dt));
+            let e = ltikit::numeric::expm(&aug).unwrap();
+            let phi = e.view((0, 0), (n, n)).into_owned();
+            let gamma = e.view((0, n), (n, m)).into_owned();
+            let (ep, eg) = (mat_err(&zoh.a, &phi), mat_err(&zoh.b, &gamma));
+            assert!(ep < 1e-13 && eg < 1e-13, "T = {dt}: Φ {ep:.1e}, Γ {eg:.1e}");
+        }
+    }
+}

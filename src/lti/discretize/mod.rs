@@ -201,16 +201,20 @@ impl StateSpace {
         let (n, m) = (self.order(), self.b.ncols());
         let (a, b, c, d) = match method {
             Discretization::Zoh => {
-                let mut aug = DMatrix::<f64>::zeros(n + m, n + m);
-                aug.view_mut((0, 0), (n, n)).copy_from(&(&self.a * dt));
-                aug.view_mut((0, n), (n, m)).copy_from(&(&self.b * dt));
-                let e = crate::numeric::expm(&aug)?;
-                (
-                    block(&e, n, 0, n),
-                    block(&e, n, n, m),
-                    self.c.clone(),
-                    self.d.clone(),
-                )
+                // a second-order A = [[0, I], [−G, −E]]: from its modes (one 4×4 exponential
+                // each, four products of half the order), not the dense exponential
+                let structure = crate::numeric::linalg::StateMatrix::recognise(&self.a);
+                let (phi, gamma) = match structure.second_order() {
+                    Some(so) => so.zoh(&self.b, dt)?,
+                    None => {
+                        let mut aug = DMatrix::<f64>::zeros(n + m, n + m);
+                        aug.view_mut((0, 0), (n, n)).copy_from(&(&self.a * dt));
+                        aug.view_mut((0, n), (n, m)).copy_from(&(&self.b * dt));
+                        let e = crate::numeric::expm(&aug)?;
+                        (block(&e, n, 0, n), block(&e, n, n, m))
+                    }
+                };
+                (phi, gamma, self.c.clone(), self.d.clone())
             }
             Discretization::Foh => {
                 let mut aug = DMatrix::<f64>::zeros(n + 2 * m, n + 2 * m);

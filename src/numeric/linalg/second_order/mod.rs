@@ -44,10 +44,12 @@
 //! builds on their types.
 //!
 //! Files: `recognise.rs` (the recognition and the modes), `eigen.rs` (eigenvalues and
-//! eigenvectors from the modes), `modal.rs` (the modal form from the modes).
+//! eigenvectors from the modes), `modal.rs` (the modal form from the modes), `zoh.rs` (the
+//! zero-order-hold discretisation from the modes: [`SecondOrder::zoh`]).
 
 mod eigen;
 mod modal;
 mod recognise;
+mod zoh;
 
 pub use recognise::{SYM_REL, SecondOrder, SecondOrderMode, snap_tol};
