@@ -4,6 +4,7 @@ pub mod controller;
 pub mod delay;
 pub mod discretize;
 pub mod domain;
+pub mod connect;
 pub mod interconnect;
 pub mod lattice;
 pub mod model;
