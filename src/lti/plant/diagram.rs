@@ -144,7 +144,14 @@ pub(super) fn load(path: &Path, text: &str, depth: usize) -> Result<Plant> {
     let mut blocks = Vec::with_capacity(f.blocks.len());
     for (name, spec) in &f.blocks {
         let key = format!("blocks.{name}");
-        let model = block_model(path, name, spec, domain, depth).map_err(|e| at(&key, e))?;
+        let model = block_model(path, name, spec, domain, depth).map_err(|e| {
+            let e = if e.to_string().contains("block `") {
+                e
+            } else {
+                LtiError::invalid(format!("block `{}`: {e}", abbreviate(name)))
+            };
+            at(&key, e)
+        })?;
         blocks.push(Block {
             name: name.clone(),
             model,
