@@ -382,3 +382,20 @@ fn bad_diagrams_are_one_line_naming_the_signal_or_block() {
     let e = error(&["connect", &s], 1);
     assert!(e.contains("MAX_DIAGRAM_DEPTH"), "{e}");
 }
+
+#[test]
+fn the_shipped_cascade_diagram_is_its_closed_form() {
+    // data/diagrams/cascade.toml: motor 2/(0.5s + 1) = 4/(s + 2), inner PI 1.5 + 6/s, outer
+    // P 4, shaft 1/s. Inner T_v = (6s + 24)/(s² + 8s + 24); outer T = (24s + 96)/(s³ + 8s² +
+    // 48s + 96).
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/diagrams/cascade.toml");
+    let plant = ltikit::lti::Plant::from_file(std::path::Path::new(path)).unwrap();
+    let f = plant.factored().unwrap();
+    for (re, im) in POINTS {
+        let s = Complex64::new(re, im);
+        let want = ratio(&[24.0, 96.0], &[1.0, 8.0, 48.0, 96.0], s);
+        assert!(close(f.eval(s), want, 1e-12), "at {s}");
+    }
+    assert_eq!(plant.signals.inputs, ["r"]);
+    assert_eq!(plant.signals.outputs, ["theta"]);
+}

@@ -99,7 +99,10 @@ pub fn run(a: &GangArgs) -> Result<()> {
             None,
             false,
             false,
-            &crate::plot::PlotOptions::default(),
+            &crate::plot::PlotOptions {
+                title: Some("Gang of four: S, P·S, C·S, T".into()),
+                ..Default::default()
+            },
         )?;
     }
     let name = plant
