@@ -160,16 +160,40 @@ const DIAGRAM_MUTATIONS: &[(&str, &str, &str)] = &[
     ("diagram-twice.toml", "output = \"u\"", "output = \"y\""),
     ("diagram-never.toml", "e = \"r - y\"", "e = \"r - w\""),
     ("diagram-no-sum.toml", "[sums]\ne = \"r - y\"\n", ""),
-    ("diagram-ill-posed.toml", "controller = \"pi:kp=2,ki=1\"\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nplant = \"good.toml\"", "den = 1\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nnum = -1\nden = 1"),
-    ("diagram-sizes.toml", "input = \"u\"", "input = [\"u\", \"e\"]"),
+    (
+        "diagram-ill-posed.toml",
+        "controller = \"pi:kp=2,ki=1\"\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nplant = \"good.toml\"",
+        "den = 1\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nnum = -1\nden = 1",
+    ),
+    (
+        "diagram-sizes.toml",
+        "input = \"u\"",
+        "input = [\"u\", \"e\"]",
+    ),
     ("diagram-missing.toml", "good.toml", "missing.toml"),
     ("diagram-bad-sum.toml", "r - y", "r - - * y"),
-    ("diagram-unknown-key.toml", "[blocks.C]", "[blocks.C]\ntypo = 1"),
-    ("diagram-no-kind.toml", "controller = \"pi:kp=2,ki=1\"\n", ""),
+    (
+        "diagram-unknown-key.toml",
+        "[blocks.C]",
+        "[blocks.C]\ntypo = 1",
+    ),
+    (
+        "diagram-no-kind.toml",
+        "controller = \"pi:kp=2,ki=1\"\n",
+        "",
+    ),
     ("diagram-bad-controller.toml", "pi:kp=2,ki=1", "pid:kp=x"),
-    ("diagram-no-outputs.toml", "outputs = [\"y\"]", "outputs = []"),
+    (
+        "diagram-no-outputs.toml",
+        "outputs = [\"y\"]",
+        "outputs = []",
+    ),
     ("diagram-dt.toml", "inputs", "dt = 0.1\ninputs"),
-    ("diagram-blocks-string.toml", "[blocks.C]", "blocks = 3\n[blocksX.C]"),
+    (
+        "diagram-blocks-string.toml",
+        "[blocks.C]",
+        "blocks = 3\n[blocksX.C]",
+    ),
 ];
 
 /// The plant options every analysis command takes.
@@ -691,7 +715,9 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--sign" => r.pick(&["-1", "1", "+1"]).into(),
         "--s" => r.pick(&["-1+2j", "2j", "0.5", "1-1i"]).into(),
         "--z" => r.pick(&["0.5+0.5j", "-1", "2j"]).into(),
-        "<A.toml>" | "<B.toml>" => files.path(r.pick(&["good.toml", "state-space.toml", "diagram.toml"])),
+        "<A.toml>" | "<B.toml>" => {
+            files.path(r.pick(&["good.toml", "state-space.toml", "diagram.toml"]))
+        }
         "<DIAGRAM.toml>" => files.path("diagram.toml"),
         "--method" => r
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
@@ -854,8 +880,23 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
             1 => number(r),
             _ => r
                 .pick(&[
-                    "-1+2j", "0", "-1", "j", "-j", "1e308+1e308j", "nan", "inf", "1+nanj", "",
-                    "1+", "+-1j", "1 2", "2jj", "0.3-0.4i", "-2", "1e-300j",
+                    "-1+2j",
+                    "0",
+                    "-1",
+                    "j",
+                    "-j",
+                    "1e308+1e308j",
+                    "nan",
+                    "inf",
+                    "1+nanj",
+                    "",
+                    "1+",
+                    "+-1j",
+                    "1 2",
+                    "2jj",
+                    "0.3-0.4i",
+                    "-2",
+                    "1e-300j",
                 ])
                 .into(),
         }),

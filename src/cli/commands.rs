@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, connect, delayed, demo, eval, freq, gangof4, help, jury, linearize, margins, pade, plots, pullin,
-    residue, response, rlocus, routh, simulate,
+    analyze, c2d, connect, delayed, demo, eval, freq, gangof4, help, jury, linearize, margins,
+    pade, plots, pullin, residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,

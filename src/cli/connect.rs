@@ -42,7 +42,12 @@ pub struct ParallelArgs {
     #[command(flatten)]
     pub pair: SeriesArgs,
     /// +1 (default): A + B; -1: A − B.
-    #[arg(long, value_name = "±1", allow_hyphen_values = true, default_value = "1")]
+    #[arg(
+        long,
+        value_name = "±1",
+        allow_hyphen_values = true,
+        default_value = "1"
+    )]
     pub sign: f64,
 }
 
@@ -52,7 +57,12 @@ pub struct FeedbackArgs {
     #[command(flatten)]
     pub pair: SeriesArgs,
     /// -1 (default): negative feedback, G/(1 + G·H); +1: positive feedback, G/(1 − G·H).
-    #[arg(long, value_name = "±1", allow_hyphen_values = true, default_value = "-1")]
+    #[arg(
+        long,
+        value_name = "±1",
+        allow_hyphen_values = true,
+        default_value = "-1"
+    )]
     pub sign: f64,
 }
 
@@ -109,7 +119,7 @@ pub fn run_feedback(a: &FeedbackArgs) -> Result<()> {
 }
 
 fn check_sign(sign: f64) -> Result<f64> {
-    if sign == 1.0 || sign == -1.0 {
+    if [1.0, -1.0].contains(&sign) {
         Ok(sign)
     } else {
         Err(UsageError(format!(
@@ -152,7 +162,14 @@ fn run_pair(a: &SeriesArgs, op: Operation) -> Result<()> {
             p2.name
         ),
     };
-    finish(&model, &name, op.name(), op.sign(), a.json, a.output.as_ref())
+    finish(
+        &model,
+        &name,
+        op.name(),
+        op.sign(),
+        a.json,
+        a.output.as_ref(),
+    )
 }
 
 /// The two models joined: transfer functions stay transfer functions, anything else becomes
@@ -217,7 +234,15 @@ pub fn run_connect(a: &ConnectArgs) -> Result<()> {
     if let Some(path) = &a.output {
         write_plant(&p.model, &name, Some(&p.signals), path)?;
     }
-    report(&p.model, &name, "connect", None, Some(&p.signals), a.json, a.output.as_ref())
+    report(
+        &p.model,
+        &name,
+        "connect",
+        None,
+        Some(&p.signals),
+        a.json,
+        a.output.as_ref(),
+    )
 }
 
 fn finish(
@@ -292,7 +317,10 @@ struct Document {
 
 /// The poles of the result (the transfer function's characteristic roots, or the eigenvalues
 /// of A) and its dc gain per channel (`None` where infinite).
-fn poles_and_dc(model: &Model) -> Result<(Vec<Root>, Vec<Vec<Option<f64>>>)> {
+/// The dc gain of each channel, rows = outputs (`None` where infinite).
+type DcGains = Vec<Vec<Option<f64>>>;
+
+fn poles_and_dc(model: &Model) -> Result<(Vec<Root>, DcGains)> {
     match model {
         Model::Tf(g) => {
             let f = g.factored()?;
@@ -304,7 +332,8 @@ fn poles_and_dc(model: &Model) -> Result<(Vec<Root>, Vec<Vec<Option<f64>>>)> {
                 .map(|o| {
                     (0..ss.n_inputs())
                         .map(|i| {
-                            let f = crate::analysis::Factored::from_state_space(&ss.channel(i, o)?)?;
+                            let f =
+                                crate::analysis::Factored::from_state_space(&ss.channel(i, o)?)?;
                             Ok(f.dc_gain())
                         })
                         .collect::<crate::error::Result<Vec<_>>>()

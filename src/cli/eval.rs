@@ -19,7 +19,12 @@ pub struct EvalArgs {
     #[arg(long, value_name = "COMPLEX", allow_hyphen_values = true)]
     pub s: Option<String>,
     /// The point z of a discrete-time plant: "0.5-0.5j".
-    #[arg(long, value_name = "COMPLEX", allow_hyphen_values = true, conflicts_with = "s")]
+    #[arg(
+        long,
+        value_name = "COMPLEX",
+        allow_hyphen_values = true,
+        conflicts_with = "s"
+    )]
     pub z: Option<String>,
     /// Print one JSON document: {"variable", "point", "channels": [{"input", "output",
     /// "value", "magnitude", "magnitude_db", "phase_deg"}]}.
@@ -168,7 +173,11 @@ pub fn run(a: &EvalArgs) -> Result<()> {
             channels,
         });
     }
-    let mut s = format!("{}\nG({var}) at {var} = {}\n", plant.name, complex_text(point));
+    let mut s = format!(
+        "{}\nG({var}) at {var} = {}\n",
+        plant.name,
+        complex_text(point)
+    );
     let mimo = !matches!(plant.model, Model::Tf(_)) && !plant.model.is_siso() && !options;
     for c in &channels {
         let g = Complex64::new(c.value[0], c.value[1]);

@@ -68,7 +68,11 @@ pub fn run(a: &GangArgs) -> Result<()> {
     let systems: [(&'static str, &'static str, Factored); 4] = [
         ("S", "1/(1 + L)", cl.system(LoopSystem::Sensitivity)?),
         ("PS", "G/(1 + L)", cl.plant_sensitivity()?),
-        ("CS", "C/(1 + L)", cl.system(LoopSystem::ControlSensitivity)?),
+        (
+            "CS",
+            "C/(1 + L)",
+            cl.system(LoopSystem::ControlSensitivity)?,
+        ),
         ("T", "L/(1 + L)", cl.system(LoopSystem::ClosedLoop)?),
     ];
     let st = cl.internal_stability();

@@ -138,7 +138,8 @@ impl Sum {
                         || chars[i] == '.'
                         || ((chars[i] == 'e' || chars[i] == 'E')
                             && i + 1 < chars.len()
-                            && (chars[i + 1].is_ascii_digit() || matches!(chars[i + 1], '+' | '-'))))
+                            && (chars[i + 1].is_ascii_digit()
+                                || matches!(chars[i + 1], '+' | '-'))))
                 {
                     if matches!(chars[i], 'e' | 'E') {
                         i += 1; // the exponent's sign
@@ -414,11 +415,11 @@ pub fn connect(
     let (vx, vr) = (v.columns(0, n), v.columns(n, k));
     let uv = u_sel.columns(0, q);
     let ur = u_sel.columns(q, k);
-    let a_cl = &a + &b_all * (&uv * &vx);
-    let b_cl = &b_all * (&uv * &vr + ur);
+    let a_cl = &a + &b_all * (uv * vx);
+    let b_cl = &b_all * (uv * vr + ur);
     let ov = out_sel.columns(0, q);
-    let c_cl = &ov * &vx;
-    let d_cl = &ov * &vr + out_sel.columns(q, k);
+    let c_cl = ov * vx;
+    let d_cl = ov * vr + out_sel.columns(q, k);
     let ss = StateSpace::new(a_cl, b_cl, c_cl, d_cl)?;
     for (x, what) in [(&ss.a, "A"), (&ss.b, "B"), (&ss.c, "C"), (&ss.d, "D")] {
         if x.iter().any(|v| !v.is_finite()) {
@@ -441,7 +442,9 @@ fn well_posed(m: &DMatrix<f64>, names: &[&str]) -> Result<()> {
     let svd = m
         .clone()
         .try_svd(true, true, f64::EPSILON, 10_000)
-        .ok_or_else(|| LtiError::invalid("the diagram's algebraic loop: the SVD did not converge"))?;
+        .ok_or_else(|| {
+            LtiError::invalid("the diagram's algebraic loop: the SVD did not converge")
+        })?;
     let sv = &svd.singular_values;
     let (imin, smin) = sv
         .iter()
@@ -498,7 +501,10 @@ mod tests {
         let e = connect(&blocks, &sums, &["r".into()], &["y".into()])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("`y`") && e.contains("`e`") && e.contains("not well posed"), "{e}");
+        assert!(
+            e.contains("`y`") && e.contains("`e`") && e.contains("not well posed"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -511,12 +517,18 @@ mod tests {
         let e = connect(&two, &[], &["r".into()], &["y".into()])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("`y` is driven twice: by block `A` and by block `B`"), "{e}");
+        assert!(
+            e.contains("`y` is driven twice: by block `A` and by block `B`"),
+            "{e}"
+        );
         let one = vec![Block::new("A", g.clone(), &["w"], &["y"])];
         let e = connect(&one, &[], &["r".into()], &["y".into()])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("`w` (input 1 of block `A`) is driven by nothing"), "{e}");
+        assert!(
+            e.contains("`w` (input 1 of block `A`) is driven by nothing"),
+            "{e}"
+        );
         let e = connect(&one, &[], &["w".into()], &["z".into()])
             .unwrap_err()
             .to_string();
@@ -525,7 +537,10 @@ mod tests {
         let e = connect(&wrong, &[], &["r".into()], &["y".into()])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("block `A` has 1 inputs and 1 outputs, but 2 input"), "{e}");
+        assert!(
+            e.contains("block `A` has 1 inputs and 1 outputs, but 2 input"),
+            "{e}"
+        );
     }
 
     #[test]

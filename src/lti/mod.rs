@@ -1,10 +1,10 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod connect;
 pub mod controller;
 pub mod delay;
 pub mod discretize;
 pub mod domain;
-pub mod connect;
 pub mod interconnect;
 pub mod lattice;
 pub mod model;

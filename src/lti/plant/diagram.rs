@@ -176,21 +176,15 @@ pub(super) fn load(path: &Path, text: &str, depth: usize) -> Result<Plant> {
     let name = f.name.clone().unwrap_or_else(|| {
         format!(
             "diagram {} ({} blocks)",
-            abbreviate(
-                &path
-                    .file_name()
-                    .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into())
-            ),
+            abbreviate(&path.file_name().map_or_else(
+                || path.display().to_string(),
+                |n| n.to_string_lossy().into()
+            )),
             blocks.len()
         )
     });
     let mut plant = Plant::from_state_space(ss, Some(name))?;
-    plant.signals = Signals::for_model(
-        &plant.model,
-        f.inputs.clone(),
-        f.outputs.clone(),
-        states,
-    )?;
+    plant.signals = Signals::for_model(&plant.model, f.inputs.clone(), f.outputs.clone(), states)?;
     plant.description = f.description.clone();
     Ok(plant)
 }
