@@ -130,7 +130,13 @@ pub(super) fn is_diagram(text: &str) -> bool {
 
 /// The diagram file at `path` (its text `text`) as a plant, `depth` diagrams deep.
 pub(super) fn load(path: &Path, text: &str, depth: usize) -> Result<Plant> {
-    crate::limits::DIAGRAM_DEPTH.check("`plant` (diagrams inside diagrams)", depth as u128)?;
+    crate::limits::DIAGRAM_DEPTH.check(
+        &format!(
+            "`plant` {} (diagrams inside diagrams)",
+            abbreviate(&path.display().to_string())
+        ),
+        depth as u128,
+    )?;
     let f: DiagramFile = toml::from_str(text).map_err(|e| {
         let (at, message) = located::toml_error(text, &e);
         file::in_file(path, located::bad_record(at.unwrap_or_default(), message))
@@ -145,6 +151,10 @@ pub(super) fn load(path: &Path, text: &str, depth: usize) -> Result<Plant> {
     for (name, spec) in &f.blocks {
         let key = format!("blocks.{name}");
         let model = block_model(path, name, spec, domain, depth).map_err(|e| {
+            // the nesting limit as it is (not once more per level)
+            if matches!(&e, LtiError::LimitExceeded { limit, .. } if limit == "MAX_DIAGRAM_DEPTH") {
+                return e;
+            }
             let e = if e.to_string().contains("block `") {
                 e
             } else {
