@@ -184,6 +184,14 @@ limits! {
     /// or a margin reads (ω up to ~10⁶ rad/s) exceeds 10¹², where an f64 keeps fewer than
     /// four digits of its angle modulo 2π: the delay would carry no information.
     DELAY, MAX_DELAY: u64 = 1_000_000, "s", ["delay"], "a dead time e^(−sT)";
+    /// Most signals of a diagram (block inputs, block outputs, sums and external inputs): the
+    /// algebraic loop is solved densely, O(signals³).
+    DIAGRAM_SIGNALS, MAX_DIAGRAM_SIGNALS: usize = 1024, "signals", ["plant"],
+        "signals of a diagram file";
+    /// Deepest nesting of diagram files (a diagram's block may be a diagram file): a file
+    /// that includes itself stops here.
+    DIAGRAM_DEPTH, MAX_DIAGRAM_DEPTH: usize = 16, "levels", ["plant"],
+        "nesting of diagram files";
     /// Highest order of a Padé approximant of a dead time (its coefficients (2n−k)!/k!…
     /// span 10⁴⁰ at n = 20; beyond it the rational approximant itself is ill-conditioned).
     PADE_ORDER, MAX_PADE_ORDER: usize = 20, "", ["pade", "order"],

@@ -136,6 +136,64 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
         &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
     ),
     ("pade", &[&["--delay", "--order", "--w", "--json"]]),
+    ("series", &[TWO_MODELS]),
+    ("parallel", &[TWO_MODELS, &["--sign"]]),
+    ("feedback", &[TWO_MODELS, &["--sign"]]),
+    ("connect", &[&["<DIAGRAM.toml>", "--json", "--output"]]),
+    ("eval", &[PLANT, &["--s", "--z", "--json"]]),
+    ("gangof4", &[PLANT, &["--json", "--output"]]),
+];
+
+/// The arguments of series, parallel and feedback (two plant files).
+const TWO_MODELS: &[&str] = &["<A.toml>", "<B.toml>", "--json", "--output"];
+
+/// The commands whose `-o` writes a plant file.
+fn writes_plant_file(cmd: &str) -> bool {
+    matches!(
+        cmd,
+        "c2d" | "d2c" | "series" | "parallel" | "feedback" | "connect"
+    )
+}
+
+/// Mutations of the good diagram file: (file, text replaced, by).
+const DIAGRAM_MUTATIONS: &[(&str, &str, &str)] = &[
+    ("diagram-twice.toml", "output = \"u\"", "output = \"y\""),
+    ("diagram-never.toml", "e = \"r - y\"", "e = \"r - w\""),
+    ("diagram-no-sum.toml", "[sums]\ne = \"r - y\"\n", ""),
+    (
+        "diagram-ill-posed.toml",
+        "controller = \"pi:kp=2,ki=1\"\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nplant = \"good.toml\"",
+        "den = 1\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nnum = -1\nden = 1",
+    ),
+    (
+        "diagram-sizes.toml",
+        "input = \"u\"",
+        "input = [\"u\", \"e\"]",
+    ),
+    ("diagram-missing.toml", "good.toml", "missing.toml"),
+    ("diagram-bad-sum.toml", "r - y", "r - - * y"),
+    (
+        "diagram-unknown-key.toml",
+        "[blocks.C]",
+        "[blocks.C]\ntypo = 1",
+    ),
+    (
+        "diagram-no-kind.toml",
+        "controller = \"pi:kp=2,ki=1\"\n",
+        "",
+    ),
+    ("diagram-bad-controller.toml", "pi:kp=2,ki=1", "pid:kp=x"),
+    (
+        "diagram-no-outputs.toml",
+        "outputs = [\"y\"]",
+        "outputs = []",
+    ),
+    ("diagram-dt.toml", "inputs", "dt = 0.1\ninputs"),
+    (
+        "diagram-blocks-string.toml",
+        "[blocks.C]",
+        "blocks = 3\n[blocksX.C]",
+    ),
 ];
 
 /// The plant options every analysis command takes.
@@ -541,7 +599,32 @@ impl Files {
         write("input-bad.csv", "t,u\n0,x\n");
         write("input-big.csv", "0,1e300\n1,-1e300\n2,nan\n");
         let _ = std::fs::create_dir_all(dir.join("a-directory.png"));
+        // diagram files: a good loop and one mutation of each kind
+        let good = "inputs = [\"r\"]\noutputs = [\"y\"]\n[blocks.C]\ncontroller = \"pi:kp=2,ki=1\"\ninput = \"e\"\noutput = \"u\"\n[blocks.P]\nplant = \"good.toml\"\ninput = \"u\"\noutput = \"y\"\n[sums]\ne = \"r - y\"\n";
+        write("diagram.toml", good);
+        for (name, from, to) in DIAGRAM_MUTATIONS {
+            write(name, &good.replace(from, to));
+        }
+        write(
+            "diagram-mimo.toml",
+            "inputs = [\"r1\", \"r2\"]\noutputs = [\"y1\", \"y2\"]\n[blocks.G]\nplant = \"state-space.toml\"\ninput = [\"e1\", \"e2\"]\noutput = \"z\"\n[blocks.K]\na = \"-1\"\nb = \"1\"\nc = \"1; 2\"\ninput = \"z\"\noutput = [\"y1\", \"y2\"]\n[sums]\ne1 = \"r1 - y1\"\ne2 = \"r2 - 0.5*y2\"\n",
+        );
+        write(
+            "diagram-self.toml",
+            "inputs = [\"r\"]\noutputs = [\"y\"]\n[blocks.P]\nplant = \"diagram-self.toml\"\ninput = \"r\"\noutput = \"y\"\n",
+        );
         f
+    }
+
+    /// A diagram file: good, mutated, nested in itself.
+    fn diagram_file(&self, r: &mut Rng) -> String {
+        let k = r.below(DIAGRAM_MUTATIONS.len() as u64 + 3) as usize;
+        self.path(match k {
+            0 => "diagram.toml",
+            1 => "diagram-mimo.toml",
+            2 => "diagram-self.toml",
+            _ => DIAGRAM_MUTATIONS[k - 3].0,
+        })
     }
 
     fn path(&self, name: &str) -> String {
@@ -550,6 +633,9 @@ impl Files {
 
     /// A plant file: good, bad of every kind, missing, a device, a directory.
     fn plant_file(&self, r: &mut Rng) -> String {
+        if r.one_in(6) {
+            return self.diagram_file(r);
+        }
         match r.below(16) {
             14 => self.path("dense256.toml"),
             15 => self.path("cluster256.toml"),
@@ -612,7 +698,7 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--t" | "--w" => "0 0.5 1 2".into(),
         "--size" => "800x600".into(),
         "--title" => "a title".into(),
-        "--output" if !matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.png")),
+        "--output" if !writes_plant_file(cmd) => files.path(&format!("case{k}.png")),
         "--input" if cmd == "simulate" => "0.5".into(),
         "--input" => r.pick(&["step", "impulse", "ramp", "sin:2"]).into(),
         "--channel" => "1,1".into(),
@@ -626,10 +712,17 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--pade" => "3".into(),
         "--order" => "3".into(),
         "--prewarp" => "1".into(),
+        "--sign" => r.pick(&["-1", "1", "+1"]).into(),
+        "--s" => r.pick(&["-1+2j", "2j", "0.5", "1-1i"]).into(),
+        "--z" => r.pick(&["0.5+0.5j", "-1", "2j"]).into(),
+        "<A.toml>" | "<B.toml>" => {
+            files.path(r.pick(&["good.toml", "state-space.toml", "diagram.toml"]))
+        }
+        "<DIAGRAM.toml>" => files.path("diagram.toml"),
         "--method" => r
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
             .into(),
-        "--output" if matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.toml")),
+        "--output" if writes_plant_file(cmd) => files.path(&format!("case{k}.toml")),
         _ => return None,
     })
 }
@@ -779,6 +872,39 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
             ])
             .into()),
         "--prewarp" => v(number(r)),
+        "--sign" => v(r
+            .pick(&["-1", "1", "+1", "0", "2", "-1.5", "nan", "inf", "", "x"])
+            .into()),
+        "--s" | "--z" => v(match r.below(4) {
+            0 => long_text(r),
+            1 => number(r),
+            _ => r
+                .pick(&[
+                    "-1+2j",
+                    "0",
+                    "-1",
+                    "j",
+                    "-j",
+                    "1e308+1e308j",
+                    "nan",
+                    "inf",
+                    "1+nanj",
+                    "",
+                    "1+",
+                    "+-1j",
+                    "1 2",
+                    "2jj",
+                    "0.3-0.4i",
+                    "-2",
+                    "1e-300j",
+                ])
+                .into(),
+        }),
+        "<A.toml>" | "<B.toml>" | "<DIAGRAM.toml>" => v(if r.one_in(3) {
+            files.diagram_file(r)
+        } else {
+            files.plant_file(r)
+        }),
         "--delay" => v(r
             .pick(&[
                 "0.5", "0.01", "2", "0", "-1", "nan", "inf", "1e-300", "1e300", "1e6", "", "x",
@@ -802,7 +928,7 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "zoh", "foh", "tustin", "bilinear", "matched", "impulse", "euler", "",
             ])
             .into()),
-        "--output" if matches!(cmd, "c2d" | "d2c") => v(match r.below(4) {
+        "--output" if writes_plant_file(cmd) => v(match r.below(4) {
             0 => files.output(r, k).0,
             1 => "/proc/ltikit-fuzz.toml".into(),
             _ => files.path(&format!("case{k}.toml")),
@@ -864,7 +990,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
     let chaotic = r.one_in(10);
     let mut chosen: Vec<&str> = Vec::new();
     for &opt in &opts {
-        let required = opt == "<MODEL>"
+        let required = opt.starts_with('<')
             || opt == "--method"
             || (opt == "--dt" && cmd == "c2d")
             || (matches!(opt, "--delay" | "--order") && cmd == "pade")
@@ -943,7 +1069,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         if opt == "--output" {
             let p = PathBuf::from(&vals[0]);
             if p.starts_with(&files.dir) && !p.is_dir() {
-                if matches!(cmd, "c2d" | "d2c") {
+                if writes_plant_file(cmd) {
                     plant_file = Some(p);
                 } else {
                     picture = Some(p);

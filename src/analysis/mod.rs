@@ -37,6 +37,7 @@ pub mod margins;
 pub mod modes;
 pub mod nyquist;
 pub mod pfe;
+pub mod point;
 pub mod response;
 pub mod rlocus;
 pub mod routh;

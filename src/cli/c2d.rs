@@ -52,7 +52,7 @@ pub struct D2cArgs {
 }
 
 /// The value of `-o`: a name ending in `.toml` (a usage error otherwise).
-fn toml_path(text: &str) -> std::result::Result<PathBuf, String> {
+pub(super) fn toml_path(text: &str) -> std::result::Result<PathBuf, String> {
     let path = PathBuf::from(text);
     let ext = path
         .extension()
@@ -154,7 +154,7 @@ fn is_siso(p: &Plant) -> bool {
 }
 
 /// The poles of a MIMO result: the eigenvalues of its A with their multiplicities.
-fn eigen_roots(model: &Model) -> Result<Vec<Root>> {
+pub(super) fn eigen_roots(model: &Model) -> Result<Vec<Root>> {
     let Model::Ss(ss) = model else {
         return Ok(Vec::new());
     };
@@ -171,7 +171,7 @@ fn eigen_roots(model: &Model) -> Result<Vec<Root>> {
     Ok(roots)
 }
 
-fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+pub(super) fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
     (0..m.nrows())
         .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
         .collect()
@@ -179,7 +179,7 @@ fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
 
 /// The plant-file record of the result (and the model part of the JSON document).
 #[derive(Serialize)]
-struct Record {
+pub(super) struct Record {
     #[serde(skip_serializing_if = "Option::is_none")]
     name: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -196,9 +196,12 @@ struct Record {
     c: Option<Vec<Vec<f64>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     d: Option<Vec<Vec<f64>>>,
+    /// The dead time of a transfer function (a series connection adds them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delay: Option<f64>,
 }
 
-fn record(model: &Model, dt: Option<f64>, name: Option<String>) -> Record {
+pub(super) fn record(model: &Model, dt: Option<f64>, name: Option<String>) -> Record {
     let mut r = Record {
         name,
         dt,
@@ -208,11 +211,13 @@ fn record(model: &Model, dt: Option<f64>, name: Option<String>) -> Record {
         b: None,
         c: None,
         d: None,
+        delay: None,
     };
     match model {
         Model::Tf(g) => {
             r.num = Some(g.num().coeffs().to_vec());
             r.den = Some(g.den().coeffs().to_vec());
+            r.delay = (g.delay() > 0.0).then_some(g.delay());
         }
         Model::Ss(ss) => {
             r.a = Some(rows(&ss.a));
@@ -305,11 +310,11 @@ fn finish(
     super::output::print(&s)
 }
 
-fn siso_text(ss: &StateSpace) -> Result<String> {
+pub(super) fn siso_text(ss: &StateSpace) -> Result<String> {
     Ok(ss.to_tf()?.to_string())
 }
 
-fn state_space_text(ss: &StateSpace, s: &mut String) {
+pub(super) fn state_space_text(ss: &StateSpace, s: &mut String) {
     for (name, m) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d)] {
         super::linearize::matrix(name, &rows(m), s);
     }

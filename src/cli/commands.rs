@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, plots, pullin,
-    residue, response, rlocus, routh, simulate,
+    analyze, c2d, connect, delayed, demo, eval, freq, gangof4, help, jury, linearize, margins,
+    pade, plots, pullin, residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -78,6 +78,21 @@ pub(crate) enum Command {
     /// The [N/N] Padé approximant of a dead time e^(−sT): coefficients, poles, and the phase
     /// error against −ωT (what --pade N puts in place of a plant's delay).
     Pade(pade::PadeArgs),
+    /// Series connection of two plant files: A first, then B (the result is B·A); transfer
+    /// functions stay transfer functions, otherwise state space; -o F.toml.
+    Series(connect::SeriesArgs),
+    /// Parallel connection A + B (--sign -1: A − B); -o F.toml.
+    Parallel(connect::ParallelArgs),
+    /// Feedback around G with H in the loop: G/(1 + G·H) (--sign +1: G/(1 − G·H)); -o F.toml.
+    Feedback(connect::FeedbackArgs),
+    /// A diagram file (named blocks, signals, sums) closed into one state-space model;
+    /// -o F.toml.
+    Connect(connect::ConnectArgs),
+    /// G at a complex point, every channel: --s "-1+2j" (--z for a discrete plant).
+    Eval(eval::EvalArgs),
+    /// The gang of four of the loop L = C·G (--controller): S, P·S, C·S, T with poles, dc
+    /// gain and peak; Bode PNG with -o.
+    Gangof4(gangof4::GangArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -176,5 +191,11 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::C2d(a) => c2d::run_c2d(&a),
         Command::D2c(a) => c2d::run_d2c(&a),
         Command::Pade(a) => pade::run(&a),
+        Command::Series(a) => connect::run_series(&a),
+        Command::Parallel(a) => connect::run_parallel(&a),
+        Command::Feedback(a) => connect::run_feedback(&a),
+        Command::Connect(a) => connect::run_connect(&a),
+        Command::Eval(a) => eval::run(&a),
+        Command::Gangof4(a) => gangof4::run(&a),
     }
 }

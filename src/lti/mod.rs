@@ -1,5 +1,6 @@
 //! LTI models: transfer functions, state space, the textbook plants and plant files.
 
+pub mod connect;
 pub mod controller;
 pub mod delay;
 pub mod discretize;

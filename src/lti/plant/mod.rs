@@ -15,6 +15,7 @@
 //! assert_eq!(r.name, "p1");
 //! ```
 
+pub mod diagram;
 mod file;
 mod located;
 mod record;

@@ -439,7 +439,16 @@ impl Plant {
     /// assert!(e.ends_with("bad.toml, line 2, column 1: `den`: 'x' is not a number"), "{e}");
     /// ```
     pub fn from_file(path: &Path) -> Result<Plant> {
+        Self::from_file_at_depth(path, 0)
+    }
+
+    /// [`Plant::from_file`] for a file `depth` diagram files deep (a diagram file — one with
+    /// a `[blocks]` table — is connected into one model, see `lti::plant::diagram`).
+    pub(super) fn from_file_at_depth(path: &Path, depth: usize) -> Result<Plant> {
         let text = file::read_text(path)?;
+        if super::diagram::is_diagram(&text) {
+            return super::diagram::load(path, &text, depth);
+        }
         let f = PlantFile::parse(&text).map_err(|e| file::in_file(path, e))?;
         Self::from_record_keyed(&f).map_err(|k| {
             let (key, e) = *k;
