@@ -5,6 +5,7 @@
 //! checks); each section renders its part of the report from the library's results and
 //! records the checks that are the report's own ([`verify`]); [`md`] writes the Markdown.
 
+mod cascade;
 mod closed_loop;
 mod context;
 mod dead_time;

@@ -11,7 +11,9 @@ use std::time::Instant;
 use super::context::Ctx;
 use super::md::Md;
 use super::verify::Checks;
-use super::{closed_loop, dead_time, digital, lattice, linear, mechanics, nonlinear, seed};
+use super::{
+    cascade, closed_loop, dead_time, digital, lattice, linear, mechanics, nonlinear, seed,
+};
 use crate::fmt::fmt_sig;
 
 #[derive(Args, Debug)]
@@ -63,7 +65,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         figures: Vec::new(),
         checks: Checks::default(),
         step: 0,
-        steps: plants.len() + 14,
+        steps: plants.len() + 15,
         tty: std::io::stderr().is_terminal() && !a.json,
     };
     let mut md = Md::default();
@@ -135,6 +137,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     digital::section(&mut ctx, &mut md, plants.len() + 6)?;
     ctx.progress("dead time");
     dead_time::section(&mut ctx, &mut md, plants.len() + 7)?;
+    ctx.progress("diagram");
+    cascade::section(&mut ctx, &mut md, plants.len() + 8)?;
 
     ctx.progress("verification");
     ctx.checks.render(&mut md);
