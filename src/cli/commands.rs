@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, plots, pullin,
-    residue, response, rlocus, routh, simulate,
+    analyze, c2d, delayed, demo, equations, freq, help, jury, linearize, margins, pade, plots,
+    pullin, residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -78,6 +78,17 @@ pub(crate) enum Command {
     /// The [N/N] Padé approximant of a dead time e^(−sT): coefficients, poles, and the phase
     /// error against −ωT (what --pade N puts in place of a plant's delay).
     Pade(pade::PadeArgs),
+    /// Lyapunov equation A·X + X·Aᵀ + Q = 0 (--discrete: A·X·Aᵀ − X + Q = 0; --b B for
+    /// Q = B·Bᵀ with the Cholesky factor): X, relative residual, condition estimate.
+    Lyap(equations::LyapArgs),
+    /// Sylvester equation A·X + X·B = C: X, relative residual, condition estimate.
+    Sylvester(equations::SylvesterArgs),
+    /// Continuous algebraic Riccati equation (LQR) with weights --q, --r and cross term --s:
+    /// stabilising X, gain K, closed-loop eigenvalues, residual, condition estimate.
+    Care(equations::RiccatiArgs),
+    /// Discrete algebraic Riccati equation: stabilising X, gain K, closed-loop eigenvalues,
+    /// residual, condition estimate.
+    Dare(equations::RiccatiArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -176,5 +187,9 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::C2d(a) => c2d::run_c2d(&a),
         Command::D2c(a) => c2d::run_d2c(&a),
         Command::Pade(a) => pade::run(&a),
+        Command::Lyap(a) => equations::run_lyap(&a),
+        Command::Sylvester(a) => equations::run_sylvester(&a),
+        Command::Care(a) => equations::run_riccati(&a, false),
+        Command::Dare(a) => equations::run_riccati(&a, true),
     }
 }

@@ -8,6 +8,7 @@ mod channels;
 mod commands;
 mod delayed;
 mod demo;
+mod equations;
 mod exit;
 mod freq;
 mod help;
