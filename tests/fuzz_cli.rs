@@ -142,6 +142,13 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
     ("connect", &[&["<DIAGRAM.toml>", "--json", "--output"]]),
     ("eval", &[PLANT, &["--s", "--z", "--json"]]),
     ("gangof4", &[PLANT, &["--json", "--output"]]),
+    (
+        "lyap",
+        &[&["--a", "--q", "--b", "--discrete", "--from", "--json"]],
+    ),
+    ("sylvester", &[&["--a", "--b", "--c", "--from", "--json"]]),
+    ("care", &[EQUATION]),
+    ("dare", &[EQUATION]),
 ];
 
 /// The arguments of series, parallel and feedback (two plant files).
@@ -195,6 +202,12 @@ const DIAGRAM_MUTATIONS: &[(&str, &str, &str)] = &[
         "blocks = 3\n[blocksX.C]",
     ),
 ];
+
+/// The options of the Riccati equations.
+const EQUATION: &[&str] = &["--a", "--b", "--q", "--r", "--s", "--from", "--json"];
+
+/// The matrix equations (their --a… are matrices, not a plant).
+const EQUATIONS: &[&str] = &["lyap", "sylvester", "care", "dare"];
 
 /// The plant options every analysis command takes.
 const PLANT: &[&str] = &[
@@ -739,6 +752,7 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         | "--negative"
         | "--asymptotes"
         | "--guides"
+        | "--discrete"
         | "--loop"
         | "--closed-loop"
         | "--sensitivity"
@@ -761,7 +775,12 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "x y",
             ])
             .into()),
-        "--a" | "--b" | "--c" | "--d" => v(match r.below(5) {
+        "--from" => v(if r.one_in(2) {
+            files.plant_file(r)
+        } else {
+            files.path("missing.toml")
+        }),
+        "--a" | "--b" | "--c" | "--d" | "--q" | "--r" | "--s" => v(match r.below(5) {
             0 => "1 2; 3".into(),
             1 => "nan".into(),
             2 => long_text(r),
@@ -994,6 +1013,9 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
             || opt == "--method"
             || (opt == "--dt" && cmd == "c2d")
             || (matches!(opt, "--delay" | "--order") && cmd == "pade")
+            || (EQUATIONS.contains(&cmd)
+                && matches!(opt, "--a" | "--b" | "--c" | "--q" | "--r")
+                && !(cmd == "lyap" && opt == "--b"))
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
         let chance = match opt {

@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, connect, delayed, demo, eval, freq, gangof4, help, jury, linearize, margins,
-    pade, plots, pullin, residue, response, rlocus, routh, simulate,
+    analyze, c2d, connect, delayed, demo, equations, eval, freq, gangof4, help, jury, linearize,
+    margins, pade, plots, pullin, residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -93,6 +93,17 @@ pub(crate) enum Command {
     /// The gang of four of the loop L = C·G (--controller): S, P·S, C·S, T with poles, dc
     /// gain and peak; Bode PNG with -o.
     Gangof4(gangof4::GangArgs),
+    /// Lyapunov equation A·X + X·Aᵀ + Q = 0 (--discrete: A·X·Aᵀ − X + Q = 0; --b B for
+    /// Q = B·Bᵀ with the Cholesky factor): X, relative residual, condition estimate.
+    Lyap(equations::LyapArgs),
+    /// Sylvester equation A·X + X·B = C: X, relative residual, condition estimate.
+    Sylvester(equations::SylvesterArgs),
+    /// Continuous algebraic Riccati equation (LQR) with weights --q, --r and cross term --s:
+    /// stabilising X, gain K, closed-loop eigenvalues, residual, condition estimate.
+    Care(equations::RiccatiArgs),
+    /// Discrete algebraic Riccati equation: stabilising X, gain K, closed-loop eigenvalues,
+    /// residual, condition estimate.
+    Dare(equations::RiccatiArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -197,5 +208,9 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Connect(a) => connect::run_connect(&a),
         Command::Eval(a) => eval::run(&a),
         Command::Gangof4(a) => gangof4::run(&a),
+        Command::Lyap(a) => equations::run_lyap(&a),
+        Command::Sylvester(a) => equations::run_sylvester(&a),
+        Command::Care(a) => equations::run_riccati(&a, false),
+        Command::Dare(a) => equations::run_riccati(&a, true),
     }
 }

@@ -211,6 +211,9 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("delay", "--delay"),
     ("pade", "--pade"),
     ("order", "--order"),
+    ("q", "--q"),
+    ("r", "--r"),
+    ("s", "--s"),
 ];
 
 /// The flag of a library field name, if the command line has one.

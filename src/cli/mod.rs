@@ -9,6 +9,7 @@ mod commands;
 mod connect;
 mod delayed;
 mod demo;
+mod equations;
 mod eval;
 mod exit;
 mod freq;
