@@ -124,6 +124,10 @@ limits! {
     /// analysed).
     ANALYSIS_STATES, MAX_ANALYSIS_STATES: usize = 256, "states", [],
         "whole-model section of `analyze`";
+    /// Largest model whose H∞/L∞ norm, Gramians or balanced truncation are computed: the
+    /// H∞ iteration solves eigenvalue problems of twice this order (dense O(n³)).
+    NORM_STATES, MAX_NORM_STATES: usize = 512, "states", [],
+        "states of a model for `norm`, `gram`, `hsv`, `balred`, `sigma`";
     /// Most channels analysed at once without a chosen channel.
     CHANNELS, MAX_CHANNELS: usize = 64, "channels", ["channel"],
         "channels of a MIMO plant analysed at once";
