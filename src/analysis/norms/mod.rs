@@ -8,6 +8,7 @@
 //! | `gain.rs` (internal) | σ_max(G(jω)) | Hessenberg solve, complex SVD |
 //! | [`sigma`] | σᵢ(G(jω)) on a grid | the same evaluation |
 
+mod factored;
 mod gain;
 mod hamiltonian;
 pub mod hinf;
