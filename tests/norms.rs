@@ -8,17 +8,21 @@ mod common;
 mod norms_input;
 
 use common::tf;
+use ltikit::StateSpace;
 use ltikit::analysis::ClosedLoop;
 use ltikit::analysis::norms::{CERTIFIED_GAP, PeakGain, hinf_norm, linf_norm, sigma_response};
 use ltikit::lti::{Discretization, Domain};
-use ltikit::StateSpace;
 use nalgebra::DMatrix;
 
 /// `exact` lies in the certified interval (up to `slack` relative, the reference's own
 /// rounding) and the lower bound is within `rel` of it.
 fn check(n: &PeakGain, exact: f64, rel: f64, slack: f64, what: &str) {
     assert!(n.infinite.is_none(), "{what}: {n:?}");
-    assert!(n.relative_gap() <= CERTIFIED_GAP, "{what}: gap {}", n.relative_gap());
+    assert!(
+        n.relative_gap() <= CERTIFIED_GAP,
+        "{what}: gap {}",
+        n.relative_gap()
+    );
     assert!(
         n.lower <= exact * (1.0 + slack) && exact <= n.upper * (1.0 + slack),
         "{what}: {exact} outside [{}, {}]",
@@ -40,12 +44,29 @@ fn damping_family_from_coefficients() {
     for z in [0.5, 0.1, 1e-3, 1e-5] {
         let f = tf(&[1.0], &[1.0, 2.0 * z, 1.0]).factored().unwrap();
         let n = f.hinf_norm().unwrap();
-        check(&n, 1.0 / (2.0 * z * (1.0 - z * z).sqrt()), 1e-12, 1e-15, &format!("ζ = {z}"));
-        assert!((n.w - (1.0 - 2.0 * z * z).sqrt()).abs() < 1e-6, "ζ = {z}: {}", n.w);
+        check(
+            &n,
+            1.0 / (2.0 * z * (1.0 - z * z).sqrt()),
+            1e-12,
+            1e-15,
+            &format!("ζ = {z}"),
+        );
+        assert!(
+            (n.w - (1.0 - 2.0 * z * z).sqrt()).abs() < 1e-6,
+            "ζ = {z}: {}",
+            n.w
+        );
     }
     for z in [1.0 / 2f64.sqrt() + 1e-9, 2.0] {
-        let n = tf(&[1.0], &[1.0, 2.0 * z, 1.0]).factored().unwrap().hinf_norm().unwrap();
-        assert!((n.lower - 1.0).abs() < 1e-15 && n.w == 0.0, "ζ = {z}: {n:?}");
+        let n = tf(&[1.0], &[1.0, 2.0 * z, 1.0])
+            .factored()
+            .unwrap()
+            .hinf_norm()
+            .unwrap();
+        assert!(
+            (n.lower - 1.0).abs() < 1e-15 && n.w == 0.0,
+            "ζ = {z}: {n:?}"
+        );
     }
 }
 
@@ -75,14 +96,28 @@ fn discrete_models_by_bilinear_invariance() {
     for z in [0.1, 1e-3] {
         let g = tf(&[1.0], &[1.0, 2.0 * z, 1.0]).c2d(2.0, tustin).unwrap();
         let n = g.factored().unwrap().hinf_norm().unwrap();
-        check(&n, 1.0 / (2.0 * z * (1.0 - z * z).sqrt()), 1e-11, 1e-12, &format!("ζ = {z}"));
+        check(
+            &n,
+            1.0 / (2.0 * z * (1.0 - z * z).sqrt()),
+            1e-11,
+            1e-12,
+            &format!("ζ = {z}"),
+        );
         let wr = (1.0 - 2.0 * z * z).sqrt();
         assert!((n.w - wr.atan()).abs() < 1e-6, "{}", n.w);
     }
     // the random model mapped the same way: the continuous reference
-    let ss = norms_input::random_stable(30, 2, 2, 1).c2d(2.0, tustin).unwrap();
+    let ss = norms_input::random_stable(30, 2, 2, 1)
+        .c2d(2.0, tustin)
+        .unwrap();
     assert_eq!(ss.domain, Domain::discrete(2.0).unwrap());
-    check(&hinf_norm(&ss).unwrap(), 30.916905508269178, 1e-10, 1e-11, "random, z");
+    check(
+        &hinf_norm(&ss).unwrap(),
+        30.916905508269178,
+        1e-10,
+        1e-11,
+        "random, z",
+    );
     // 1/(z − a): |G| = 1/|e^(jθ) − a| peaks at θ = 0 (a > 0) or θ = π (a < 0) at 1/(1 − |a|)
     for (a, w) in [(0.5, 0.0), (-0.5, std::f64::consts::PI / 0.1)] {
         let g = tf(&[1.0], &[1.0, -a]).with_domain(Domain::discrete(0.1).unwrap());
@@ -117,14 +152,27 @@ fn unstable_models() {
 /// rises to 1 without attaining it.
 #[test]
 fn peaks_at_zero_and_infinity() {
-    let n = tf(&[1.0, 3.0], &[1.0, 1.0]).factored().unwrap().hinf_norm().unwrap();
+    let n = tf(&[1.0, 3.0], &[1.0, 1.0])
+        .factored()
+        .unwrap()
+        .hinf_norm()
+        .unwrap();
     check(&n, 3.0, 1e-15, 1e-15, "(s + 3)/(s + 1)");
-    let n = tf(&[1.0, 0.0], &[1.0, 1.0]).factored().unwrap().hinf_norm().unwrap();
+    let n = tf(&[1.0, 0.0], &[1.0, 1.0])
+        .factored()
+        .unwrap()
+        .hinf_norm()
+        .unwrap();
     check(&n, 1.0, 1e-15, 1e-15, "s/(s + 1)");
     assert!(n.w.is_infinite());
     let d = DMatrix::from_row_slice(2, 2, &[3.0, 0.0, 0.0, -4.0]);
-    let ss = StateSpace::new(DMatrix::zeros(0, 0), DMatrix::zeros(0, 2), DMatrix::zeros(2, 0), d)
-        .unwrap();
+    let ss = StateSpace::new(
+        DMatrix::zeros(0, 0),
+        DMatrix::zeros(0, 2),
+        DMatrix::zeros(2, 0),
+        d,
+    )
+    .unwrap();
     assert_eq!(hinf_norm(&ss).unwrap().lower, 4.0);
 }
 
@@ -137,7 +185,10 @@ fn loop_peaks_agree_with_certified_norms() {
     let g = tf(&[1.0], &[1.0, 0.8, 4.0, 0.0]).factored().unwrap();
     let cl = ClosedLoop::new(&c, &g).unwrap();
     let r = cl.robustness().unwrap();
-    for (which, peak) in [(LoopSystem::Sensitivity, r.ms), (LoopSystem::ClosedLoop, r.mt)] {
+    for (which, peak) in [
+        (LoopSystem::Sensitivity, r.ms),
+        (LoopSystem::ClosedLoop, r.mt),
+    ] {
         let n = cl.system(which).unwrap().hinf_norm().unwrap();
         assert!(
             peak.value >= n.lower * (1.0 - 1e-12) && peak.value <= n.upper * (1.0 + 1e-12),

@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, plots, pullin,
-    residue, response, rlocus, routh, simulate,
+    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, norm, pade, plots, pullin,
+    residue, response, rlocus, routh, sigma, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -78,6 +78,12 @@ pub(crate) enum Command {
     /// The [N/N] Padé approximant of a dead time e^(−sT): coefficients, poles, and the phase
     /// error against −ωT (what --pade N puts in place of a plant's delay).
     Pade(pade::PadeArgs),
+    /// Certified H∞ norm (--hinf, default) or L∞ norm (--linf): an interval [lower, upper]
+    /// with upper/lower − 1 ≤ 1e-10 and the peak frequency (∞ for an unstable model).
+    Norm(norm::NormArgs),
+    /// Singular values σᵢ(G(jω)) of a MIMO plant over a frequency grid: a table, JSON, or a
+    /// sigma plot PNG with -o; the certified peak marked.
+    Sigma(sigma::SigmaArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -176,5 +182,7 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::C2d(a) => c2d::run_c2d(&a),
         Command::D2c(a) => c2d::run_d2c(&a),
         Command::Pade(a) => pade::run(&a),
+        Command::Norm(a) => norm::run(&a),
+        Command::Sigma(a) => sigma::run(&a),
     }
 }

@@ -8,9 +8,19 @@ use crate::error::Result;
 use crate::lti::StateSpace;
 
 impl Factored {
-    /// The minimal cascade realisation of the reduced transfer function (its dead time, which
-    /// changes no gain, left out).
-    fn norm_realization(&self) -> Result<StateSpace> {
+    /// The cascade realisation ([`StateSpace::from_zpk`]) of the reduced transfer function, in
+    /// the plant's domain, its dead time (which changes no gain) left out: the state-space
+    /// model the norms of a SISO plant are computed on.
+    ///
+    /// Errors: an improper plant.
+    ///
+    /// ```
+    /// use ltikit::TransferFunction;
+    /// // (s + 1)/((s + 1)(s + 2)) reduces to 1/(s + 2): one state
+    /// let f = TransferFunction::from_descending(&[1.0, 1.0], &[1.0, 3.0, 2.0]).unwrap().factored().unwrap();
+    /// assert_eq!(f.norm_realization().unwrap().order(), 1);
+    /// ```
+    pub fn norm_realization(&self) -> Result<StateSpace> {
         Ok(
             StateSpace::from_zpk(self.reduced_zeros(), self.reduced_poles(), self.gain())?
                 .with_domain(self.domain()),

@@ -69,7 +69,13 @@ pub(crate) fn singular_values(g: &DMatrix<Complex64>) -> Vec<f64> {
     if g.len() == 1 {
         return vec![g[(0, 0)].norm()];
     }
-    let mut s: Vec<f64> = g.clone().svd(false, false).singular_values.iter().copied().collect();
+    let mut s: Vec<f64> = g
+        .clone()
+        .svd(false, false)
+        .singular_values
+        .iter()
+        .copied()
+        .collect();
     s.sort_by(|a, b| b.total_cmp(a));
     s
 }
@@ -105,7 +111,8 @@ mod tests {
         assert!((g.sigma_max(1.0) - 0.5f64.sqrt()).abs() < 1e-16);
         assert_eq!(g.sigma_max(f64::INFINITY), 0.0);
         // diag(3, 4) as a static 2×2 gain: singular values 4, 3
-        let m = DMatrix::from_row_slice(2, 2, &[3.0, 0.0, 0.0, -4.0]).map(|x| Complex64::new(x, 0.0));
+        let m =
+            DMatrix::from_row_slice(2, 2, &[3.0, 0.0, 0.0, -4.0]).map(|x| Complex64::new(x, 0.0));
         assert_eq!(singular_values(&m), vec![4.0, 3.0]);
     }
 }

@@ -297,7 +297,12 @@ fn bilinear(ss: &StateSpace) -> Result<Hamiltonian> {
     let b = &inv * &ss.b * r2;
     let c = &ss.c * &inv * r2;
     let d = &ss.d - &ss.c * &inv * &ss.b;
-    if !a.iter().chain(b.iter()).chain(c.iter()).all(|x| x.is_finite()) {
+    if !a
+        .iter()
+        .chain(b.iter())
+        .chain(c.iter())
+        .all(|x| x.is_finite())
+    {
         return Err(singular());
     }
     Ok(Hamiltonian { a, b, c, d })
