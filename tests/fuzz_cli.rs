@@ -136,6 +136,28 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
         &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
     ),
     ("pade", &[&["--delay", "--order", "--w", "--json"]]),
+    ("norm", &[PLANT, &["--hinf", "--linf", "--h2", "--json"]]),
+    (
+        "sigma",
+        &[
+            PLANT,
+            &[
+                "--points",
+                "--w",
+                "--output",
+                "--size",
+                "--title",
+                "--font-scale",
+                "--json",
+            ],
+        ],
+    ),
+    ("gram", &[PLANT, &["--kind", "--cholesky", "--json"]]),
+    ("hsv", &[PLANT, &["--json"]]),
+    (
+        "balred",
+        &[PLANT, &["--order", "--error", "--output", "--json"]],
+    ),
 ];
 
 /// The plant options every analysis command takes.
@@ -612,7 +634,9 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--t" | "--w" => "0 0.5 1 2".into(),
         "--size" => "800x600".into(),
         "--title" => "a title".into(),
-        "--output" if !matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.png")),
+        "--output" if !matches!(cmd, "c2d" | "d2c" | "balred") => {
+            files.path(&format!("case{k}.png"))
+        }
         "--input" if cmd == "simulate" => "0.5".into(),
         "--input" => r.pick(&["step", "impulse", "ramp", "sin:2"]).into(),
         "--channel" => "1,1".into(),
@@ -625,11 +649,15 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--delay" => "0.5".into(),
         "--pade" => "3".into(),
         "--order" => "3".into(),
+        "--error" => "0.01".into(),
+        "--kind" => r.pick(&["c", "o"]).into(),
         "--prewarp" => "1".into(),
         "--method" => r
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
             .into(),
-        "--output" if matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.toml")),
+        "--output" if matches!(cmd, "c2d" | "d2c" | "balred") => {
+            files.path(&format!("case{k}.toml"))
+        }
         _ => return None,
     })
 }
@@ -649,7 +677,13 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         | "--loop"
         | "--closed-loop"
         | "--sensitivity"
-        | "--control-sensitivity" => vec![],
+        | "--control-sensitivity"
+        | "--hinf"
+        | "--linf"
+        | "--h2"
+        | "--cholesky" => vec![],
+        "--kind" => v(r.pick(&["c", "o", "x", ""]).into()),
+        "--error" => v(number(r)),
         "--plant" => v(files.plant_file(r)),
         "--num" | "--den" => v(match r.below(6) {
             0 => r
@@ -802,7 +836,7 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "zoh", "foh", "tustin", "bilinear", "matched", "impulse", "euler", "",
             ])
             .into()),
-        "--output" if matches!(cmd, "c2d" | "d2c") => v(match r.below(4) {
+        "--output" if matches!(cmd, "c2d" | "d2c" | "balred") => v(match r.below(4) {
             0 => files.output(r, k).0,
             1 => "/proc/ltikit-fuzz.toml".into(),
             _ => files.path(&format!("case{k}.toml")),
@@ -868,6 +902,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
             || opt == "--method"
             || (opt == "--dt" && cmd == "c2d")
             || (matches!(opt, "--delay" | "--order") && cmd == "pade")
+            || (opt == "--order" && cmd == "balred")
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
         let chance = match opt {
@@ -943,7 +978,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         if opt == "--output" {
             let p = PathBuf::from(&vals[0]);
             if p.starts_with(&files.dir) && !p.is_dir() {
-                if matches!(cmd, "c2d" | "d2c") {
+                if matches!(cmd, "c2d" | "d2c" | "balred") {
                     plant_file = Some(p);
                 } else {
                     picture = Some(p);

@@ -2,6 +2,7 @@
 //! that prints. Errors go to stderr as one line with exit code 1 (2 for usage errors).
 
 mod analyze;
+mod balred;
 mod batch;
 mod c2d;
 mod channels;
@@ -10,6 +11,7 @@ mod delayed;
 mod demo;
 mod exit;
 mod freq;
+mod gram;
 mod help;
 mod input_file;
 mod jury;

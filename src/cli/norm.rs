@@ -18,14 +18,20 @@ pub struct NormArgs {
     pub plant: PlantArgs,
     /// The H∞ norm, sup over ω of σ_max(G(jω)) of a stable model (the default): a certified
     /// interval with upper/lower − 1 ≤ 1e-10 (∞ for an unstable model).
-    #[arg(long, conflicts_with_all = ["linf"])]
+    #[arg(long, conflicts_with_all = ["linf", "h2"])]
     pub hinf: bool,
     /// The L∞ norm: the same peak for any model without poles on the imaginary axis (unit
     /// circle).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "h2")]
     pub linf: bool,
+    /// The H2 norm √(trace C·P·Cᵀ) from the controllability Gramian's Cholesky factor (∞ for
+    /// an unstable model, or with a feedthrough D ≠ 0 in continuous time; a discrete model's
+    /// includes D).
+    #[arg(long)]
+    pub h2: bool,
     /// Print one JSON document: {"norm", "value", "lower", "upper", "relative_gap", "w",
-    /// "iterations", "infinite", "states", "inputs", "outputs"}.
+    /// "iterations", "infinite", "states", "inputs", "outputs"} ({"norm": "h2", "value",
+    /// "residual", "infinite", …} with --h2).
     #[arg(long)]
     pub json: bool,
 }
@@ -62,8 +68,43 @@ struct NormJson<'a> {
     outputs: usize,
 }
 
+#[derive(Serialize)]
+struct H2Json<'a> {
+    norm: &'static str,
+    value: f64,
+    residual: f64,
+    infinite: Option<&'a str>,
+    states: usize,
+    inputs: usize,
+    outputs: usize,
+}
+
 pub fn run(a: &NormArgs) -> Result<()> {
     let (name, ss) = plant_state_space(&a.plant)?;
+    if a.h2 {
+        let n = crate::analysis::norms::h2_norm(&ss)?;
+        if a.json {
+            return print_json(&H2Json {
+                norm: "h2",
+                value: n.value,
+                residual: n.residual,
+                infinite: n.infinite.as_deref(),
+                states: ss.order(),
+                inputs: ss.n_inputs(),
+                outputs: ss.n_outputs(),
+            });
+        }
+        let mut s = format!("H2 norm of {name}\n  model:     {}\n", dims(&ss));
+        match &n.infinite {
+            Some(why) => s.push_str(&format!("  value:     ∞ — {why}\n")),
+            None => s.push_str(&format!(
+                "  value:     {}\n  Gramian residual (relative): {}\n",
+                fmt_sig(n.value, 15),
+                fmt_sig(n.residual, 2)
+            )),
+        }
+        return print(&s);
+    }
     let n = if a.linf {
         linf_norm(&ss)?
     } else {

@@ -10,9 +10,46 @@
 use nalgebra::DMatrix;
 use serde::Serialize;
 
-use crate::error::Result;
+use crate::error::{LtiError, Result};
+use crate::fmt::fmt_root;
 use crate::lti::StateSpace;
-use crate::numeric::linalg::{CholeskySolution, dlyap_cholesky, lyap_cholesky};
+use crate::numeric::linalg::{CholeskySolution, dlyap_cholesky, lyap_cholesky, schur_eigenvalues};
+
+/// Errors unless every eigenvalue of A is stable by more than rounding: Re λ < −τ
+/// (|λ| < 1 − τ in discrete time), τ = 1000·ε·max(‖A‖_F, 1). An eigenvalue within rounding
+/// of the imaginary axis (a rigid-body mode computed as −1e-17) would give a Gramian of
+/// order 1e15 that is nothing but rounding.
+fn require_stable(ss: &StateSpace) -> Result<()> {
+    if ss.order() == 0 {
+        return Ok(());
+    }
+    let tol = 1e3 * f64::EPSILON * ss.a.norm().max(1.0);
+    let discrete = ss.domain.is_discrete();
+    let bad = schur_eigenvalues(&ss.a)?.into_iter().find(|p| {
+        if discrete {
+            p.norm() >= 1.0 - tol
+        } else {
+            p.re >= -tol
+        }
+    });
+    match bad {
+        None => Ok(()),
+        Some(p) => Err(LtiError::Undefined {
+            what: "a Gramian of this model".into(),
+            reason: format!(
+                "A must be stable, but its eigenvalue {} = {} lies {} (the model is not stable: \
+                 remove the mode, e.g. a rigid-body mode, or shift it)",
+                if discrete { "z" } else { "s" },
+                fmt_root(p, 6),
+                if discrete {
+                    "on or outside the unit circle (within rounding)"
+                } else {
+                    "on the imaginary axis or in the right half plane (within rounding)"
+                }
+            ),
+        }),
+    }
+}
 
 /// Which Gramian.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -59,6 +96,7 @@ impl Gramian {
 /// ```
 pub fn gramian(ss: &StateSpace, kind: GramianKind) -> Result<Gramian> {
     crate::limits::NORM_STATES.check_usize("states", ss.order())?;
+    require_stable(ss)?;
     let (a, b) = match kind {
         GramianKind::Controllability => (ss.a.clone(), ss.b.clone()),
         GramianKind::Observability => (ss.a.transpose(), ss.c.transpose()),

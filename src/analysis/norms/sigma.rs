@@ -25,7 +25,9 @@ pub struct SigmaResponse {
 
 /// The singular values of G at each frequency of `w` (rad/s, ≥ 0).
 ///
-/// Errors: a negative or non-finite frequency; those of the Hessenberg reduction.
+/// Errors: a negative or non-finite frequency; more frequencies × values than
+/// [`crate::limits::MAX_CHANNEL_VALUES`] or frequencies × states² than
+/// [`crate::limits::MAX_SIGMA_WORK`]; those of the Hessenberg reduction.
 ///
 /// ```
 /// use nalgebra::DMatrix;
@@ -49,6 +51,8 @@ pub fn sigma_response(ss: &StateSpace, w: &[f64]) -> Result<SigmaResponse> {
         "frequencies × singular values",
         w.len() as u128 * ss.n_inputs().min(ss.n_outputs()).max(1) as u128,
     )?;
+    let n = ss.order() as u128;
+    crate::limits::SIGMA_WORK.check("frequencies × states²", w.len() as u128 * n * n)?;
     let eval = GainEvaluator::new(ss)?;
     let sigma = w.iter().map(|&x| eval.singular_values(x)).collect();
     Ok(SigmaResponse {
