@@ -137,7 +137,7 @@ pub struct HankelSingularValues {
 /// let one = |x: f64| DMatrix::from_element(1, 1, x);
 /// let ss = StateSpace::new(one(-1.0), one(1.0), one(1.0), one(0.0)).unwrap();
 /// let h = hankel_singular_values(&ss).unwrap();
-/// assert!((h.values[0] - 0.5).abs() < 1e-16);
+/// assert!((h.values[0] - 0.5).abs() < 4e-16);
 /// ```
 pub fn hankel_singular_values(ss: &StateSpace) -> Result<HankelSingularValues> {
     let controllability = gramian(ss, GramianKind::Controllability)?;

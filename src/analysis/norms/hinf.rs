@@ -4,7 +4,7 @@
 //! # Method
 //! Boyd–Balakrishnan (1990) / Bruinsma–Steinbuch (1990). The lower bound starts as the
 //! largest gain at ω = 0, ω → ∞ (σ_max(D)) and the poles' frequencies |Im p| and |p|. At
-//! γ = lower·(1 + 2·tol) the Hamiltonian H(γ) ([`super::hamiltonian`]) has an imaginary
+//! γ = lower·(1 + 2·tol) the Hamiltonian H(γ) (`hamiltonian.rs`) has an imaginary
 //! eigenvalue jω exactly when γ is a singular value of G(jω): with none, γ is an upper bound
 //! and the interval is certified; otherwise the gains at the crossing frequencies and at the
 //! midpoints of consecutive crossings raise the lower bound, and the test repeats (quadratic
@@ -331,7 +331,9 @@ fn certify(
     };
     let mut best = probe(f64::INFINITY, (f64::INFINITY, f64::INFINITY));
     let consider = |p: Probe, best: &mut Probe| {
-        if p.value > best.value || (p.value == best.value && p.nu < best.nu) {
+        // the larger gain; at a tie (a flat peak) the lower frequency
+        let order = p.value.total_cmp(&best.value).then(best.nu.total_cmp(&p.nu));
+        if order == std::cmp::Ordering::Greater {
             *best = p;
         }
     };
@@ -353,7 +355,8 @@ fn certify(
         });
     }
     let mut iterations = 0;
-    let mut polished_at = f64::NAN;
+    // the frequency (its bits) whose peak was last polished
+    let mut polished_at: Option<u64> = None;
     loop {
         let gamma = best.value * (1.0 + 2.0 * ITER_TOL);
         iterations += 1;
@@ -379,12 +382,12 @@ fn certify(
         }
         // no imaginary eigenvalue, or none that the gain confirms: γ is an upper bound;
         // polish the lower bound locally (once per peak), resume if it passes γ
-        if polished_at != best.nu {
+        if polished_at != Some(best.nu.to_bits()) {
             let p = polish(sigma, best);
             if p.value > best.value {
                 best = p;
             }
-            polished_at = best.nu;
+            polished_at = Some(best.nu.to_bits());
             if best.value > gamma {
                 continue;
             }

@@ -1,6 +1,6 @@
 //! System norms of state-space models and model reduction: the certified H∞ and L∞ norms
 //! ([`hinf`]), the singular values of the frequency response ([`sigma`]), the Gramians and
-//! Hankel singular values ([`gramian`]), the H2 norm ([`h2`]) and balanced truncation
+//! Hankel singular values ([`mod@gramian`]), the H2 norm ([`h2`]) and balanced truncation
 //! ([`balred`]).
 //!
 //! | file | what | method |
@@ -9,7 +9,7 @@
 //! | `hamiltonian.rs` (internal) | H(γ) and its imaginary eigenvalues | real Schur form, tolerance relative to ‖H‖ |
 //! | `gain.rs` (internal) | σ_max(G(jω)) | Hessenberg solve, complex SVD |
 //! | [`sigma`] | σᵢ(G(jω)) on a grid | the same evaluation |
-//! | [`gramian`] | controllability/observability Gramians as Cholesky factors, Hankel singular values | Hammarling (`numeric::linalg::lyap_cholesky`), SVD of L_oᵀ·L_c |
+//! | [`mod@gramian`] | controllability/observability Gramians as Cholesky factors, Hankel singular values | Hammarling (`numeric::linalg::lyap_cholesky`), SVD of L_oᵀ·L_c |
 //! | [`h2`] | H2 norm | ‖C·L_c‖_F (+ ‖D‖_F² in discrete time) |
 //! | [`balred`] | balanced truncation to an order or an error, a priori bound and measured error | square-root method (Laub; Tombs–Postlethwaite), the certified H∞ norm of G − G_r |
 //! | `factored.rs` (internal) | the norms of a SISO factored plant | cascade realisation of its reduced zeros and poles |
