@@ -332,7 +332,10 @@ fn certify(
     let mut best = probe(f64::INFINITY, (f64::INFINITY, f64::INFINITY));
     let consider = |p: Probe, best: &mut Probe| {
         // the larger gain; at a tie (a flat peak) the lower frequency
-        let order = p.value.total_cmp(&best.value).then(best.nu.total_cmp(&p.nu));
+        let order = p
+            .value
+            .total_cmp(&best.value)
+            .then(best.nu.total_cmp(&p.nu));
         if order == std::cmp::Ordering::Greater {
             *best = p;
         }
