@@ -199,3 +199,21 @@ fn loop_peaks_agree_with_certified_norms() {
         );
     }
 }
+
+/// No false certificate: for 40 random models (2 to 40 states, SISO to 3×2, seeds 1…40 of
+/// benches/common/norms.rs) no σ_max sample of a 4001-point grid around the modes exceeds
+/// the upper bound, and the interval is 1e-10 wide.
+#[test]
+fn certificates_hold_on_random_models() {
+    let w = common::logspace(-2.0, 2.0, 4001);
+    for seed in 1..=40u64 {
+        let n = 2 * (1 + (seed as usize * 7) % 20);
+        let (m, p) = (1 + seed as usize % 2, 1 + seed as usize % 3);
+        let ss = norms_input::random_stable(n, m, p, seed);
+        let h = hinf_norm(&ss).unwrap();
+        assert!(h.relative_gap() <= CERTIFIED_GAP, "seed {seed}: {h:?}");
+        let s = sigma_response(&ss, &w).unwrap();
+        let top = s.sigma.iter().map(|v| v[0]).fold(0.0, f64::max);
+        assert!(top <= h.upper, "seed {seed} (n = {n}): grid {top} > upper {}", h.upper);
+    }
+}
