@@ -214,6 +214,10 @@ fn certificates_hold_on_random_models() {
         assert!(h.relative_gap() <= CERTIFIED_GAP, "seed {seed}: {h:?}");
         let s = sigma_response(&ss, &w).unwrap();
         let top = s.sigma.iter().map(|v| v[0]).fold(0.0, f64::max);
-        assert!(top <= h.upper, "seed {seed} (n = {n}): grid {top} > upper {}", h.upper);
+        assert!(
+            top <= h.upper,
+            "seed {seed} (n = {n}): grid {top} > upper {}",
+            h.upper
+        );
     }
 }
