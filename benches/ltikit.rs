@@ -436,3 +436,30 @@ mod equations {
         bencher.bench(|| care(black_box(&a), &b, &q, &r, None).unwrap());
     }
 }
+
+/// System norms (issue 23): the certified H∞ norm of the random stable 2×2 model of 30 states
+/// (benches/common/norms.rs; target < 20 ms; python-control's `norm(sys, 'inf',
+/// method='scipy')` in benches/compare/compare_norms.py) and of the 1/(s² + 2ζs + 1) family.
+mod norms {
+    use super::*;
+    use ltikit::analysis::norms::hinf_norm;
+
+    /// H∞ of the random 30-state model, certified to upper/lower − 1 ≤ 1e-10.
+    #[divan::bench(sample_count = 20)]
+    fn hinf_random_30_states(bencher: Bencher) {
+        let ss = common::norms::random_stable(30, 2, 2, 1);
+        bencher.bench(|| hinf_norm(black_box(&ss)).unwrap());
+    }
+
+    /// H∞ of the lattice channel (256 states, undamped: infinite, decided from A's
+    /// eigenvalues) — and of the same channel with damping 0.01·I added to A.
+    #[divan::bench(sample_count = 10)]
+    fn hinf_damped_lattice_256_states(bencher: Bencher) {
+        let mut ss = common::ss::lattice();
+        let n = ss.order();
+        for i in 0..n {
+            ss.a[(i, i)] -= 0.01;
+        }
+        bencher.bench(|| hinf_norm(black_box(&ss)).unwrap());
+    }
+}

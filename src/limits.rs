@@ -124,6 +124,14 @@ limits! {
     /// analysed).
     ANALYSIS_STATES, MAX_ANALYSIS_STATES: usize = 256, "states", [],
         "whole-model section of `analyze`";
+    /// Largest model whose H∞/L∞ norm, Gramians or balanced truncation are computed: the
+    /// H∞ iteration solves eigenvalue problems of twice this order (dense O(n³)).
+    NORM_STATES, MAX_NORM_STATES: usize = 256, "states", [],
+        "states of a model for `norm`, `gram`, `hsv`, `balred`, `sigma`";
+    /// Most work of a sigma plot: frequencies × states² (each frequency is an O(n²)
+    /// Hessenberg solve; 2·10⁹ is about two seconds).
+    SIGMA_WORK, MAX_SIGMA_WORK: u64 = 2_000_000_000, "frequencies × states²", ["points", "w"],
+        "frequencies × states² of `sigma`";
     /// Most channels analysed at once without a chosen channel.
     CHANNELS, MAX_CHANNELS: usize = 64, "channels", ["channel"],
         "channels of a MIMO plant analysed at once";

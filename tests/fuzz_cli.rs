@@ -149,6 +149,28 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
     ("sylvester", &[&["--a", "--b", "--c", "--from", "--json"]]),
     ("care", &[EQUATION]),
     ("dare", &[EQUATION]),
+    ("norm", &[PLANT, &["--hinf", "--linf", "--h2", "--json"]]),
+    (
+        "sigma",
+        &[
+            PLANT,
+            &[
+                "--points",
+                "--w",
+                "--output",
+                "--size",
+                "--title",
+                "--font-scale",
+                "--json",
+            ],
+        ],
+    ),
+    ("gram", &[PLANT, &["--kind", "--cholesky", "--json"]]),
+    ("hsv", &[PLANT, &["--json"]]),
+    (
+        "balred",
+        &[PLANT, &["--order", "--error", "--output", "--json"]],
+    ),
 ];
 
 /// The arguments of series, parallel and feedback (two plant files).
@@ -158,7 +180,7 @@ const TWO_MODELS: &[&str] = &["<A.toml>", "<B.toml>", "--json", "--output"];
 fn writes_plant_file(cmd: &str) -> bool {
     matches!(
         cmd,
-        "c2d" | "d2c" | "series" | "parallel" | "feedback" | "connect"
+        "c2d" | "d2c" | "series" | "parallel" | "feedback" | "connect" | "balred"
     )
 }
 
@@ -724,6 +746,8 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--delay" => "0.5".into(),
         "--pade" => "3".into(),
         "--order" => "3".into(),
+        "--error" => "0.01".into(),
+        "--kind" => r.pick(&["c", "o"]).into(),
         "--prewarp" => "1".into(),
         "--sign" => r.pick(&["-1", "1", "+1"]).into(),
         "--s" => r.pick(&["-1+2j", "2j", "0.5", "1-1i"]).into(),
@@ -756,7 +780,13 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         | "--loop"
         | "--closed-loop"
         | "--sensitivity"
-        | "--control-sensitivity" => vec![],
+        | "--control-sensitivity"
+        | "--hinf"
+        | "--linf"
+        | "--h2"
+        | "--cholesky" => vec![],
+        "--kind" => v(r.pick(&["c", "o", "x", ""]).into()),
+        "--error" => v(number(r)),
         "--plant" => v(files.plant_file(r)),
         "--num" | "--den" => v(match r.below(6) {
             0 => r
@@ -1016,6 +1046,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
             || (EQUATIONS.contains(&cmd)
                 && matches!(opt, "--a" | "--b" | "--c" | "--q" | "--r")
                 && !(cmd == "lyap" && opt == "--b"))
+            || (opt == "--order" && cmd == "balred")
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
         let chance = match opt {

@@ -6,6 +6,7 @@
 
 pub mod discrete;
 pub mod equations;
+pub mod norms;
 pub mod ss;
 
 use ltikit::TransferFunction;

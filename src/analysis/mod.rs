@@ -35,6 +35,7 @@ pub mod jury;
 pub mod laplace;
 pub mod margins;
 pub mod modes;
+pub mod norms;
 pub mod nyquist;
 pub mod pfe;
 pub mod point;

@@ -52,7 +52,7 @@ pub struct D2cArgs {
 }
 
 /// The value of `-o`: a name ending in `.toml` (a usage error otherwise).
-pub(super) fn toml_path(text: &str) -> std::result::Result<PathBuf, String> {
+pub(crate) fn toml_path(text: &str) -> std::result::Result<PathBuf, String> {
     let path = PathBuf::from(text);
     let ext = path
         .extension()
@@ -171,7 +171,7 @@ pub(super) fn eigen_roots(model: &Model) -> Result<Vec<Root>> {
     Ok(roots)
 }
 
-pub(super) fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+pub(crate) fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
     (0..m.nrows())
         .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
         .collect()
@@ -179,7 +179,7 @@ pub(super) fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
 
 /// The plant-file record of the result (and the model part of the JSON document).
 #[derive(Serialize)]
-pub(super) struct Record {
+pub(crate) struct Record {
     #[serde(skip_serializing_if = "Option::is_none")]
     name: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -201,7 +201,7 @@ pub(super) struct Record {
     delay: Option<f64>,
 }
 
-pub(super) fn record(model: &Model, dt: Option<f64>, name: Option<String>) -> Record {
+pub(crate) fn record(model: &Model, dt: Option<f64>, name: Option<String>) -> Record {
     let mut r = Record {
         name,
         dt,

@@ -5,8 +5,9 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, connect, delayed, demo, equations, eval, freq, gangof4, help, jury, linearize,
-    margins, pade, plots, pullin, residue, response, rlocus, routh, simulate,
+    analyze, balred, c2d, connect, delayed, demo, equations, eval, freq, gangof4, gram, help, jury,
+    linearize, margins, norm, pade, plots, pullin, residue, response, rlocus, routh, sigma,
+    simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -104,6 +105,20 @@ pub(crate) enum Command {
     /// Discrete algebraic Riccati equation: stabilising X, gain K, closed-loop eigenvalues,
     /// residual, condition estimate.
     Dare(equations::RiccatiArgs),
+    /// Certified H∞ norm (--hinf, default) or L∞ norm (--linf): an interval [lower, upper]
+    /// with upper/lower − 1 ≤ 1e-10 and the peak frequency (∞ for an unstable model).
+    Norm(norm::NormArgs),
+    /// Singular values σᵢ(G(jω)) of a MIMO plant over a frequency grid: a table, JSON, or a
+    /// sigma plot PNG with -o; the certified peak marked.
+    Sigma(sigma::SigmaArgs),
+    /// Controllability (--kind c) or observability (--kind o) Gramian of a stable plant, or
+    /// its Cholesky factor (--cholesky), with the residual of its Lyapunov equation.
+    Gram(gram::GramArgs),
+    /// Hankel singular values of a stable plant, with the truncation bound 2·Σ_{j>i} σⱼ.
+    Hsv(gram::HsvArgs),
+    /// Balanced truncation (square-root method) to --order K or --error E: the a priori bound
+    /// beside the certified measured H∞ error; -o F.toml writes the reduced plant.
+    Balred(balred::BalredArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -212,5 +227,10 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Sylvester(a) => equations::run_sylvester(&a),
         Command::Care(a) => equations::run_riccati(&a, false),
         Command::Dare(a) => equations::run_riccati(&a, true),
+        Command::Norm(a) => norm::run(&a),
+        Command::Sigma(a) => sigma::run(&a),
+        Command::Gram(a) => gram::run_gram(&a),
+        Command::Hsv(a) => gram::run_hsv(&a),
+        Command::Balred(a) => balred::run(&a),
     }
 }

@@ -152,7 +152,7 @@ impl From<&Linearization> for LinearizeJson {
     }
 }
 
-pub(super) fn matrix(name: &str, m: &[Vec<f64>], out: &mut String) {
+pub(crate) fn matrix(name: &str, m: &[Vec<f64>], out: &mut String) {
     if m.is_empty() || m[0].is_empty() {
         out.push_str(&format!("    {name} = []\n"));
         return;

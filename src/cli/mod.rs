@@ -2,6 +2,7 @@
 //! that prints. Errors go to stderr as one line with exit code 1 (2 for usage errors).
 
 mod analyze;
+mod balred;
 mod batch;
 mod c2d;
 mod channels;
@@ -14,11 +15,13 @@ mod eval;
 mod exit;
 mod freq;
 mod gangof4;
+mod gram;
 mod help;
 mod input_file;
 mod jury;
 mod linearize;
 mod margins;
+mod norm;
 mod output;
 mod pade;
 mod parse;
@@ -29,6 +32,7 @@ mod residue;
 mod response;
 mod rlocus;
 mod routh;
+mod sigma;
 mod simulate;
 mod table_args;
 mod text;

@@ -46,6 +46,7 @@ mod pzmap;
 mod raster;
 mod render;
 mod rlocus;
+mod sigma;
 mod step;
 mod style;
 mod text;
@@ -59,6 +60,7 @@ pub use options::{MAX_PIXELS, MAX_SIDE, MAX_TEXT_CHARS, MIN_SIDE, PlotOptions, p
 pub use projection::{Curve3, Point3, SpherePlot, View, sphere_png};
 pub use pzmap::{PzMap, pzmap_png};
 pub use rlocus::{RootLocusPlot, rlocus_png};
+pub use sigma::sigma_png;
 pub use step::{StepSeries, step_png};
 pub use style::{Color, LineStyle, MarkerShape, PALETTE, series_color};
 pub use xy::{

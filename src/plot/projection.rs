@@ -205,6 +205,7 @@ pub fn sphere_png(path: impl AsRef<Path>, plot: &SpherePlot, opts: &PlotOptions)
         y_range: Some((-lim, lim)),
         notes: plot.notes.clone(),
         title: "Projection".into(),
+        x_log: false,
     };
     xy_png(path, &xy, opts)
 }

@@ -267,6 +267,7 @@ fn xy(p: &RootLocusPlot) -> XyPlot {
             Some(t) => format!("Root locus of {t}"),
             None => "Root locus".into(),
         },
+        x_log: false,
     }
 }
 

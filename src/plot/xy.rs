@@ -177,6 +177,9 @@ pub struct XyPlot {
     pub notes: Vec<String>,
     /// Default title when [`PlotOptions::title`] is `None`.
     pub title: String,
+    /// A base-10 logarithmic x axis (decades; points with x ≤ 0 are left out), e.g. the
+    /// frequency axis of a sigma plot.
+    pub x_log: bool,
 }
 
 fn check_range(r: Option<(f64, f64)>, what: &str) -> Result<()> {
@@ -235,12 +238,23 @@ pub(super) fn xy_png_with(
             .chain(plot.markers.iter().map(|m| m.at))
             .filter(|p| p.0.is_finite() && p.1.is_finite())
     };
-    let xb = plot.x_range.or_else(|| bounds(all().map(|p| p.0)));
+    let xb = plot
+        .x_range
+        .or_else(|| bounds(all().map(|p| p.0).filter(|&x| !plot.x_log || x > 0.0)));
     let yb = plot.y_range.or_else(|| bounds(all().map(|p| p.1)));
     let (Some(xb), Some(yb)) = (xb, yb) else {
         return Err(LtiError::Plot("no finite data points to plot".into()));
     };
-    let xr = padded(xb, plot.x_range.is_some());
+    let xr = if plot.x_log {
+        if xb.0 <= 0.0 {
+            return Err(LtiError::Plot(
+                "a logarithmic x axis needs positive x values".into(),
+            ));
+        }
+        xb
+    } else {
+        padded(xb, plot.x_range.is_some())
+    };
     let yr = padded(yb, plot.y_range.is_some());
     check_span("x values", xr)?;
     check_span("y values", yr)?;
@@ -325,7 +339,11 @@ fn layout(
             } else {
                 let (nx, ny) = tick_targets(w, h, th);
                 (
-                    Axis::linear(xr.0, xr.1, nx, plot.x_range.is_some()),
+                    if plot.x_log {
+                        Axis::log(xr.0, xr.1, nx)
+                    } else {
+                        Axis::linear(xr.0, xr.1, nx, plot.x_range.is_some())
+                    },
                     Axis::linear(yr.0, yr.1, ny, plot.y_range.is_some()),
                 )
             }
@@ -555,6 +573,7 @@ pub fn phase_portrait_png(
         y_range: p.y_range,
         notes: Vec::new(),
         title: "Phase portrait".into(),
+        x_log: false,
     };
     xy_png_with(path.as_ref(), &plot, &extra, opts)
 }
