@@ -810,15 +810,20 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         } else {
             files.path("missing.toml")
         }),
-        "--a" | "--b" | "--c" | "--d" | "--q" | "--r" | "--s" => v(match r.below(5) {
-            0 => "1 2; 3".into(),
-            1 => "nan".into(),
-            2 => long_text(r),
-            _ => {
-                let n = 1 + r.below(3);
-                coefficients(r, n)
-            }
-        }),
+        // `--s` is a matrix (the cross term) everywhere but in `eval`, where it is a point
+        "--a" | "--b" | "--c" | "--d" | "--q" | "--r" | "--s"
+            if !(cmd == "eval" && opt == "--s") =>
+        {
+            v(match r.below(5) {
+                0 => "1 2; 3".into(),
+                1 => "nan".into(),
+                2 => long_text(r),
+                _ => {
+                    let n = 1 + r.below(3);
+                    coefficients(r, n)
+                }
+            })
+        }
         "--controller" => v(controller(r)),
         "--minreal" => v(r
             .pick(&[
