@@ -124,6 +124,10 @@ limits! {
     /// analysed).
     ANALYSIS_STATES, MAX_ANALYSIS_STATES: usize = 256, "states", [],
         "whole-model section of `analyze`";
+    /// Largest number of states for pole placement: the robust method forms an n × n kernel
+    /// basis per pole (O(n⁴) in all).
+    PLACE_STATES, MAX_PLACE_STATES: usize = 200, "states", [],
+        "states of a plant for `place`";
     /// Most channels analysed at once without a chosen channel.
     CHANNELS, MAX_CHANNELS: usize = 64, "channels", ["channel"],
         "channels of a MIMO plant analysed at once";
