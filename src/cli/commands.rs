@@ -5,7 +5,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, plots, pullin,
+    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, place, plots, pullin,
     residue, response, rlocus, routh, simulate,
 };
 
@@ -78,6 +78,10 @@ pub(crate) enum Command {
     /// The [N/N] Padé approximant of a dead time e^(−sT): coefficients, poles, and the phase
     /// error against −ωT (what --pade N puts in place of a plant's delay).
     Pade(pade::PadeArgs),
+    /// State feedback u = -K x placing the eigenvalues of A - BK at --poles (Ackermann for
+    /// one input, with its conditioning; Kautsky–Nichols–Van Dooren for several): the gain,
+    /// the achieved poles and their distance to the requested ones.
+    Place(place::PlaceArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -176,5 +180,6 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::C2d(a) => c2d::run_c2d(&a),
         Command::D2c(a) => c2d::run_d2c(&a),
         Command::Pade(a) => pade::run(&a),
+        Command::Place(a) => place::run(&a),
     }
 }

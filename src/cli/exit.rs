@@ -211,6 +211,7 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("delay", "--delay"),
     ("pade", "--pade"),
     ("order", "--order"),
+    ("poles", "--poles"),
 ];
 
 /// The flag of a library field name, if the command line has one.

@@ -21,7 +21,7 @@ use num_complex::Complex64;
 use super::knv::knv0;
 use super::poles::{check_poles, match_poles};
 use crate::error::{LtiError, Result};
-use crate::fmt::fmt_root;
+use super::poles::complex_label;
 use crate::lti::StateSpace;
 use crate::numeric::linalg::controllability_staircase;
 
@@ -80,6 +80,20 @@ impl Placement {
     /// assert!(p.conditioning_note().is_none());
     /// ```
     pub fn conditioning_note(&self) -> Option<String> {
+        if self.method == PlacementMethod::Ackermann {
+            let most = self
+                .requested
+                .iter()
+                .map(|p| self.requested.iter().filter(|q| *q == p).count())
+                .max()
+                .unwrap_or(1);
+            if most > 1 {
+                return Some(format!(
+                    "a pole requested {most} times with one input is a Jordan block of A - BK: \
+                     its computed eigenvalues scatter by about ε^(1/{most}) relative"
+                ));
+            }
+        }
         (self.condition > 1e8).then(|| match self.method {
             PlacementMethod::Ackermann => format!(
                 "Ackermann's formula solves with the controllability matrix, condition number \
@@ -150,7 +164,7 @@ pub fn place_matrices(
     let stairs = controllability_staircase(a, b, &DMatrix::zeros(0, n), None, false)?;
     if stairs.dim < n {
         let modes = crate::numeric::eigenvalues(&stairs.removed_block())?;
-        let mut names: Vec<String> = modes.iter().map(|z| fmt_root(*z, 6)).collect();
+        let mut names: Vec<String> = modes.iter().map(|z| complex_label(*z, 6)).collect();
         names.dedup();
         return Err(LtiError::invalid(format!(
             "the pair (A, B) is not controllable: {} of {n} modes cannot be moved by state \
@@ -176,7 +190,7 @@ pub fn place_matrices(
                 return Err(LtiError::invalid(format!(
                     "`poles`: {} is requested {count} times but B has rank {rank_b}: a pole \
                      can be placed at most rank(B) times",
-                    fmt_root(*p, 6)
+                    complex_label(*p, 6)
                 )));
             }
         }

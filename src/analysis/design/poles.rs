@@ -54,6 +54,28 @@ fn parse_complex(tok: &str) -> Result<Complex64> {
     Ok(Complex64::new(re, im))
 }
 
+/// One complex number (not a pair) with `sig` significant digits: "-2", "3j", "-2 + 1j".
+///
+/// ```
+/// use num_complex::Complex64 as C;
+/// use ltikit::analysis::design::poles::complex_label;
+/// assert_eq!(complex_label(C::new(-2.0, -1.0), 6), "-2 - 1j");
+/// assert_eq!(complex_label(C::new(0.0, 3.0), 6), "3j");
+/// ```
+pub fn complex_label(z: Complex64, sig: usize) -> String {
+    let f = |x: f64| crate::fmt::fmt_sig(x, sig);
+    match (z.re == 0.0, z.im == 0.0) {
+        (_, true) => f(z.re),
+        (true, false) => format!("{}j", f(z.im)),
+        (false, false) => format!(
+            "{} {} {}j",
+            f(z.re),
+            if z.im < 0.0 { "-" } else { "+" },
+            f(z.im.abs())
+        ),
+    }
+}
+
 /// Checks the requested poles: `n` of them, finite, closed under conjugation (a partner
 /// within 1e-12 relative is made the exact conjugate). Returns the poles in the given order
 /// with exact partners and, for each, the index of its conjugate partner (itself when real).
@@ -90,8 +112,8 @@ pub(crate) fn check_poles(poles: &[Complex64], n: usize) -> Result<(Vec<Complex6
             return Err(LtiError::invalid(format!(
                 "`poles`: the requested poles are not closed under conjugation: {} has no \
                  partner {} (a real gain needs conjugate pairs)",
-                abbreviate(&crate::fmt::fmt_root(out[i], 6)),
-                abbreviate(&crate::fmt::fmt_root(out[i].conj(), 6))
+                abbreviate(&complex_label(out[i], 6)),
+                abbreviate(&complex_label(out[i].conj(), 6))
             )));
         };
         out[k] = out[i].conj();
@@ -104,8 +126,8 @@ pub(crate) fn check_poles(poles: &[Complex64], n: usize) -> Result<(Vec<Complex6
         return Err(LtiError::invalid(format!(
             "`poles`: the requested poles are not closed under conjugation: {} has no \
              partner {} (a real gain needs conjugate pairs)",
-            crate::fmt::fmt_root(out[i], 6),
-            crate::fmt::fmt_root(out[i].conj(), 6)
+            complex_label(out[i], 6),
+            complex_label(out[i].conj(), 6)
         )));
     }
     Ok((out, partner))
