@@ -55,7 +55,9 @@ pub(super) fn design_plant(p: &PlantArgs, command: &str) -> Result<(Plant, State
     }
     super::output::set_document_dt(ss.domain.dt());
     if ss.order() == 0 {
-        anyhow::bail!("{command}: the plant has no states (a static gain): there is nothing to design");
+        anyhow::bail!(
+            "{command}: the plant has no states (a static gain): there is nothing to design"
+        );
     }
     Ok((plant, ss))
 }

@@ -19,9 +19,9 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use super::knv::knv0;
+use super::poles::complex_label;
 use super::poles::{check_poles, match_poles};
 use crate::error::{LtiError, Result};
-use super::poles::complex_label;
 use crate::lti::StateSpace;
 use crate::numeric::linalg::controllability_staircase;
 
@@ -67,8 +67,9 @@ pub struct Placement {
 }
 
 impl Placement {
-    /// A warning when the condition figure says digits are lost (κ > 1e8): about log₁₀ κ
-    /// of the 16 digits.
+    /// A warning when the achieved poles are more than 1e-6 (relative) off, when a pole is
+    /// repeated with one input (a Jordan block), or when the condition figure says digits
+    /// are lost (κ > 1e8: about log₁₀ κ of the 16 digits).
     ///
     /// ```
     /// use nalgebra::DMatrix;
@@ -80,6 +81,14 @@ impl Placement {
     /// assert!(p.conditioning_note().is_none());
     /// ```
     pub fn conditioning_note(&self) -> Option<String> {
+        if !(self.relative_error <= 1e-6) {
+            return Some(format!(
+                "the achieved poles are {} (relative) from the requested ones: the placement \
+                 is too ill-conditioned for these poles (condition number {})",
+                crate::fmt::fmt_sig(self.relative_error, 2),
+                crate::fmt::fmt_sig(self.condition, 3)
+            ));
+        }
         if self.method == PlacementMethod::Ackermann {
             let most = self
                 .requested
