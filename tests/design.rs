@@ -508,7 +508,10 @@ fn bad_design_inputs() {
     let k = lqe(&sq, &id(2), &id(1), None, None)
         .unwrap_err()
         .to_string();
-    assert!(k.contains("say where the process noise enters"), "{k}");
+    assert!(
+        k.contains("as many inputs as states (2): say where the process noise enters"),
+        "{k}"
+    );
     assert!(lqe(&sq, &id(2), &id(1), None, Some(NoiseInput::Inputs)).is_ok());
     let k = lqe(&di, &id(3), &id(1), None, None)
         .unwrap_err()
@@ -521,4 +524,128 @@ fn bad_design_inputs() {
         .unwrap_err()
         .to_string();
     assert!(k.contains("`rn` must be 1×1"), "{k}");
+}
+
+#[test]
+fn lqr_lqe_lqg_commands() {
+    let plant = ["--a", "0 1; 0 0", "--b", "0; 1", "--c", "1 0"];
+    let run = |extra: &[&str]| {
+        let mut args: Vec<&str> = vec![extra[0]];
+        args.extend(plant);
+        args.extend(&extra[1..]);
+        common::json(&args)
+    };
+    let v = run(&["lqr", "--q", "1", "--r", "1", "--json"]);
+    let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+    assert_eq!(
+        keys,
+        [
+            "dt",
+            "equation",
+            "k",
+            "x",
+            "closed_loop",
+            "residual",
+            "condition"
+        ]
+    );
+    assert_eq!(v["equation"], "care");
+    assert!((v["k"][0][1].as_f64().unwrap() - 3f64.sqrt()).abs() < 1e-14);
+    // `kalman` is `lqe`; one input, two states: a 1×1 Qn is noise through the input
+    let v = run(&["kalman", "--qn", "1", "--rn", "1", "--json"]);
+    assert_eq!(v["noise_input"], "inputs");
+    assert!(
+        (v["l"][0][0].as_f64().unwrap() - 2f64.sqrt()).abs() < 1e-13,
+        "{v}"
+    );
+    let v = run(&[
+        "lqe",
+        "--qn",
+        "1",
+        "--rn",
+        "1",
+        "--noise-input",
+        "states",
+        "--json",
+    ]);
+    assert_eq!(v["noise_input"], "states");
+    // LQG: the controller file is a plant that `analyze` reads, and as the loop controller
+    // it gives the closed loop the poles of A − BK and A − LC
+    let dir = std::env::temp_dir().join(format!("ltikit-design-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ctrl.toml");
+    let f = file.to_str().unwrap();
+    let v = run(&[
+        "lqg", "--q", "1", "--r", "1", "--qn", "1", "--rn", "1", "--json", "-o", f,
+    ]);
+    assert_eq!(v["controller"]["a"].as_array().unwrap().len(), 2);
+    let a = common::json(&["analyze", "--plant", f, "--json"]);
+    assert!(a.to_string().contains("poles"), "{a}");
+    let text = common::stdout(&[
+        "lqg", "--a", "0 1; 0 0", "--b", "0; 1", "--c", "1 0", "--q", "1", "--r", "1", "--qn", "1",
+        "--rn", "1",
+    ]);
+    let spec = text
+        .lines()
+        .find_map(|l| l.strip_prefix("as a loop controller: --controller "))
+        .unwrap()
+        .trim_matches('"')
+        .to_string();
+    let cl = common::json(&[
+        "analyze",
+        "--a",
+        "0 1; 0 0",
+        "--b",
+        "0; 1",
+        "--c",
+        "1 0",
+        "--controller",
+        &spec,
+        "--json",
+    ]);
+    let poles: Vec<Complex64> = cl["poles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| c(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+        .collect();
+    // eig(A − BK) = −√3/2 ± j/2, eig(A − LC) = −1/√2 ± j/√2 (Q = I, R = 1; Qn = 1 through B, Rn = 1)
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    for w in [
+        c(-0.75f64.sqrt(), 0.5),
+        c(-0.75f64.sqrt(), -0.5),
+        c(-h, h),
+        c(-h, -h),
+    ] {
+        assert!(
+            poles.iter().any(|p| (p - w).norm() < 1e-9),
+            "{w} not in {poles:?}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    // bad input: one line, exit 1; a missing weight is a usage error
+    let out = common::ltikit(&["lqr", "--den", "1 0 0", "--q", "1 2; 3 4", "--r", "1"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("error: --q must be symmetric") && err.lines().count() == 1,
+        "{err}"
+    );
+    let out = common::ltikit(&["lqr", "--den", "1 0 0", "--q", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = common::ltikit(&[
+        "lqe",
+        "--a",
+        "0 1; -2 -3",
+        "--b",
+        "1 0; 0 1",
+        "--c",
+        "1 0",
+        "--qn",
+        "1",
+        "--rn",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--noise-input"), "{err}");
 }

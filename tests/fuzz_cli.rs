@@ -136,6 +136,27 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
         &[PLANT, &["--method", "--prewarp", "--json", "--output"]],
     ),
     ("pade", &[&["--delay", "--order", "--w", "--json"]]),
+    ("place", &[PLANT, &["--poles", "--json"]]),
+    ("lqr", &[PLANT, &["--q", "--r", "--s", "--json"]]),
+    (
+        "lqe",
+        &[PLANT, &["--qn", "--rn", "--nn", "--noise-input", "--json"]],
+    ),
+    (
+        "lqg",
+        &[
+            PLANT,
+            &[
+                "--q",
+                "--r",
+                "--qn",
+                "--rn",
+                "--noise-input",
+                "--json",
+                "--output",
+            ],
+        ],
+    ),
 ];
 
 /// The plant options every analysis command takes.
@@ -612,7 +633,7 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--t" | "--w" => "0 0.5 1 2".into(),
         "--size" => "800x600".into(),
         "--title" => "a title".into(),
-        "--output" if !matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.png")),
+        "--output" if !matches!(cmd, "c2d" | "d2c" | "lqg") => files.path(&format!("case{k}.png")),
         "--input" if cmd == "simulate" => "0.5".into(),
         "--input" => r.pick(&["step", "impulse", "ramp", "sin:2"]).into(),
         "--channel" => "1,1".into(),
@@ -629,7 +650,12 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
         "--method" => r
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
             .into(),
-        "--output" if matches!(cmd, "c2d" | "d2c") => files.path(&format!("case{k}.toml")),
+        "--output" if matches!(cmd, "c2d" | "d2c" | "lqg") => files.path(&format!("case{k}.toml")),
+        "--poles" => r
+            .pick(&["-1", "-1,-2", "-1+1j,-1-1j,-3", "-1,-2,-3,-4"])
+            .into(),
+        "--q" | "--r" | "--qn" | "--rn" => r.pick(&["1", "2", "0.5"]).into(),
+        "--noise-input" => r.pick(&["states", "inputs"]).into(),
         _ => return None,
     })
 }
@@ -802,7 +828,37 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "zoh", "foh", "tustin", "bilinear", "matched", "impulse", "euler", "",
             ])
             .into()),
-        "--output" if matches!(cmd, "c2d" | "d2c") => v(match r.below(4) {
+        "--poles" => v(match r.below(6) {
+            0 => r
+                .pick(&[
+                    "",
+                    "nan",
+                    "1+",
+                    "-1+1j",
+                    "inf,-1",
+                    "-1 -1 -1 -1 -1",
+                    "0j",
+                    "x",
+                ])
+                .into(),
+            1 => long_text(r),
+            _ => {
+                let n = 1 + r.below(5);
+                (0..n).map(|_| coefficient(r)).collect::<Vec<_>>().join(",")
+            }
+        }),
+        "--q" | "--r" | "--s" | "--qn" | "--rn" | "--nn" => v(match r.below(5) {
+            0 => r
+                .pick(&["", "nan", "-1", "0", "1 2; 3", "1 2; 2 1", "1e300", "x"])
+                .into(),
+            1 => long_text(r),
+            _ => {
+                let n = 1 + r.below(3);
+                coefficients(r, n)
+            }
+        }),
+        "--noise-input" => v(r.pick(&["states", "inputs", "both", ""]).into()),
+        "--output" if matches!(cmd, "c2d" | "d2c" | "lqg") => v(match r.below(4) {
             0 => files.output(r, k).0,
             1 => "/proc/ltikit-fuzz.toml".into(),
             _ => files.path(&format!("case{k}.toml")),
@@ -867,6 +923,9 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         let required = opt == "<MODEL>"
             || opt == "--method"
             || (opt == "--dt" && cmd == "c2d")
+            || (opt == "--poles" && cmd == "place")
+            || (matches!(opt, "--q" | "--r") && matches!(cmd, "lqr" | "lqg"))
+            || (matches!(opt, "--qn" | "--rn") && matches!(cmd, "lqe" | "lqg"))
             || (matches!(opt, "--delay" | "--order") && cmd == "pade")
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
@@ -943,7 +1002,7 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         if opt == "--output" {
             let p = PathBuf::from(&vals[0]);
             if p.starts_with(&files.dir) && !p.is_dir() {
-                if matches!(cmd, "c2d" | "d2c") {
+                if matches!(cmd, "c2d" | "d2c" | "lqg") {
                     plant_file = Some(p);
                 } else {
                     picture = Some(p);

@@ -52,7 +52,7 @@ pub struct D2cArgs {
 }
 
 /// The value of `-o`: a name ending in `.toml` (a usage error otherwise).
-fn toml_path(text: &str) -> std::result::Result<PathBuf, String> {
+pub(super) fn toml_path(text: &str) -> std::result::Result<PathBuf, String> {
     let path = PathBuf::from(text);
     let ext = path
         .extension()

@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, delayed, demo, freq, help, jury, linearize, margins, pade, place, plots, pullin,
-    residue, response, rlocus, routh, simulate,
+    analyze, c2d, delayed, demo, freq, help, jury, linearize, lqr, margins, pade, place, plots,
+    pullin, residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -82,6 +82,17 @@ pub(crate) enum Command {
     /// one input, with its conditioning; Kautsky–Nichols–Van Dooren for several): the gain,
     /// the achieved poles and their distance to the requested ones.
     Place(place::PlaceArgs),
+    /// Linear-quadratic regulator: the state feedback u = -K x minimising the quadratic cost
+    /// with weights --q, --r (--s), from the Riccati equation (discrete for --dt T): K, X,
+    /// the closed-loop poles, the residual.
+    Lqr(lqr::LqrArgs),
+    /// Kalman estimator gain L from process and measurement noise covariances --qn, --rn
+    /// (noise on every state or through the inputs): L, the error covariance, eig(A - LC).
+    #[command(alias = "kalman")]
+    Lqe(lqr::LqeArgs),
+    /// LQG controller: an LQR on a Kalman estimate, as a state-space model H for negative
+    /// feedback u = -H y (the closed loop has the poles of A - BK and A - LC); -o F.toml.
+    Lqg(lqr::LqgArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -181,5 +192,8 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::D2c(a) => c2d::run_d2c(&a),
         Command::Pade(a) => pade::run(&a),
         Command::Place(a) => place::run(&a),
+        Command::Lqr(a) => lqr::run_lqr(&a),
+        Command::Lqe(a) => lqr::run_lqe(&a),
+        Command::Lqg(a) => lqr::run_lqg(&a),
     }
 }

@@ -15,6 +15,7 @@ mod help;
 mod input_file;
 mod jury;
 mod linearize;
+mod lqr;
 mod margins;
 mod output;
 mod pade;

@@ -164,11 +164,14 @@ fn noise_input_of(
         return Ok(t);
     }
     let size = qn.nrows();
+    if n == m {
+        return Err(LtiError::invalid(format!(
+            "the plant has as many inputs as states ({n}): say where the process noise enters \
+             (`noise_input` states: G = I, or inputs: G = B)"
+        )));
+    }
     match (size == n, size == m) {
-        (true, true) => Err(LtiError::invalid(format!(
-            "`qn` is {size}×{size} and the plant has {n} states and {m} inputs: say where the \
-             process noise enters (`noise_input` states: G = I, or inputs: G = B)"
-        ))),
+        (true, true) => unreachable_sizes(),
         (true, false) => Ok(NoiseInput::States),
         (false, true) => Ok(NoiseInput::Inputs),
         (false, false) => Err(LtiError::invalid(format!(
@@ -178,6 +181,13 @@ fn noise_input_of(
             qn.ncols()
         ))),
     }
+}
+
+/// n ≠ m was checked: Qn cannot have both sizes.
+fn unreachable_sizes() -> Result<NoiseInput> {
+    Err(LtiError::invalid(
+        "`qn`: the plant has as many inputs as states",
+    ))
 }
 
 /// A 1 × 1 matrix c made c·I of size k (a weight given as one number); any other matrix as
