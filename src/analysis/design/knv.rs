@@ -67,7 +67,7 @@ pub(crate) fn knv0(
     };
     let mreal = match x {
         Some(x) => {
-            let xinv = x.clone().try_inverse().ok_or_else(|| singular_x())?;
+            let xinv = x.clone().try_inverse().ok_or_else(singular_x)?;
             let mut xl = x.clone();
             for (j, p) in poles.iter().enumerate() {
                 let mut col = xl.column_mut(j);

@@ -30,7 +30,7 @@ pub struct Lqg {
     pub controller: StateSpace,
 }
 
-/// The LQG controller of a plant: [`lqr`] with weights Q, R and [`lqe`] with covariances Qn,
+/// The LQG controller of a plant: [`lqr()`] with weights Q, R and [`lqe`] with covariances Qn,
 /// Rn (no cross terms), joined as an observer-based compensator (see the
 /// [module docs](self)).
 ///

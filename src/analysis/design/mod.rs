@@ -3,10 +3,10 @@
 //!
 //! | task | function | result |
 //! |---|---|---|
-//! | put the eigenvalues of A − BK at given places | [`place`], [`place_matrices`] | [`Placement`] |
-//! | state feedback minimising a quadratic cost (CARE, or DARE for a discrete plant) | [`lqr`] | [`Lqr`] |
+//! | put the eigenvalues of A − BK at given places | [`place()`], [`place_matrices`] | [`Placement`] |
+//! | state feedback minimising a quadratic cost (CARE, or DARE for a discrete plant) | [`lqr()`] | [`Lqr`] |
 //! | the Kalman estimator gain from noise covariances (the dual Riccati equation) | [`lqe`] | [`Kalman`] |
-//! | an LQR on a Kalman estimate, as a state-space controller | [`lqg`] | [`Lqg`] |
+//! | an LQR on a Kalman estimate, as a state-space controller | [`lqg()`] | [`Lqg`] |
 //!
 //! Sign convention: state feedback is u = −K x (MATLAB's `place`, `lqr`), so the closed loop
 //! is A − BK; the estimator's error dynamics are A − LC; the LQG controller H is used in

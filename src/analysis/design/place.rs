@@ -8,7 +8,7 @@
 //! - **Several inputs**: the robust method of Kautsky, Nichols and Van Dooren (1985, method
 //!   0, as `scipy.signal.place_poles(method="KNV0")`, here with complex pairs): the freedom
 //!   left by m > 1 inputs is spent on well-conditioned closed-loop eigenvectors (see
-//!   [`super::knv`]); [`Placement::condition`] is then κ(X) of the unit eigenvector matrix, the
+//!   `design::knv`); [`Placement::condition`] is then κ(X) of the unit eigenvector matrix, the
 //!   sensitivity of the placed poles. A pole may be requested at most rank(B) times (the
 //!   eigenvectors of a repeated pole must be independent).
 //!
@@ -81,7 +81,7 @@ impl Placement {
     /// assert!(p.conditioning_note().is_none());
     /// ```
     pub fn conditioning_note(&self) -> Option<String> {
-        if !(self.relative_error <= 1e-6) {
+        if self.relative_error.is_nan() || self.relative_error > 1e-6 {
             return Some(format!(
                 "the achieved poles are {} (relative) from the requested ones: the placement \
                  is too ill-conditioned for these poles (condition number {})",
@@ -321,8 +321,8 @@ mod tests {
         // (s+2)(s²+2s+5) = s³ + 4s² + 9s + 10 → K = [10−6, 9−11, 4−6]
         let p = place_matrices(&a, &b, &[c(-2.0, 0.0), c(-1.0, 2.0), c(-1.0, -2.0)]).unwrap();
         let want = [4.0, -2.0, -2.0];
-        for j in 0..3 {
-            assert!((p.gain[(0, j)] - want[j]).abs() < 1e-13, "{}", p.gain);
+        for (j, w) in want.iter().enumerate() {
+            assert!((p.gain[(0, j)] - w).abs() < 1e-13, "{}", p.gain);
         }
         assert_eq!(p.method, PlacementMethod::Ackermann);
         assert!(p.relative_error < 1e-13);

@@ -1,6 +1,6 @@
 //! TEMPORARY stand-in for `numeric::linalg::{care, dare}` (branch `riccati`) so that the
 //! design code can be built and tested before the merge; removed at the merge.
-#![allow(dead_code)]
+#![allow(dead_code, clippy::type_complexity)]
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
