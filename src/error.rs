@@ -225,6 +225,15 @@ pub enum LtiError {
         /// Why ("e^(sT) is never 0 nor a negative real number").
         reason: String,
     },
+    /// A linear matrix equation (Sylvester, Lyapunov) is singular, or a Riccati equation has
+    /// no stabilising solution: the equation and why, naming the eigenvalues responsible.
+    #[error("{equation} has no unique solution: {reason}")]
+    SingularEquation {
+        /// The equation ("the Lyapunov equation A·X + X·Aᵀ + Q = 0").
+        equation: String,
+        /// Why, with the numbers.
+        reason: String,
+    },
     /// A number (or a list, or a `NAME=VALUE` pair) could not be read from text.
     #[error("{what}: '{token}' {reason}")]
     BadNumber {

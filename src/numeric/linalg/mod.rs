@@ -21,6 +21,9 @@
 //! | [`staircase`] | controllability / observability | orthogonal staircase (Van Dooren 1981, Varga) |
 //! | [`minreal`] | minimal realisation | two staircases, removed modes reported |
 //! | [`zeros`] | invariant and transmission zeros | Emami-Naeini & Van Dooren (1982) pencil reduction |
+//! | [`lyapunov`] | Sylvester A·X + X·B = C, Lyapunov A·X + X·Aᵀ + Q = 0 and A·X·Aᵀ − X + Q = 0, with residual and condition estimate | Bartels–Stewart on the unbalanced real Schur form, real quasi-triangular solve (`dtrsyl` scheme, `trsyl.rs`, internal) |
+//! | [`mod@hammarling`] | Cholesky factor L·Lᵀ = X of a Lyapunov solution with Q = B·Bᵀ (Gramians) | Hammarling (1982) on the complex Schur form, Givens updates |
+//! | [`riccati`] | stabilising solutions of the continuous and discrete algebraic Riccati equations with a cross term, gain, closed-loop eigenvalues | care: ordered complex Schur form of the Hamiltonian; dare: structure-preserving doubling; then Newton (Kleinman / Hewer) defect correction |
 //! | [`markov`] | relative degree, first non-zero Markov parameter | the same reduction, and CA^kB directly |
 //!
 //! Why not nalgebra's `Schur`: at n = 256 it takes ~180 ms for a random matrix with a
@@ -31,11 +34,14 @@ pub(crate) mod complex_schur;
 pub mod eigvec;
 pub mod francis;
 pub mod freqresp;
+pub mod hammarling;
 pub mod hessenberg;
 pub(crate) mod householder;
+pub mod lyapunov;
 pub mod markov;
 pub mod minreal;
 pub mod modal;
+pub mod riccati;
 pub mod rrqr;
 pub mod schur;
 pub mod second_order;
@@ -46,6 +52,7 @@ pub mod zeros;
 
 pub(crate) mod checks;
 pub(crate) mod norms;
+pub(crate) mod trsyl;
 
 pub use eigvec::EigenvectorSet;
 
@@ -69,8 +76,12 @@ pub(crate) fn matrix_power(m: &nalgebra::DMatrix<f64>, e: u64) -> nalgebra::DMat
 }
 pub use freqresp::HessenbergResponse;
 pub use hessenberg::{Hessenberg, hessenberg};
+pub use lyapunov::{
+    CholeskySolution, MatrixSolution, dlyap, dlyap_cholesky, lyap, lyap_cholesky, sylvester,
+};
 pub use markov::{RelativeDegree, markov_parameter, relative_degree};
 pub use minreal::{MinimalRealization, minimal_realization};
+pub use riccati::{Riccati, care, dare};
 pub use schur::{RealSchur, SchurOptions, real_schur, schur_eigenvalues};
 pub use staircase::{Staircase, controllability_staircase, observability_staircase};
 pub use state_matrix::{StateMatrix, eigen_structure, eigenvectors};

@@ -30,7 +30,7 @@
 mod channel;
 mod cluster;
 mod form;
-mod schur_path;
+pub(crate) mod schur_path;
 
 pub use channel::ModalChannel;
 pub(crate) use cluster::single_linkage;

@@ -11,7 +11,7 @@ use crate::numeric::linalg::freqresp::HessenbergResponse;
 use crate::numeric::linalg::schur::{SchurOptions, real_schur};
 
 /// Givens rotation (c real, s complex) with [c s; −s̄ c]·[f; g] = [r; 0] (LAPACK `zlartg`).
-fn lartg(f: C, g: C) -> (f64, C) {
+pub(crate) fn lartg(f: C, g: C) -> (f64, C) {
     let (fa, ga) = (f.norm(), g.norm());
     if ga == 0.0 {
         return (1.0, C::new(0.0, 0.0));
@@ -24,7 +24,14 @@ fn lartg(f: C, g: C) -> (f64, C) {
 }
 
 /// x ← c·x + s·y, y ← c·y − s̄·x (LAPACK `zrot`) on two rows of `m`, columns `cols`.
-fn rot_rows(m: &mut DMatrix<C>, i: usize, k: usize, cols: std::ops::Range<usize>, c: f64, s: C) {
+pub(crate) fn rot_rows(
+    m: &mut DMatrix<C>,
+    i: usize,
+    k: usize,
+    cols: std::ops::Range<usize>,
+    c: f64,
+    s: C,
+) {
     for j in cols {
         let (x, y) = (m[(i, j)], m[(k, j)]);
         m[(i, j)] = x * c + s * y;
@@ -33,7 +40,14 @@ fn rot_rows(m: &mut DMatrix<C>, i: usize, k: usize, cols: std::ops::Range<usize>
 }
 
 /// The same on two columns, rows `rows`.
-fn rot_cols(m: &mut DMatrix<C>, i: usize, k: usize, rows: std::ops::Range<usize>, c: f64, s: C) {
+pub(crate) fn rot_cols(
+    m: &mut DMatrix<C>,
+    i: usize,
+    k: usize,
+    rows: std::ops::Range<usize>,
+    c: f64,
+    s: C,
+) {
     for r in rows {
         let (x, y) = (m[(r, i)], m[(r, k)]);
         m[(r, i)] = x * c + s * y;
@@ -43,7 +57,7 @@ fn rot_cols(m: &mut DMatrix<C>, i: usize, k: usize, rows: std::ops::Range<usize>
 
 /// Swaps the adjacent diagonal entries k, k+1 of upper triangular `s` by a unitary rotation,
 /// accumulated into the columns of `w` (LAPACK `ztrexc`).
-fn swap(s: &mut DMatrix<C>, w: &mut DMatrix<C>, k: usize) {
+pub(crate) fn swap(s: &mut DMatrix<C>, w: &mut DMatrix<C>, k: usize) {
     let n = s.nrows();
     let (t11, t22) = (s[(k, k)], s[(k + 1, k + 1)]);
     let (c, sn) = lartg(s[(k, k + 1)], t22 - t11);
