@@ -20,7 +20,6 @@ pub mod lqr;
 pub mod place;
 pub mod poles;
 mod riccati;
-mod stub;
 mod weights;
 
 pub use kalman::{Kalman, NoiseInput, lqe};

@@ -1,3 +1,3 @@
-//! The Riccati solvers the design functions use (one import to change at the merge).
+//! The Riccati solvers the design functions use: `numeric::linalg::{care, dare}`.
 
-pub(crate) use super::stub::{Riccati, care, dare};
+pub(crate) use crate::numeric::linalg::{Riccati, care, dare};
