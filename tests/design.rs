@@ -498,7 +498,19 @@ fn bad_design_inputs() {
         m(2, 1, &[0.0, 1.0]),
         m(1, 2, &[1.0, 1.0]),
     );
-    assert!(lqr(&p, &id(2), &id(1), None).is_err());
+    let e = lqr(&p, &id(2), &id(1), None).unwrap_err().to_string();
+    assert!(e.contains("not stabilisable") && e.contains("λ = 1"), "{e}");
+    // not detectable: the estimator's error names (A, C)
+    let p = ss(
+        m(2, 2, &[1.0, 0.0, 0.0, -1.0]),
+        m(2, 1, &[0.0, 1.0]),
+        m(1, 2, &[0.0, 1.0]),
+    );
+    let e = lqe(&p, &id(2), &id(1), None, None).unwrap_err().to_string();
+    assert!(
+        e.contains("(A, C) is not detectable") && e.contains("unobservable mode λ = 1"),
+        "{e}"
+    );
     // Kalman: ambiguous noise input, wrong sizes
     let sq = ss(
         m(2, 2, &[0.0, 1.0, -2.0, -3.0]),

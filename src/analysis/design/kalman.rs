@@ -138,10 +138,11 @@ pub fn lqe(
     let r = symmetric_part(rn);
     let (at, ct) = (ss.a.transpose(), ss.c.transpose());
     let sol = if ss.domain.is_discrete() {
-        dare(&at, &ct, &q, &r, s.as_ref())?
+        dare(&at, &ct, &q, &r, s.as_ref())
     } else {
-        care(&at, &ct, &q, &r, s.as_ref())?
-    };
+        care(&at, &ct, &q, &r, s.as_ref())
+    }
+    .map_err(dual_error)?;
     Ok(Kalman {
         gain: sol.gain.transpose(),
         p: sol.x,
@@ -150,6 +151,20 @@ pub fn lqe(
         residual: sol.residual,
         condition: sol.condition,
     })
+}
+
+/// The solver's error in the terms of the estimator: its (A, B) is the plant's (Aᵀ, Cᵀ), so
+/// "not stabilisable" means (A, C) is not detectable.
+fn dual_error(e: LtiError) -> LtiError {
+    match e {
+        LtiError::SingularEquation { equation, reason } => LtiError::SingularEquation {
+            equation: format!("{equation} of the estimator (the dual: Aᵀ, Cᵀ)"),
+            reason: reason
+                .replace("(A, B) is not stabilisable", "(A, C) is not detectable")
+                .replace("uncontrollable mode", "unobservable mode"),
+        },
+        other => other,
+    }
 }
 
 /// Where the noise enters: as told (the size of Qn must then agree; a 1 × 1 Qn stands for
