@@ -128,6 +128,11 @@ limits! {
     /// basis per pole (O(n⁴) in all).
     PLACE_STATES, MAX_PLACE_STATES: usize = 200, "states", [],
         "states of a plant for `place`";
+    /// Largest number of states for `lqr`, `lqe`, `lqg`: each solves a Riccati equation
+    /// through a 2n × 2n Schur form or doubling (a 256-state LQG, two equations, took 29 s of
+    /// CPU in the unoptimised dev build).
+    DESIGN_STATES, MAX_DESIGN_STATES: usize = 256, "states", [],
+        "states of a plant for `lqr`, `lqe`, `lqg`";
     /// Most channels analysed at once without a chosen channel.
     CHANNELS, MAX_CHANNELS: usize = 64, "channels", ["channel"],
         "channels of a MIMO plant analysed at once";

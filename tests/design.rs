@@ -536,6 +536,22 @@ fn bad_design_inputs() {
         .unwrap_err()
         .to_string();
     assert!(k.contains("`rn` must be 1×1"), "{k}");
+    // the size limits, before any work
+    let big = |n: usize| {
+        ss(
+            DMatrix::identity(n, n) * -1.0,
+            DMatrix::from_element(n, 1, 1.0),
+            DMatrix::from_element(1, n, 1.0),
+        )
+    };
+    let e = lqr(&big(257), &id(257), &id(1), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("MAX_DESIGN_STATES"), "{e}");
+    let e = place(&big(201), &vec![c(-1.0, 0.0); 201])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("MAX_PLACE_STATES"), "{e}");
 }
 
 #[test]

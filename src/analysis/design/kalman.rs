@@ -88,7 +88,8 @@ pub struct Kalman {
 /// process noise enters; `None` decides by the size of Qn (and is an error when n = m).
 ///
 /// Errors: sizes, NaN/∞, Qn not positive semidefinite, Rn not positive definite, an
-/// ambiguous or contradicted noise input, no stabilising solution ((A, C) not detectable).
+/// ambiguous noise input, more than [`crate::limits::MAX_DESIGN_STATES`] states, no
+/// stabilising solution ((A, C) not detectable).
 ///
 /// ```
 /// use nalgebra::DMatrix;
@@ -108,6 +109,7 @@ pub fn lqe(
     noise: Option<NoiseInput>,
 ) -> Result<Kalman> {
     let (n, m) = super::place::check_pair(&ss.a, &ss.b)?;
+    crate::limits::DESIGN_STATES.check("`a`", n as u128)?;
     let p = ss.c.nrows();
     if p == 0 {
         return Err(LtiError::invalid(

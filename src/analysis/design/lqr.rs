@@ -50,6 +50,7 @@ impl From<Riccati> for Lqr {
 /// discrete one.
 ///
 /// Errors: weights of the wrong size, NaN/∞, asymmetric Q or R, R not positive definite,
+/// more than [`crate::limits::MAX_DESIGN_STATES`] states,
 /// and the Riccati solver's (no stabilising solution: (A, B) not stabilisable, or an
 /// undetectable mode on the stability boundary).
 ///
@@ -76,6 +77,7 @@ pub fn lqr(
     s: Option<&DMatrix<f64>>,
 ) -> Result<Lqr> {
     let (n, m) = super::place::check_pair(&ss.a, &ss.b)?;
+    crate::limits::DESIGN_STATES.check("`a`", n as u128)?;
     let states = format!("the plant has {n} state{}", if n == 1 { "" } else { "s" });
     let inputs = format!("the plant has {m} input{}", if m == 1 { "" } else { "s" });
     check_size(q, n, n, "`q`", &states)?;

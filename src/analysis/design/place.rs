@@ -169,6 +169,7 @@ pub fn place_matrices(
     poles: &[Complex64],
 ) -> Result<Placement> {
     let (n, m) = check_pair(a, b)?;
+    crate::limits::PLACE_STATES.check("`a`", n as u128)?;
     let (requested, partner) = check_poles(poles, n)?;
     let stairs = controllability_staircase(a, b, &DMatrix::zeros(0, n), None, false)?;
     if stairs.dim < n {
@@ -229,7 +230,7 @@ pub fn place_matrices(
     })
 }
 
-/// Checks A (n × n) and B (n × m): sizes, finiteness, the state limit; returns (n, m).
+/// Checks A (n × n) and B (n × m): sizes, finiteness; returns (n, m).
 pub(crate) fn check_pair(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<(usize, usize)> {
     let n = a.nrows();
     if a.ncols() != n || b.nrows() != n {
@@ -246,7 +247,6 @@ pub(crate) fn check_pair(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<(usize, u
             "the plant has no states or no inputs: there is nothing to feed back",
         ));
     }
-    crate::limits::PLACE_STATES.check("`a`", n as u128)?;
     for (mat, name) in [(a, "A"), (b, "B")] {
         if let Some(x) = mat.iter().find(|x| !x.is_finite()) {
             return Err(LtiError::NonFinite {
