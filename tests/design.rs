@@ -435,6 +435,33 @@ fn kalman_gain_matches_python_control() {
     );
 }
 
+/// The cross covariance: ẋ = a x + w, y = x + v with E{wv} = N gives (P + N)² − 2aRP − QR = 0,
+/// so P + N = aR + √(a²R² − 2aRN + QR) and L = (P + N)/R (closed form of the dual CARE).
+#[test]
+fn kalman_with_cross_covariance() {
+    let one = |v: f64| m(1, 1, &[v]);
+    for &(a, q, r, nn) in &[(1.0, 2.0, 0.5, 0.3), (-2.0, 1.0, 1.0, -0.4)] {
+        let plant = ss(one(a), one(1.0), one(1.0));
+        let k = lqe(
+            &plant,
+            &one(q),
+            &one(r),
+            Some(&one(nn)),
+            Some(NoiseInput::States),
+        )
+        .unwrap();
+        let u = a * r + (a * a * r * r - 2.0 * a * r * nn + q * r).sqrt();
+        assert!(
+            common::rel(k.p[(0, 0)], u - nn) < 1e-13,
+            "{} vs {}",
+            k.p[(0, 0)],
+            u - nn
+        );
+        assert!(common::rel(k.gain[(0, 0)], u / r) < 1e-13);
+        assert!(common::rel(k.estimator_poles[0].re, a - u / r) < 1e-13);
+    }
+}
+
 /// Separation principle: the closed loop of plant and LQG controller (negative feedback)
 /// has the eigenvalues of A − BK and of A − LC; a MIMO plant and a discrete one.
 #[test]
