@@ -404,3 +404,35 @@ mod delay {
         });
     }
 }
+
+/// The matrix equations at n = 100 (random stable A, 3 inputs; `benches/common/equations.rs`),
+/// the problems `benches/compare/compare_equations.py` gives scipy.
+mod equations {
+    use super::*;
+    use ltikit::numeric::linalg::{care, lyap, lyap_cholesky};
+    use nalgebra::DMatrix;
+
+    /// `lyap`: A·X + X·Aᵀ + B·Bᵀ = 0 (Bartels–Stewart).
+    #[divan::bench(args = [100], sample_count = 20)]
+    fn lyap_bartels_stewart(bencher: Bencher, n: usize) {
+        let (a, b) = common::equations::problem(n);
+        let q = &b * b.transpose();
+        bencher.bench(|| lyap(black_box(&a), black_box(&q)).unwrap());
+    }
+
+    /// `lyap_cholesky`: the same equation's Cholesky factor (Hammarling).
+    #[divan::bench(args = [100], sample_count = 20)]
+    fn lyap_hammarling(bencher: Bencher, n: usize) {
+        let (a, b) = common::equations::problem(n);
+        bencher.bench(|| lyap_cholesky(black_box(&a), black_box(&b)).unwrap());
+    }
+
+    /// `care` with Q = I, R = I.
+    #[divan::bench(args = [100], sample_count = 20)]
+    fn care_schur_newton(bencher: Bencher, n: usize) {
+        let (a, b) = common::equations::problem(n);
+        let q = DMatrix::identity(n, n);
+        let r = DMatrix::identity(3, 3);
+        bencher.bench(|| care(black_box(&a), &b, &q, &r, None).unwrap());
+    }
+}

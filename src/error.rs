@@ -227,7 +227,7 @@ pub enum LtiError {
     },
     /// A linear matrix equation (Sylvester, Lyapunov) is singular, or a Riccati equation has
     /// no stabilising solution: the equation and why, naming the eigenvalues responsible.
-    #[error("{equation} has no unique solution: {reason}")]
+    #[error("{equation}: {reason}")]
     SingularEquation {
         /// The equation ("the Lyapunov equation A·X + X·Aᵀ + Q = 0").
         equation: String,

@@ -157,7 +157,20 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
             ],
         ],
     ),
+    (
+        "lyap",
+        &[&["--a", "--q", "--b", "--discrete", "--from", "--json"]],
+    ),
+    ("sylvester", &[&["--a", "--b", "--c", "--from", "--json"]]),
+    ("care", &[EQUATION]),
+    ("dare", &[EQUATION]),
 ];
+
+/// The options of the Riccati equations.
+const EQUATION: &[&str] = &["--a", "--b", "--q", "--r", "--s", "--from", "--json"];
+
+/// The matrix equations (their --a… are matrices, not a plant).
+const EQUATIONS: &[&str] = &["lyap", "sylvester", "care", "dare"];
 
 /// The plant options every analysis command takes.
 const PLANT: &[&str] = &[
@@ -672,6 +685,7 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
         | "--negative"
         | "--asymptotes"
         | "--guides"
+        | "--discrete"
         | "--loop"
         | "--closed-loop"
         | "--sensitivity"
@@ -694,7 +708,12 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "x y",
             ])
             .into()),
-        "--a" | "--b" | "--c" | "--d" => v(match r.below(5) {
+        "--from" => v(if r.one_in(2) {
+            files.plant_file(r)
+        } else {
+            files.path("missing.toml")
+        }),
+        "--a" | "--b" | "--c" | "--d" | "--q" | "--r" | "--s" => v(match r.below(5) {
             0 => "1 2; 3".into(),
             1 => "nan".into(),
             2 => long_text(r),
@@ -847,7 +866,7 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 (0..n).map(|_| coefficient(r)).collect::<Vec<_>>().join(",")
             }
         }),
-        "--q" | "--r" | "--s" | "--qn" | "--rn" | "--nn" => v(match r.below(5) {
+        "--qn" | "--rn" | "--nn" => v(match r.below(5) {
             0 => r
                 .pick(&["", "nan", "-1", "0", "1 2; 3", "1 2; 2 1", "1e300", "x"])
                 .into(),
@@ -927,6 +946,9 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
             || (matches!(opt, "--q" | "--r") && matches!(cmd, "lqr" | "lqg"))
             || (matches!(opt, "--qn" | "--rn") && matches!(cmd, "lqe" | "lqg"))
             || (matches!(opt, "--delay" | "--order") && cmd == "pade")
+            || (EQUATIONS.contains(&cmd)
+                && matches!(opt, "--a" | "--b" | "--c" | "--q" | "--r")
+                && !(cmd == "lyap" && opt == "--b"))
             || (opt == "--output"
                 && matches!(cmd, "bode" | "step" | "pzmap" | "nyquist" | "mems-pullin"));
         let chance = match opt {

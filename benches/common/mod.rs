@@ -5,6 +5,7 @@
 #![allow(dead_code)] // each including target uses a different subset
 
 pub mod discrete;
+pub mod equations;
 pub mod ss;
 
 use ltikit::TransferFunction;

@@ -5,8 +5,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use super::{
-    analyze, c2d, delayed, demo, freq, help, jury, linearize, lqr, margins, pade, place, plots,
-    pullin, residue, response, rlocus, routh, simulate,
+    analyze, c2d, delayed, demo, equations, freq, help, jury, linearize, lqr, margins, pade, place,
+    plots, pullin, residue, response, rlocus, routh, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -93,6 +93,17 @@ pub(crate) enum Command {
     /// LQG controller: an LQR on a Kalman estimate, as a state-space model H for negative
     /// feedback u = -H y (the closed loop has the poles of A - BK and A - LC); -o F.toml.
     Lqg(lqr::LqgArgs),
+    /// Lyapunov equation A·X + X·Aᵀ + Q = 0 (--discrete: A·X·Aᵀ − X + Q = 0; --b B for
+    /// Q = B·Bᵀ with the Cholesky factor): X, relative residual, condition estimate.
+    Lyap(equations::LyapArgs),
+    /// Sylvester equation A·X + X·B = C: X, relative residual, condition estimate.
+    Sylvester(equations::SylvesterArgs),
+    /// Continuous algebraic Riccati equation (LQR) with weights --q, --r and cross term --s:
+    /// stabilising X, gain K, closed-loop eigenvalues, residual, condition estimate.
+    Care(equations::RiccatiArgs),
+    /// Discrete algebraic Riccati equation: stabilising X, gain K, closed-loop eigenvalues,
+    /// residual, condition estimate.
+    Dare(equations::RiccatiArgs),
 }
 
 /// The command line's definition: the derived one, with each command's help ending in the
@@ -195,5 +206,9 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Lqr(a) => lqr::run_lqr(&a),
         Command::Lqe(a) => lqr::run_lqe(&a),
         Command::Lqg(a) => lqr::run_lqg(&a),
+        Command::Lyap(a) => equations::run_lyap(&a),
+        Command::Sylvester(a) => equations::run_sylvester(&a),
+        Command::Care(a) => equations::run_riccati(&a, false),
+        Command::Dare(a) => equations::run_riccati(&a, true),
     }
 }

@@ -9,6 +9,7 @@ mod commands;
 mod delayed;
 mod demo;
 mod design;
+mod equations;
 mod exit;
 mod freq;
 mod help;

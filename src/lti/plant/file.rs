@@ -483,7 +483,7 @@ pub(super) fn in_file(path: &Path, e: LtiError) -> LtiError {
 }
 
 /// A plant file's text (at most [`MAX_RECORD_BYTES`]); errors name the file.
-pub(super) fn read_text(path: &Path) -> Result<String> {
+pub(crate) fn read_text(path: &Path) -> Result<String> {
     read_bounded(path).map_err(|e| LtiError::Io {
         path: path.display().to_string(),
         message: e.to_string(),

@@ -27,6 +27,7 @@ pub use text::{
     parse_param, parse_params, parse_values,
 };
 
-pub use record::Plant;
 #[cfg(feature = "cli")]
+pub(crate) use file::read_text;
+pub use record::Plant;
 pub(crate) use record::physical_model_has_no_dt;

@@ -137,7 +137,7 @@ fn check_solvable(
         return Err(LtiError::SingularEquation {
             equation: equation.to_string(),
             reason: format!(
-                "the eigenvalue λ = {} of {} and μ = {} of {} give {relation} (tolerance {})",
+                "no unique solution: the eigenvalue λ = {} of {} and μ = {} of {} give {relation} (tolerance {})",
                 show(l),
                 names.0,
                 show(m),

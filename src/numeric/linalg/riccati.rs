@@ -201,7 +201,7 @@ fn check_stabilisable(a: &DMatrix<f64>, b: &DMatrix<f64>, kind: Kind) -> Result<
             return Err(LtiError::SingularEquation {
                 equation: kind.equation().into(),
                 reason: format!(
-                    "(A, B) is not stabilisable: the uncontrollable mode λ = {} is {}",
+                    "no stabilising solution: (A, B) is not stabilisable, the uncontrollable mode λ = {} is {}",
                     complex_number(z.re, z.im),
                     match kind {
                         Kind::Continuous => "not in the open left half-plane",
@@ -297,7 +297,7 @@ fn hamiltonian_solution(d: &Data) -> Result<DMatrix<f64>> {
             return Err(LtiError::SingularEquation {
                 equation: Kind::Continuous.equation().into(),
                 reason: format!(
-                    "the Hamiltonian matrix has the eigenvalue {} on the imaginary axis (|Re| ≤ {}): no stabilising solution (is a mode of A on the axis unobservable through Q?)",
+                    "no stabilising solution: the Hamiltonian matrix has the eigenvalue {} on the imaginary axis (|Re| ≤ {}; is a mode of A on the axis unobservable through Q?)",
                     complex_number(z.re, z.im),
                     number(tol)
                 ),
@@ -331,7 +331,7 @@ fn hamiltonian_solution(d: &Data) -> Result<DMatrix<f64>> {
         return Err(LtiError::SingularEquation {
             equation: Kind::Continuous.equation().into(),
             reason: format!(
-                "the Hamiltonian matrix has {top} stable eigenvalues instead of {n}: no stabilising solution"
+                "no stabilising solution: the Hamiltonian matrix has {top} stable eigenvalues instead of {n}"
             ),
         });
     }
@@ -341,14 +341,14 @@ fn hamiltonian_solution(d: &Data) -> Result<DMatrix<f64>> {
     let lu = u1.adjoint().lu();
     let xh = lu.solve(&u2.adjoint()).ok_or_else(|| LtiError::SingularEquation {
         equation: Kind::Continuous.equation().into(),
-        reason: "the stable invariant subspace of the Hamiltonian is not a graph (U₁ singular): no stabilising solution".into(),
+        reason: "no stabilising solution: the stable invariant subspace of the Hamiltonian is not a graph (U₁ singular)".into(),
     })?;
     let mut x = xh.adjoint().map(|z| z.re);
     symmetrise(&mut x);
     if x.iter().any(|v| !v.is_finite()) {
         return Err(LtiError::SingularEquation {
             equation: Kind::Continuous.equation().into(),
-            reason: "U₁ of the stable invariant subspace is numerically singular: no stabilising solution".into(),
+            reason: "no stabilising solution: U₁ of the stable invariant subspace is numerically singular".into(),
         });
     }
     Ok(x)
@@ -371,7 +371,7 @@ fn doubling(d: &Data) -> Result<DMatrix<f64>> {
         let (Some(v1), Some(v2)) = (lu.solve(&ak), lu.solve(&gk)) else {
             return Err(LtiError::SingularEquation {
                 equation: Kind::Discrete.equation().into(),
-                reason: "I + G·H became singular in the doubling (is [Q S; Sᵀ R] indefinite?)"
+                reason: "no stabilising solution found: I + G·H became singular in the doubling (is [Q S; Sᵀ R] indefinite?)"
                     .into(),
             });
         };
@@ -395,7 +395,7 @@ fn doubling(d: &Data) -> Result<DMatrix<f64>> {
     Err(LtiError::SingularEquation {
         equation: Kind::Discrete.equation().into(),
         reason: format!(
-            "the doubling did not converge in {MAX_DOUBLING} steps: the symplectic pencil has eigenvalues on (or extremely close to) the unit circle, no stabilising solution"
+            "no stabilising solution: the doubling did not converge in {MAX_DOUBLING} steps (the symplectic pencil has eigenvalues on or extremely close to the unit circle)"
         ),
     })
 }
@@ -446,8 +446,9 @@ fn refine(d: &Data, x0: DMatrix<f64>, kind: Kind) -> Result<Riccati> {
         }
     };
     let mut x = x0;
-    let (mut res, mut k, scale) = residual(d, &x, kind)
-        .ok_or_else(|| fail("R + BᵀXB is not positive definite at the computed X"))?;
+    let (mut res, mut k, scale) = residual(d, &x, kind).ok_or_else(|| {
+        fail("no stabilising solution: R + BᵀXB is not positive definite at the computed X")
+    })?;
     let mut best = rel(&res, scale);
     let mut steps = 0;
     let mut sep_solution: Option<MatrixSolution> = None;
@@ -485,7 +486,7 @@ fn refine(d: &Data, x0: DMatrix<f64>, kind: Kind) -> Result<Riccati> {
         };
         if bad {
             return Err(fail(&format!(
-                "the computed solution leaves the closed-loop eigenvalue {} unstable: no stabilising solution",
+                "no stabilising solution: the computed solution leaves the closed-loop eigenvalue {} unstable",
                 complex_number(z.re, z.im)
             )));
         }
@@ -659,7 +660,7 @@ mod tests {
         let e = dare(&(&osc * 1.0), &b2, &DMatrix::zeros(2, 2), &one, None)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("no unique solution"), "{e}");
+        assert!(e.contains("no stabilising solution"), "{e}");
         let nq = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 0.0, 1.0]);
         assert!(care(&osc, &b2, &nq, &one, None).is_err());
     }
