@@ -132,6 +132,15 @@ limits! {
     /// Hessenberg solve; 2·10⁹ is about two seconds).
     SIGMA_WORK, MAX_SIGMA_WORK: u64 = 2_000_000_000, "frequencies × states²", ["points", "w"],
         "frequencies × states² of `sigma`";
+    /// Largest number of states for pole placement: the robust method forms an n × n kernel
+    /// basis per pole (O(n⁴) in all).
+    PLACE_STATES, MAX_PLACE_STATES: usize = 200, "states", [],
+        "states of a plant for `place`";
+    /// Largest number of states for `lqr`, `lqe`, `lqg`: each solves a Riccati equation
+    /// through a 2n × 2n Schur form or doubling (a 256-state LQG, two equations, took 29 s of
+    /// CPU in the unoptimised dev build).
+    DESIGN_STATES, MAX_DESIGN_STATES: usize = 256, "states", [],
+        "states of a plant for `lqr`, `lqe`, `lqg`";
     /// Most channels analysed at once without a chosen channel.
     CHANNELS, MAX_CHANNELS: usize = 64, "channels", ["channel"],
         "channels of a MIMO plant analysed at once";

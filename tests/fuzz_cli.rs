@@ -142,6 +142,27 @@ const COMMANDS: &[(&str, &[&[&str]])] = &[
     ("connect", &[&["<DIAGRAM.toml>", "--json", "--output"]]),
     ("eval", &[PLANT, &["--s", "--z", "--json"]]),
     ("gangof4", &[PLANT, &["--json", "--output"]]),
+    ("place", &[PLANT, &["--poles", "--json"]]),
+    ("lqr", &[PLANT, &["--q", "--r", "--s", "--json"]]),
+    (
+        "lqe",
+        &[PLANT, &["--qn", "--rn", "--nn", "--noise-input", "--json"]],
+    ),
+    (
+        "lqg",
+        &[
+            PLANT,
+            &[
+                "--q",
+                "--r",
+                "--qn",
+                "--rn",
+                "--noise-input",
+                "--json",
+                "--output",
+            ],
+        ],
+    ),
     (
         "lyap",
         &[&["--a", "--q", "--b", "--discrete", "--from", "--json"]],
@@ -180,7 +201,7 @@ const TWO_MODELS: &[&str] = &["<A.toml>", "<B.toml>", "--json", "--output"];
 fn writes_plant_file(cmd: &str) -> bool {
     matches!(
         cmd,
-        "c2d" | "d2c" | "series" | "parallel" | "feedback" | "connect" | "balred"
+        "c2d" | "d2c" | "series" | "parallel" | "feedback" | "connect" | "balred" | "lqg"
     )
 }
 
@@ -760,6 +781,11 @@ fn ordinary(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Optio
             .pick(&["zoh", "foh", "tustin", "matched", "impulse"])
             .into(),
         "--output" if writes_plant_file(cmd) => files.path(&format!("case{k}.toml")),
+        "--poles" => r
+            .pick(&["-1", "-1,-2", "-1+1j,-1-1j,-3", "-1,-2,-3,-4"])
+            .into(),
+        "--q" | "--r" | "--qn" | "--rn" => r.pick(&["1", "2", "0.5"]).into(),
+        "--noise-input" => r.pick(&["states", "inputs"]).into(),
         _ => return None,
     })
 }
@@ -982,6 +1008,36 @@ fn value(r: &mut Rng, cmd: &str, opt: &str, files: &Files, k: usize) -> Vec<Stri
                 "zoh", "foh", "tustin", "bilinear", "matched", "impulse", "euler", "",
             ])
             .into()),
+        "--poles" => v(match r.below(6) {
+            0 => r
+                .pick(&[
+                    "",
+                    "nan",
+                    "1+",
+                    "-1+1j",
+                    "inf,-1",
+                    "-1 -1 -1 -1 -1",
+                    "0j",
+                    "x",
+                ])
+                .into(),
+            1 => long_text(r),
+            _ => {
+                let n = 1 + r.below(5);
+                (0..n).map(|_| coefficient(r)).collect::<Vec<_>>().join(",")
+            }
+        }),
+        "--qn" | "--rn" | "--nn" => v(match r.below(5) {
+            0 => r
+                .pick(&["", "nan", "-1", "0", "1 2; 3", "1 2; 2 1", "1e300", "x"])
+                .into(),
+            1 => long_text(r),
+            _ => {
+                let n = 1 + r.below(3);
+                coefficients(r, n)
+            }
+        }),
+        "--noise-input" => v(r.pick(&["states", "inputs", "both", ""]).into()),
         "--output" if writes_plant_file(cmd) => v(match r.below(4) {
             0 => files.output(r, k).0,
             1 => "/proc/ltikit-fuzz.toml".into(),
@@ -1047,6 +1103,9 @@ fn case(r: &mut Rng, files: &Files, k: usize) -> Case {
         let required = opt.starts_with('<')
             || opt == "--method"
             || (opt == "--dt" && cmd == "c2d")
+            || (opt == "--poles" && cmd == "place")
+            || (matches!(opt, "--q" | "--r") && matches!(cmd, "lqr" | "lqg"))
+            || (matches!(opt, "--qn" | "--rn") && matches!(cmd, "lqe" | "lqg"))
             || (matches!(opt, "--delay" | "--order") && cmd == "pade")
             || (EQUATIONS.contains(&cmd)
                 && matches!(opt, "--a" | "--b" | "--c" | "--q" | "--r")

@@ -26,6 +26,7 @@ pub mod asymptotes;
 pub mod closed_form;
 pub mod closed_loop;
 pub mod delay;
+pub mod design;
 pub mod discrete;
 pub mod factored;
 pub mod freq;

@@ -6,8 +6,8 @@ use clap::{Parser, Subcommand};
 
 use super::{
     analyze, balred, c2d, connect, delayed, demo, equations, eval, freq, gangof4, gram, help, jury,
-    linearize, margins, norm, pade, plots, pullin, residue, response, rlocus, routh, sigma,
-    simulate,
+    linearize, lqr, margins, norm, pade, place, plots, pullin, residue, response, rlocus, routh,
+    sigma, simulate,
 };
 
 /// ltikit — LTI input-output models from ODE coefficients: exact poles and zeros, stability,
@@ -94,6 +94,21 @@ pub(crate) enum Command {
     /// The gang of four of the loop L = C·G (--controller): S, P·S, C·S, T with poles, dc
     /// gain and peak; Bode PNG with -o.
     Gangof4(gangof4::GangArgs),
+    /// State feedback u = -K x placing the eigenvalues of A - BK at --poles (Ackermann for
+    /// one input, with its conditioning; Kautsky–Nichols–Van Dooren for several): the gain,
+    /// the achieved poles and their distance to the requested ones.
+    Place(place::PlaceArgs),
+    /// Linear-quadratic regulator: the state feedback u = -K x minimising the quadratic cost
+    /// with weights --q, --r (--s), from the Riccati equation (discrete for --dt T): K, X,
+    /// the closed-loop poles, the residual.
+    Lqr(lqr::LqrArgs),
+    /// Kalman estimator gain L from process and measurement noise covariances --qn, --rn
+    /// (noise on every state or through the inputs): L, the error covariance, eig(A - LC).
+    #[command(alias = "kalman")]
+    Lqe(lqr::LqeArgs),
+    /// LQG controller: an LQR on a Kalman estimate, as a state-space model H for negative
+    /// feedback u = -H y (the closed loop has the poles of A - BK and A - LC); -o F.toml.
+    Lqg(lqr::LqgArgs),
     /// Lyapunov equation A·X + X·Aᵀ + Q = 0 (--discrete: A·X·Aᵀ − X + Q = 0; --b B for
     /// Q = B·Bᵀ with the Cholesky factor): X, relative residual, condition estimate.
     Lyap(equations::LyapArgs),
@@ -223,6 +238,10 @@ pub(crate) fn run(cli: Cli) -> Result<()> {
         Command::Connect(a) => connect::run_connect(&a),
         Command::Eval(a) => eval::run(&a),
         Command::Gangof4(a) => gangof4::run(&a),
+        Command::Place(a) => place::run(&a),
+        Command::Lqr(a) => lqr::run_lqr(&a),
+        Command::Lqe(a) => lqr::run_lqe(&a),
+        Command::Lqg(a) => lqr::run_lqg(&a),
         Command::Lyap(a) => equations::run_lyap(&a),
         Command::Sylvester(a) => equations::run_sylvester(&a),
         Command::Care(a) => equations::run_riccati(&a, false),

@@ -211,9 +211,14 @@ pub const FIELD_FLAGS: &[(&str, &str)] = &[
     ("delay", "--delay"),
     ("pade", "--pade"),
     ("order", "--order"),
+    ("poles", "--poles"),
     ("q", "--q"),
     ("r", "--r"),
     ("s", "--s"),
+    ("qn", "--qn"),
+    ("rn", "--rn"),
+    ("nn", "--nn"),
+    ("noise_input", "--noise-input"),
 ];
 
 /// The flag of a library field name, if the command line has one.
