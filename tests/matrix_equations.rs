@@ -197,3 +197,23 @@ mod cli {
         }
     }
 }
+
+#[test]
+fn orders_beyond_the_limits_are_refused_before_any_work() {
+    // MAX_EQUATION_STATES = 512 for Lyapunov/Sylvester, MAX_DESIGN_STATES = 256 for the
+    // Riccati equations (a 2n × 2n Hamiltonian): the error names the order and the limit
+    use ltikit::limits::{MAX_DESIGN_STATES, MAX_EQUATION_STATES};
+    use ltikit::numeric::linalg::{care, dare, lyap, sylvester};
+    let big = DMatrix::<f64>::identity(MAX_EQUATION_STATES + 1, MAX_EQUATION_STATES + 1) * -1.0;
+    let e = lyap(&big, &big).unwrap_err().to_string();
+    assert!(e.contains("513") && e.contains("512"), "{e}");
+    assert!(sylvester(&big, &big, &big).is_err());
+    let n = MAX_DESIGN_STATES + 1;
+    let a = DMatrix::<f64>::identity(n, n) * -1.0;
+    let b = DMatrix::<f64>::identity(n, 1);
+    let one = DMatrix::<f64>::identity(1, 1);
+    let q = DMatrix::<f64>::identity(n, n);
+    let e = care(&a, &b, &q, &one, None).unwrap_err().to_string();
+    assert!(e.contains("257") && e.contains("256"), "{e}");
+    assert!(dare(&(a * -0.5), &b, &q, &one, None).is_err());
+}

@@ -9,6 +9,7 @@ mod cascade;
 mod closed_loop;
 mod context;
 mod dead_time;
+mod design;
 mod digital;
 mod lattice;
 mod lattice_channel;

@@ -12,7 +12,7 @@ use super::context::Ctx;
 use super::md::Md;
 use super::verify::Checks;
 use super::{
-    cascade, closed_loop, dead_time, digital, lattice, linear, mechanics, nonlinear, seed,
+    cascade, closed_loop, dead_time, design, digital, lattice, linear, mechanics, nonlinear, seed,
 };
 use crate::fmt::fmt_sig;
 
@@ -65,7 +65,7 @@ pub fn run(a: &DemoArgs) -> Result<()> {
         figures: Vec::new(),
         checks: Checks::default(),
         step: 0,
-        steps: plants.len() + 15,
+        steps: plants.len() + 16,
         tty: std::io::stderr().is_terminal() && !a.json,
     };
     let mut md = Md::default();
@@ -139,6 +139,8 @@ pub fn run(a: &DemoArgs) -> Result<()> {
     dead_time::section(&mut ctx, &mut md, plants.len() + 7)?;
     ctx.progress("diagram");
     cascade::section(&mut ctx, &mut md, plants.len() + 8)?;
+    ctx.progress("design");
+    design::section(&mut ctx, &mut md, plants.len() + 9)?;
 
     ctx.progress("verification");
     ctx.checks.render(&mut md);

@@ -42,7 +42,7 @@ use super::norms::frobenius;
 use super::schur::{SchurOptions, real_schur};
 use super::trsyl::{self, Equation};
 use crate::error::{LtiError, Result, complex_number, number};
-use crate::limits::STATES;
+use crate::limits::EQUATION_STATES;
 
 pub use super::hammarling::{CholeskySolution, dlyap_cholesky, lyap_cholesky};
 
@@ -75,7 +75,7 @@ pub(crate) fn orthogonal_schur(a: &DMatrix<f64>) -> Result<(DMatrix<f64>, DMatri
 /// Checks a square, finite coefficient within the state limit; returns its order.
 pub(crate) fn check_coefficient(a: &DMatrix<f64>, name: &str) -> Result<usize> {
     let n = super::checks::check_square(a, name)?;
-    STATES.check_usize(&format!("`{}`", name.to_lowercase()), n)
+    EQUATION_STATES.check_usize(&format!("`{}`", name.to_lowercase()), n)
 }
 
 /// Errors unless `m` is rows×cols with finite entries.
@@ -207,7 +207,7 @@ fn condition(coeff: f64, x: &DMatrix<f64>, rhs: &DMatrix<f64>, min_gap: f64) -> 
 /// Solves the Sylvester equation A·X + X·B = C (A m×m, B n×n, C m×n).
 ///
 /// Errors: non-square or non-finite coefficients, mismatched sizes, an order beyond
-/// [`crate::limits::MAX_STATES`], or a singular equation (λᵢ(A) + μⱼ(B) ≈ 0, naming the two
+/// [`crate::limits::MAX_EQUATION_STATES`], or a singular equation (λᵢ(A) + μⱼ(B) ≈ 0, naming the two
 /// eigenvalues).
 ///
 /// ```

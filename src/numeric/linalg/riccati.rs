@@ -116,6 +116,8 @@ fn prepare(
     kind: Kind,
 ) -> Result<Data> {
     let n = check_coefficient(a, "A")?;
+    // a 2n × 2n Hamiltonian Schur form (or doubling) and Newton steps of order n
+    crate::limits::DESIGN_STATES.check_usize("`a`", n)?;
     if b.nrows() != n {
         return Err(LtiError::invalid(format!(
             "B must have {n} rows to match A ({n}×{n}), got {}×{}",
