@@ -87,6 +87,9 @@ fn the_demo_factors_each_plant_a_handful_of_times() {
     // L and L·e^(−sT); the powers L^k, k ≤ 10, of the method of steps (each a factored form
     // built from L's roots, no root finding), once for the samples and once for the step
     // metrics; and the three Padé loops (approximant, plant·approximant, L, T). Measured 112.
+    // The diagram section (issue 24) adds 1, the connected cascade; the design section (issue
+    // 23) 2, the full and the reduced lattice channel for their Bode diagrams (the LQR, the
+    // norms and the truncation work on state space, not on factored forms). Measured 115.
     eprintln!("demo: {n} factorisations");
-    assert!(n <= 114, "{n}");
+    assert!(n <= 117, "{n}");
 }
