@@ -95,9 +95,16 @@ pub fn run(a: &BalredArgs) -> Result<()> {
         "Balanced truncation of {name}\n  model:   {}\n  reduced: {k} states\n",
         dims(&ss)
     );
+    // the two values in one column (the labels' widths counted in characters)
+    let bound_label = format!("a priori bound 2·Σ_{{i>{k}}} σᵢ:");
+    let error_label = "measured ‖G − G_r‖∞:";
+    let width = bound_label.chars().count().max(error_label.chars().count()) + 1;
+    let pad = |l: &str| format!("{l}{}", " ".repeat(width - l.chars().count()));
     s.push_str(&format!(
-        "  a priori bound 2·Σ_{{i>{k}}} σᵢ:   {}\n  measured ‖G − G_r‖∞:      [{}, {}] (certified)",
+        "  {}{}\n  {}[{}, {}] (certified)",
+        pad(&bound_label),
         fmt_sig(r.bound, 6),
+        pad(error_label),
         fmt_sig(r.error.lower, 6),
         fmt_sig(r.error.upper, 6)
     ));
