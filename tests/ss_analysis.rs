@@ -189,12 +189,20 @@ fn decoupled_lags_one_input() {
         "{}",
         r.internal_reason
     );
-    // One input, two outputs: no invariant zeros, and the reason.
-    assert!(r.invariant_zeros.is_none());
-    assert!(
-        r.invariant_zeros_note
-            .unwrap()
-            .contains("not a square system")
+    // One input, two outputs (issue 24: no longer refused). By hand, P(λ) = [−1−λ 0 2;
+    // 0 −3−λ 0; 1 0 0; 0 1 0] has the left null vector (0, 1, 0, 3 + λ): left index 1, the
+    // infinite zero of 2/(s + 1) (order 1), no finite zero (the uncontrollable −3 is absorbed
+    // by the singular part: P(−3) keeps rank 3).
+    assert_eq!(r.invariant_zeros, Some(Vec::new()));
+    let k = r.zero_structure.as_ref().unwrap();
+    assert_eq!(
+        (
+            k.normal_rank,
+            &k.left_indices,
+            &k.right_indices,
+            &k.infinite_orders
+        ),
+        (1, &vec![1], &vec![], &vec![1])
     );
     // Sorted by decreasing real part: −1, then −3.
     let values: Vec<Complex64> = r.eigenvalues.iter().map(|e| e.value).collect();
