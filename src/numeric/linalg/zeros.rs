@@ -1,25 +1,34 @@
 //! Invariant and transmission zeros: the finite λ where the system pencil
-//! P(λ) = [A − λI  B; C  D] loses rank, for SISO and square MIMO systems (D = 0 or not).
+//! P(λ) = [A − λI  B; C  D] loses rank below its normal rank, for any p×m system (square or
+//! not, of full normal rank or not), with the rest of the pencil's Kronecker structure.
 //!
 //! # Method
 //! Emami-Naeini & Van Dooren (1982), "Computation of zeros of linear multivariable systems",
-//! Automatica 18(4): a structure-preserving reduction by orthogonal transformations that
-//! removes the infinite zeros and leaves a system with D_f invertible, whose finite zeros are
-//! the eigenvalues of the n_f×n_f matrix A_f − B_f·D_f⁻¹·C_f — a plain eigenvalue problem, no
-//! QZ. One reduction step on (A, B, C, D), n states, m inputs, p outputs:
+//! Automatica 18(4), as in SLICOT `AB08ND`/`AB08NX`: a structure-preserving reduction by
+//! orthogonal transformations that removes the left Kronecker blocks and infinite zeros, the
+//! same on the dual for the right blocks, and leaves the regular part: a system with D_f
+//! square and invertible, whose finite zeros are the eigenvalues of the n_f×n_f matrix
+//! A_f − B_f·D_f⁻¹·C_f — a plain eigenvalue problem, no QZ. One reduction step on
+//! (A, B, C, D), n states, m inputs, p outputs:
 //! 1. compress the rows of D by a rank-revealing QR: UD = [D₁; 0], D₁ of full row rank ρ, and
 //!    UC = [C₁; C₂]; if ρ = p, stop;
 //! 2. compress the columns of C₂ (a rank-revealing QR of C₂ᵀ): C₂V = [Y 0], Y of full column
 //!    rank μ; apply V as a state similarity, A ← VᵀAV, B ← VᵀB, C ← CV;
 //! 3. the first μ states are determined by the outputs C₂ (Y has full column rank), so their
 //!    columns are eliminated from the pencil together with μ rows of C₂ (a unimodular row
-//!    operation: finite zeros are kept), rows of C₂ beyond μ are zero and dropped; the state
-//!    equations of those μ states carry no λ any more and become outputs:
-//!    A ← A₂₂, B ← B₂, C ← [A₁₂; C₁₂], D ← [B₁; D₁].
+//!    operation: finite zeros are kept), rows of C₂ beyond μ are zero rows of the pencil
+//!    (left minimal indices) and dropped; the state equations of those μ states carry no λ
+//!    any more and become outputs: A ← A₂₂, B ← B₂, C ← [A₁₂; C₁₂], D ← [B₁; D₁].
 //!
 //! Steps repeat until D has full row rank; the same procedure on the dual (Aᵀ, Cᵀ, Bᵀ, Dᵀ)
-//! then gives D_f of full column rank too, i.e. square and invertible for a system whose
-//! transfer matrix is square and of full normal rank (otherwise an error says so).
+//! then gives D_f of full column rank too, i.e. square and invertible.
+//!
+//! **Kronecker structure** ([`KroneckerStructure`]), read off the passes as `AB08NX` does:
+//! at pass k (1-based) with p_k rows of D of rank ρ_k and μ_k the rank of C₂, the
+//! p_k − ρ_k − μ_k zero rows are minimal indices k − 1 (left ones from the first reduction,
+//! right ones from the dual), ρ_k − ρ_{k−1} infinite zeros have order k − 1 (both
+//! reductions), and the normal rank of G is ρ of the first reduction's last pass.
+//! [`pencil_residual`] gives the evidence for a zero: the (n + r)-th singular value of P(z).
 //!
 //! **Tolerance**: ranks are decided by [`super::rrqr`] with tol·‖[A B; C D]‖_F, default
 //! tol = (n + p)(n + m)·ε (SLICOT `AB08ND`). The system is first scaled by powers of two
@@ -218,11 +227,28 @@ pub fn default_tol(n: usize, m: usize, p: usize) -> f64 {
     ((n + p) * (n + m)).max(1) as f64 * f64::EPSILON
 }
 
-/// Invariant zeros of (A, B, C, D), A n×n, B n×m, C p×n, D p×m with m = p (see the
-/// [module docs](self)); `tol` relative (`None`: (n + p)(n + m)·ε).
+/// Invariant zeros of (A, B, C, D), A n×n, B n×m, C p×n, D p×m, any m and p, with the
+/// Kronecker structure of the pencil (see the [module docs](self)); `tol` relative (`None`:
+/// (n + p)(n + m)·ε).
 ///
-/// Errors: inconsistent dimensions, non-finite entries, a non-square system, a transfer
-/// matrix that is singular for every s (normal rank deficient: the zeros are not isolated).
+/// Errors: inconsistent dimensions, non-finite entries, a zero beyond the range of f64, or
+/// (not met in the tests) two reductions whose rank decisions leave no regular part.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use ltikit::numeric::linalg::invariant_zeros;
+/// // Two outputs, one input: G = [1; 1]·(s − 3)/((s + 1)(s + 2)). The zero 3, normal rank 1,
+/// // one left index 0 (the two outputs are equal), one infinite zero of order 1.
+/// let a = DMatrix::from_row_slice(2, 2, &[-3.0, -2.0, 1.0, 0.0]);
+/// let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+/// let c = DMatrix::from_row_slice(2, 2, &[1.0, -3.0, 1.0, -3.0]);
+/// let z = invariant_zeros(&a, &b, &c, &DMatrix::zeros(2, 1), None).unwrap();
+/// assert_eq!(z.zeros.len(), 1);
+/// assert!((z.zeros[0].re - 3.0).abs() < 1e-14);
+/// assert_eq!(z.structure.normal_rank, 1);
+/// assert_eq!(z.structure.left_indices, vec![0]);
+/// assert_eq!(z.structure.infinite_orders, vec![1]);
+/// ```
 ///
 /// ```
 /// use nalgebra::DMatrix;
