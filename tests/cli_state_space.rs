@@ -463,6 +463,7 @@ fn whole_model_of_the_two_tanks() {
             "unobservable_modes",
             "invariant_zeros",
             "invariant_zeros_note",
+            "system_pencil",
             "dc_gain",
             "bibo_stable",
             "internally_stable",
@@ -548,7 +549,10 @@ fn whole_model_of_the_two_tanks() {
 
 /// Two decoupled lags x1' = −x1 + 2u, x2' = −3x2, y = x: the input reaches only x1, so
 /// the mode −3 is uncontrollable and the minimal order is 1; G1 = 2/(s + 1) (dc gain 2),
-/// G2 = 0 (dc gain 0); one input, two outputs: no invariant zeros (not square).
+/// G2 = 0 (dc gain 0); one input, two outputs. By hand, P(λ) = [−1−λ 0 2; 0 −3−λ 0; 1 0 0;
+/// 0 1 0] has the left null vector (0, 1, 0, 3 + λ) (left index 1) and the infinite zero of
+/// G₁ (order 1): 2 + 2 rows, 1 + 2 columns — no finite zero (the uncontrollable −3 is
+/// absorbed by the singular part: P(−3) keeps rank 3).
 #[test]
 fn whole_model_of_decoupled_lags() {
     let args = [
@@ -572,12 +576,12 @@ fn whole_model_of_decoupled_lags() {
     assert_eq!(ss["unobservable_modes"], serde_json::json!([]));
     assert!((f(&ss["dc_gain"][0][0]) - 2.0).abs() <= 8.0 * f64::EPSILON);
     assert!(f(&ss["dc_gain"][1][0]).abs() <= 8.0 * f64::EPSILON);
-    assert_eq!(ss["invariant_zeros"], Value::Null);
-    assert!(
-        ss["invariant_zeros_note"]
-            .as_str()
-            .unwrap()
-            .contains("not a square system (1 input, 2 outputs)")
+    assert_eq!(ss["invariant_zeros"], serde_json::json!([]));
+    assert_eq!(ss["invariant_zeros_note"], Value::Null);
+    assert_eq!(
+        ss["system_pencil"],
+        serde_json::json!({"normal_rank": 1, "infinite_zero_orders": [1],
+            "left_kronecker_indices": [1], "right_kronecker_indices": []})
     );
     let s = stdout(&args[..args.len() - 1]);
     assert!(
@@ -589,7 +593,7 @@ fn whole_model_of_decoupled_lags() {
         "{s}"
     );
     assert!(
-        s.contains("  invariant zeros:    none defined: not a square system"),
+        s.contains("  invariant zeros:    none\n  system pencil:      normal rank 1 of 1; infinite zeros of order 1; left indices 1; right indices none\n"),
         "{s}"
     );
     assert!(
@@ -831,10 +835,69 @@ fn whole_model_only_for_state_space_plants() {
         "1 0; 0 1",
     ]);
     assert!(
-        s.contains(
-            "  invariant zeros:    none defined: the transfer matrix is singular for every s"
-        ),
+        s.contains("  invariant zeros:    none\n")
+            && s.contains(
+                "  system pencil:      normal rank 1 of 2; infinite zeros of order 1; left indices 1; right indices 0"
+            ),
         "{s}"
+    );
+}
+
+/// A non-square system (ControlSystems.jl's example 11, 3 outputs and 2 inputs, zeros 4 and
+/// −3 to their tolerance 1e-5): the whole-model section lists the zeros with their residuals
+/// and the pencil's structure (normal rank 2, one left index; the text line and the JSON keys).
+#[test]
+fn non_square_system_zeros_and_pencil_structure() {
+    let args = [
+        "analyze",
+        "--a",
+        "-2 -6 3 -7 6; 0 -5 4 -4 8; 0 2 0 2 -2; 0 6 -3 5 -6; 0 -2 2 -2 5",
+        "--b",
+        "-2 7; -8 -5; -3 0; 1 5; -8 0",
+        "--c",
+        "0 -1 2 -1 -1; 1 1 1 0 -1; 0 3 -2 3 -1",
+    ];
+    let s = stdout(&args);
+    assert!(s.contains("  invariant zeros:    4, -3\n"), "{s}");
+    assert!(
+        s.contains("  system pencil:      normal rank 2 of 2; infinite zeros of order 1, 1; left indices 1; right indices none"),
+        "{s}"
+    );
+    let mut with_json = args.to_vec();
+    with_json.push("--json");
+    let v = json(&with_json);
+    let ss = &v["state_space"];
+    let zeros = ss["invariant_zeros"].as_array().unwrap();
+    let mut re: Vec<f64> = zeros
+        .iter()
+        .map(|z| z["value"][0].as_f64().unwrap())
+        .collect();
+    re.sort_by(f64::total_cmp);
+    assert!(
+        (re[0] + 3.0).abs() < 1e-5 && (re[1] - 4.0).abs() < 1e-5,
+        "{re:?}"
+    );
+    for z in zeros {
+        assert!(z["residual"].as_f64().unwrap() < 1e-14, "{z}");
+    }
+    let keys: Vec<&str> = ss["system_pencil"]
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            "normal_rank",
+            "infinite_zero_orders",
+            "left_kronecker_indices",
+            "right_kronecker_indices"
+        ]
+    );
+    assert_eq!(
+        ss["system_pencil"]["left_kronecker_indices"],
+        serde_json::json!([1])
     );
 }
 

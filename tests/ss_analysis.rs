@@ -189,12 +189,20 @@ fn decoupled_lags_one_input() {
         "{}",
         r.internal_reason
     );
-    // One input, two outputs: no invariant zeros, and the reason.
-    assert!(r.invariant_zeros.is_none());
-    assert!(
-        r.invariant_zeros_note
-            .unwrap()
-            .contains("not a square system")
+    // One input, two outputs (issue 24: no longer refused). By hand, P(λ) = [−1−λ 0 2;
+    // 0 −3−λ 0; 1 0 0; 0 1 0] has the left null vector (0, 1, 0, 3 + λ): left index 1, the
+    // infinite zero of 2/(s + 1) (order 1), no finite zero (the uncontrollable −3 is absorbed
+    // by the singular part: P(−3) keeps rank 3).
+    assert_eq!(r.invariant_zeros, Some(Vec::new()));
+    let k = r.zero_structure.as_ref().unwrap();
+    assert_eq!(
+        (
+            k.normal_rank,
+            &k.left_indices,
+            &k.right_indices,
+            &k.infinite_orders
+        ),
+        (1, &vec![1], &vec![], &vec![1])
     );
     // Sorted by decreasing real part: −1, then −3.
     let values: Vec<Complex64> = r.eigenvalues.iter().map(|e| e.value).collect();
@@ -361,8 +369,11 @@ fn two_tanks_dc_gain_matrix_by_hand() {
 }
 
 /// A square system whose transfer matrix is singular for every s (both inputs enter the same
-/// way, B = [b b]): the invariant zeros are not isolated. The rest of the analysis is still
-/// computed, and the reason is given.
+/// way, B = [b b]): refused before issue 24, now its zeros come from the regular part of the
+/// pencil. By hand, P(λ) = [−1−λ 0 1 1; 0 −2−λ 1 1; 1 0 0 0; 0 1 0 0] has the constant right
+/// null vector (0, 0, 1, −1) (right index 0), the left null vector (1, −1, 1 + λ, −2 − λ)
+/// (left index 1) and G's infinite zero of order 1: 1 + 2 + 2 columns of blocks, 4 rows —
+/// no finite zero. The rest of the analysis is computed as for any model.
 #[test]
 fn normal_rank_deficient_square_system_keeps_the_rest() {
     let ss = StateSpace::new(
@@ -373,15 +384,17 @@ fn normal_rank_deficient_square_system_keeps_the_rest() {
     )
     .unwrap();
     let r = ss.analysis().unwrap();
-    assert!(r.invariant_zeros.is_none());
-    assert!(
-        r.invariant_zeros_note
-            .as_deref()
-            .unwrap()
-            .contains("singular for every s"),
+    assert_eq!(
+        r.invariant_zeros,
+        Some(Vec::new()),
         "{:?}",
         r.invariant_zeros_note
     );
+    let k = r.zero_structure.as_ref().unwrap();
+    assert_eq!(k.normal_rank, 1);
+    assert_eq!(k.left_indices, vec![1]);
+    assert_eq!(k.right_indices, vec![0]);
+    assert_eq!(k.infinite_orders, vec![1]);
     // G = [[1/(s+1), 1/(s+1)], [1/(s+2), 1/(s+2)]]: dc gains 1, 1, 1/2, 1/2.
     let want = [[1.0, 1.0], [0.5, 0.5]];
     for (j, row) in want.iter().enumerate() {

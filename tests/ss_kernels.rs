@@ -671,27 +671,37 @@ fn mimo_zeros() {
     let z = invariant_zeros(&a, &b, &c, &DMatrix::zeros(2, 2), None).unwrap();
     assert_eq!(z.zeros.len(), 1);
     assert!((z.zeros[0] - 1.0).norm() < 1e-14, "{:?}", z.zeros);
-    // Non-square and rank-deficient systems are refused with a message.
-    assert!(
-        invariant_zeros(
-            &a,
-            &b,
-            &c.rows(0, 1).clone_owned(),
-            &DMatrix::zeros(1, 2),
-            None
-        )
-        .is_err()
-    );
+    // Non-square and rank-deficient systems (issue 24): their zeros come from the regular
+    // part of the pencil. The first row alone, [1/(s + 1), 2/(s + 3)]: no finite zero (the
+    // pencil keeps rank 4 at −1 although x₂ is unobservable), normal rank 1, one right index.
+    let row = invariant_zeros(
+        &a,
+        &b,
+        &c.rows(0, 1).clone_owned(),
+        &DMatrix::zeros(1, 2),
+        None,
+    )
+    .unwrap();
+    assert!(row.zeros.is_empty(), "{:?}", row.zeros);
+    assert_eq!(row.structure.normal_rank, 1);
+    assert_eq!(row.structure.right_indices.len(), 1);
+    // G ≡ 0 (B = 0), A = −I₂, C = [1 1]: the zero column is a right index 0, the observable
+    // mode x₁ + x₂ with C gives the 2×1 block [−1 − λ; √2] (left index 1), the unobservable
+    // mode x₁ − x₂ the finite zero −1.
     let z2 = DMatrix::zeros(1, 1);
-    let err = invariant_zeros(
+    let g0 = invariant_zeros(
         &a.view((0, 0), (2, 2)).clone_owned(),
         &DMatrix::zeros(2, 1),
         &DMatrix::from_element(1, 2, 1.0),
         &z2,
         None,
     )
-    .unwrap_err();
-    assert!(err.to_string().contains("normal rank"), "{err}");
+    .unwrap();
+    assert_eq!(g0.structure.normal_rank, 0);
+    assert_eq!(g0.structure.left_indices, vec![1]);
+    assert_eq!(g0.structure.right_indices, vec![0]);
+    assert_eq!(g0.zeros.len(), 1);
+    assert!((g0.zeros[0] + 1.0).norm() < 1e-14, "{:?}", g0.zeros);
 }
 
 /// The seed's lattice channels, N = 128 (256 states), ω0 = 1:

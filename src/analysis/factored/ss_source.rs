@@ -182,6 +182,9 @@ fn finish(
         None => relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?,
     };
     let zero = rd.r.is_none();
+    // G ≡ 0: the minimal realisation has order 0 and every mode of A is decoupled from the
+    // channel — the channel has no poles (issue 24: it listed every eigenvalue of A).
+    let poles = if zero { reduced_poles.clone() } else { poles };
     let reduced_zeros = if zero {
         Vec::new()
     } else if let Some(k) = &known {

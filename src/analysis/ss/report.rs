@@ -24,7 +24,7 @@ use crate::numeric::linalg::structure::radius;
 use crate::numeric::linalg::{EigenCluster, StateMatrix, eigen_structure};
 use crate::numeric::linalg::{
     controllability_staircase, invariant_zeros, minimal_realization, observability_staircase,
-    transmission_zeros,
+    transmission_zeros, zeros::pencil_residual,
 };
 use crate::poly::{HalfPlane, half_plane};
 
@@ -91,6 +91,29 @@ pub enum DcGain {
     Infinite,
 }
 
+/// Largest order for which each invariant zero's residual is computed (one complex SVD of
+/// the (n + p)×(n + m) Rosenbrock matrix per distinct zero, O(n³) each).
+pub const MAX_RESIDUAL_STATES: usize = 64;
+
+/// The Kronecker structure of the system pencil besides its finite zeros, with the evidence
+/// for the zeros (see [`crate::numeric::linalg::zeros`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ZeroStructure {
+    /// Normal rank of the transfer matrix (its rank at all but finitely many s).
+    pub normal_rank: usize,
+    /// Orders of the zeros at infinity, ascending, with repetition.
+    pub infinite_orders: Vec<usize>,
+    /// Left Kronecker (row minimal) indices, ascending (p − normal rank of them).
+    pub left_indices: Vec<usize>,
+    /// Right Kronecker (column minimal) indices, ascending (m − normal rank of them).
+    pub right_indices: Vec<usize>,
+    /// Per entry of `invariant_zeros`: the (n + r)-th singular value of the Rosenbrock matrix
+    /// \[A − zI B; C D\] at the zero over its Frobenius norm (r the normal rank; ≈ ε for a
+    /// zero, see [`crate::numeric::linalg::zeros::pencil_residual`]); empty beyond
+    /// [`MAX_RESIDUAL_STATES`] states.
+    pub residuals: Vec<f64>,
+}
+
 /// The state-space analysis of a model (see the [module docs](self)).
 #[derive(Debug, Clone, Serialize)]
 pub struct SsAnalysis {
@@ -116,12 +139,16 @@ pub struct SsAnalysis {
     /// Eigenvalues of the removed unobservable (controllable) part (as the uncontrollable
     /// ones).
     pub unobservable_modes: Vec<Complex64>,
-    /// Invariant zeros of a square system (m = p), with multiplicities; `None` for a
-    /// non-square system, or when the zeros are not isolated (a transfer matrix singular for
-    /// every s) or not computable, with the reason in `invariant_zeros_note`.
+    /// Invariant zeros, with multiplicities: the finite zeros of the regular part of the
+    /// system pencil \[A − λI B; C D\] for any numbers of inputs and outputs (square or not,
+    /// of full normal rank or not); `None` when not computable, with the reason in
+    /// `invariant_zeros_note`.
     pub invariant_zeros: Option<Vec<(Complex64, usize)>>,
     /// Why `invariant_zeros` is `None`.
     pub invariant_zeros_note: Option<String>,
+    /// The rest of the pencil's Kronecker structure (normal rank, infinite zeros, minimal
+    /// indices) and each zero's residual; `None` with `invariant_zeros`.
+    pub zero_structure: Option<ZeroStructure>,
     /// `dc_gain[j][i]`: the dc gain from input i to output j.
     pub dc_gain: Vec<Vec<DcGain>>,
     /// Internal stability: every eigenvalue of A in the open left half plane.
@@ -187,21 +214,11 @@ impl StateSpace {
         let ctrl = controllability_staircase(a, b, c, None, false)?;
         let obs = observability_staircase(a, b, c, None, false)?;
         let min = minimal_realization(a, b, c, d, None)?;
-        let (invariant, invariant_note) = if m != p || m == 0 {
-            (
-                None,
-                Some(format!(
-                    "not a square system ({m} input{}, {p} output{}): invariant zeros are defined for as many inputs as outputs",
-                    if m == 1 { "" } else { "s" },
-                    if p == 1 { "" } else { "s" }
-                )),
-            )
-        } else if n == 0 {
-            (Some(Vec::new()), None)
+        let (invariant, invariant_note, zero_structure) = if n == 0 && m.min(p) == 0 {
+            (Some(Vec::new()), None, None)
         } else {
-            // A transfer matrix singular for every s (the zeros are not isolated) is a
-            // property of the model, not a failure of the rest of the analysis: said, not
-            // raised.
+            // A zero structure that cannot be decided is a property of the model, not a
+            // failure of the rest of the analysis: said, not raised.
             match invariant_zeros(a, b, c, d, None) {
                 // the eigenvalue rule for the zeros too (a zero at the origin computed as
                 // 1e-31, the undamped lattice's zeros with real parts of 1e-16)
@@ -213,9 +230,24 @@ impl StateSpace {
                         .collect();
                     // sorted as roots: decreasing real, then imaginary part
                     zs.sort_by(|x, y| y.0.re.total_cmp(&x.0.re).then(y.0.im.total_cmp(&x.0.im)));
-                    (Some(zs), None)
+                    let k = &z.structure;
+                    let residuals = if n <= MAX_RESIDUAL_STATES {
+                        zs.iter()
+                            .map(|&(v, _)| pencil_residual(a, b, c, d, v, k.normal_rank))
+                            .collect::<Result<Vec<f64>>>()?
+                    } else {
+                        Vec::new()
+                    };
+                    let structure = ZeroStructure {
+                        normal_rank: k.normal_rank,
+                        infinite_orders: k.infinite_orders.clone(),
+                        left_indices: k.left_indices.clone(),
+                        right_indices: k.right_indices.clone(),
+                        residuals,
+                    };
+                    (Some(zs), None, Some(structure))
                 }
-                Err(e) => (None, Some(e.to_string())),
+                Err(e) => (None, Some(e.to_string()), None),
             }
         };
         let removed = |v: &[Complex64]| -> Vec<Complex64> {
@@ -332,6 +364,7 @@ impl StateSpace {
             unobservable_modes,
             invariant_zeros: invariant,
             invariant_zeros_note: invariant_note,
+            zero_structure,
             dc_gain,
             internally_stable,
             internal_reason,

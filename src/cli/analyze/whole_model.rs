@@ -101,6 +101,7 @@ struct SsJson {
     unobservable_modes: Vec<[f64; 2]>,
     invariant_zeros: Option<Vec<ZeroJson>>,
     invariant_zeros_note: Option<String>,
+    system_pencil: Option<PencilJson>,
     dc_gain: Vec<Vec<Option<f64>>>,
     bibo_stable: Vec<Vec<bool>>,
     internally_stable: bool,
@@ -126,6 +127,18 @@ struct RankJson {
 struct ZeroJson {
     value: [f64; 2],
     multiplicity: usize,
+    /// σ_{n+r} of the Rosenbrock matrix at the zero over its norm (`None` beyond
+    /// `MAX_RESIDUAL_STATES`).
+    residual: Option<f64>,
+}
+
+/// The Kronecker structure of the system pencil besides the finite zeros.
+#[derive(Serialize)]
+struct PencilJson {
+    normal_rank: usize,
+    infinite_zero_orders: Vec<usize>,
+    left_kronecker_indices: Vec<usize>,
+    right_kronecker_indices: Vec<usize>,
 }
 
 #[derive(Serialize)]
@@ -170,14 +183,23 @@ impl SsJson {
             uncontrollable_modes: pairs(&a.uncontrollable_modes),
             unobservable_modes: pairs(&a.unobservable_modes),
             invariant_zeros: a.invariant_zeros.as_ref().map(|z| {
+                let res = a.zero_structure.as_ref().map(|k| &k.residuals);
                 z.iter()
-                    .map(|&(v, k)| ZeroJson {
+                    .enumerate()
+                    .map(|(i, &(v, k))| ZeroJson {
                         value: pair(v),
                         multiplicity: k,
+                        residual: res.and_then(|r| r.get(i).copied()),
                     })
                     .collect()
             }),
             invariant_zeros_note: a.invariant_zeros_note.clone(),
+            system_pencil: a.zero_structure.as_ref().map(|k| PencilJson {
+                normal_rank: k.normal_rank,
+                infinite_zero_orders: k.infinite_orders.clone(),
+                left_kronecker_indices: k.left_indices.clone(),
+                right_kronecker_indices: k.right_indices.clone(),
+            }),
             dc_gain: a
                 .dc_gain
                 .iter()
@@ -316,6 +338,41 @@ pub fn text(plant: &Plant, w: &WholeModel, detail: Detail) -> String {
         (None, None) => "none defined".into(),
     };
     line(&mut s, "invariant zeros:", &zeros);
+    if let Some(k) = &a.zero_structure {
+        if let Some(worst) = k.residuals.iter().copied().reduce(f64::max) {
+            line(
+                &mut s,
+                "  residual:",
+                &format!(
+                    "{} at most (σ of [A − zI B; C D] at each zero over its norm, rank n + {})",
+                    fmt_sig(worst.max(f64::EPSILON * f64::EPSILON), 2),
+                    k.normal_rank
+                ),
+            );
+        }
+        let list = |v: &[usize]| {
+            if v.is_empty() {
+                "none".to_string()
+            } else {
+                v.iter()
+                    .map(usize::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        };
+        line(
+            &mut s,
+            "system pencil:",
+            &format!(
+                "normal rank {} of {}; infinite zeros of order {}; left indices {}; right indices {}",
+                k.normal_rank,
+                a.m.min(a.p),
+                list(&k.infinite_orders),
+                list(&k.left_indices),
+                list(&k.right_indices)
+            ),
+        );
+    }
     // "stable: every eigenvalue …" reads as "stable — every eigenvalue …" after a label.
     line(
         &mut s,

@@ -86,4 +86,4 @@ pub use schur::{RealSchur, SchurOptions, real_schur, schur_eigenvalues};
 pub use staircase::{Staircase, controllability_staircase, observability_staircase};
 pub use state_matrix::{StateMatrix, eigen_structure, eigenvectors};
 pub use structure::{EigenCluster, EigenStructure};
-pub use zeros::{InvariantZeros, invariant_zeros, transmission_zeros};
+pub use zeros::{InvariantZeros, KroneckerStructure, invariant_zeros, transmission_zeros};

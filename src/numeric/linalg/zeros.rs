@@ -1,25 +1,34 @@
 //! Invariant and transmission zeros: the finite λ where the system pencil
-//! P(λ) = [A − λI  B; C  D] loses rank, for SISO and square MIMO systems (D = 0 or not).
+//! P(λ) = [A − λI  B; C  D] loses rank below its normal rank, for any p×m system (square or
+//! not, of full normal rank or not), with the rest of the pencil's Kronecker structure.
 //!
 //! # Method
 //! Emami-Naeini & Van Dooren (1982), "Computation of zeros of linear multivariable systems",
-//! Automatica 18(4): a structure-preserving reduction by orthogonal transformations that
-//! removes the infinite zeros and leaves a system with D_f invertible, whose finite zeros are
-//! the eigenvalues of the n_f×n_f matrix A_f − B_f·D_f⁻¹·C_f — a plain eigenvalue problem, no
-//! QZ. One reduction step on (A, B, C, D), n states, m inputs, p outputs:
+//! Automatica 18(4), as in SLICOT `AB08ND`/`AB08NX`: a structure-preserving reduction by
+//! orthogonal transformations that removes the left Kronecker blocks and infinite zeros, the
+//! same on the dual for the right blocks, and leaves the regular part: a system with D_f
+//! square and invertible, whose finite zeros are the eigenvalues of the n_f×n_f matrix
+//! A_f − B_f·D_f⁻¹·C_f — a plain eigenvalue problem, no QZ. One reduction step on
+//! (A, B, C, D), n states, m inputs, p outputs:
 //! 1. compress the rows of D by a rank-revealing QR: UD = [D₁; 0], D₁ of full row rank ρ, and
 //!    UC = [C₁; C₂]; if ρ = p, stop;
 //! 2. compress the columns of C₂ (a rank-revealing QR of C₂ᵀ): C₂V = [Y 0], Y of full column
 //!    rank μ; apply V as a state similarity, A ← VᵀAV, B ← VᵀB, C ← CV;
 //! 3. the first μ states are determined by the outputs C₂ (Y has full column rank), so their
 //!    columns are eliminated from the pencil together with μ rows of C₂ (a unimodular row
-//!    operation: finite zeros are kept), rows of C₂ beyond μ are zero and dropped; the state
-//!    equations of those μ states carry no λ any more and become outputs:
-//!    A ← A₂₂, B ← B₂, C ← [A₁₂; C₁₂], D ← [B₁; D₁].
+//!    operation: finite zeros are kept), rows of C₂ beyond μ are zero rows of the pencil
+//!    (left minimal indices) and dropped; the state equations of those μ states carry no λ
+//!    any more and become outputs: A ← A₂₂, B ← B₂, C ← [A₁₂; C₁₂], D ← [B₁; D₁].
 //!
 //! Steps repeat until D has full row rank; the same procedure on the dual (Aᵀ, Cᵀ, Bᵀ, Dᵀ)
-//! then gives D_f of full column rank too, i.e. square and invertible for a system whose
-//! transfer matrix is square and of full normal rank (otherwise an error says so).
+//! then gives D_f of full column rank too, i.e. square and invertible.
+//!
+//! **Kronecker structure** ([`KroneckerStructure`]), read off the passes as `AB08NX` does:
+//! at pass k (1-based) with p_k rows of D of rank ρ_k and μ_k the rank of C₂, the
+//! p_k − ρ_k − μ_k zero rows are minimal indices k − 1 (left ones from the first reduction,
+//! right ones from the dual), ρ_k − ρ_{k−1} infinite zeros have order k − 1 (both
+//! reductions), and the normal rank of G is ρ of the first reduction's last pass.
+//! [`pencil_residual`] gives the evidence for a zero: the (n + r)-th singular value of P(z).
 //!
 //! **Tolerance**: ranks are decided by [`super::rrqr`] with tol·‖[A B; C D]‖_F, default
 //! tol = (n + p)(n + m)·ε (SLICOT `AB08ND`). The system is first scaled by powers of two
@@ -53,6 +62,24 @@ pub struct InvariantZeros {
     /// The relative rank tolerance of the reduction (of ‖[A B; C D]‖_F after the
     /// power-of-two scaling).
     pub tol: f64,
+    /// The rest of the Kronecker structure of the system pencil.
+    pub structure: KroneckerStructure,
+}
+
+/// The Kronecker structure of the system pencil P(λ) = \[A − λI  B; C  D\] besides its
+/// finite zeros, read off the two reductions (see the [module docs](self)).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct KroneckerStructure {
+    /// Normal rank of the transfer matrix G(s) = D + C(sI − A)⁻¹B (its rank for all but
+    /// finitely many s; the pencil's normal rank is n plus this).
+    pub normal_rank: usize,
+    /// Orders of the zeros at infinity, ascending, with repetition (SLICOT `AB08ND`'s
+    /// `INFZ`; a SISO system of relative degree r ≥ 1 has one, of order r).
+    pub infinite_orders: Vec<usize>,
+    /// Left Kronecker (row minimal) indices, ascending: p − normal rank of them.
+    pub left_indices: Vec<usize>,
+    /// Right Kronecker (column minimal) indices, ascending: m − normal rank of them.
+    pub right_indices: Vec<usize>,
 }
 
 /// A system (A, B, C, D) being reduced.
@@ -81,6 +108,38 @@ impl Sys {
 pub(crate) struct ReduceLog {
     pub steps: Vec<(usize, usize, f64)>,
     pub dropped: usize,
+    /// Every pass of the loop: (p_k, ρ_k, μ_k), the rows of D, its rank and the rank of C₂
+    /// (0 on the last pass, where D has full row rank or no C₂ is left).
+    pub passes: Vec<(usize, usize, usize)>,
+}
+
+impl ReduceLog {
+    /// The Kronecker indices this reduction removed: p_k − ρ_k − μ_k of index k − 1 at pass k
+    /// (zero rows of the pencil, SLICOT `AB08NX`'s `KRONL`), ascending.
+    fn kronecker_indices(&self) -> Vec<usize> {
+        let mut out = Vec::new();
+        for (k, &(p, rho, mu)) in self.passes.iter().enumerate() {
+            out.extend(std::iter::repeat_n(k, p - rho - mu));
+        }
+        out
+    }
+
+    /// The infinite zeros this reduction met: ρ_k − ρ_{k−1} of order k − 1 at pass k ≥ 2
+    /// (`AB08NX`'s `INFZ`), with repetition.
+    fn infinite_orders(&self) -> Vec<usize> {
+        let mut out = Vec::new();
+        for k in 1..self.passes.len() {
+            let (rho, prev) = (self.passes[k].1, self.passes[k - 1].1);
+            out.extend(std::iter::repeat_n(k, rho.saturating_sub(prev)));
+        }
+        out
+    }
+
+    /// The rank of D when the reduction stopped (the normal rank of the transfer matrix
+    /// after the first reduction).
+    fn final_rank(&self) -> usize {
+        self.passes.last().map_or(0, |&(_, rho, _)| rho)
+    }
 }
 
 /// Power-of-two scaling of (A, B, C, D): returns the scaled system and (eα, eβ, eγ) with
@@ -107,6 +166,7 @@ pub(crate) fn reduce(mut s: Sys, tol: f64) -> (Sys, ReduceLog) {
         }
         let f = rank_revealing_qr(&s.d, tol);
         let rho = f.rank;
+        log.passes.push((p, rho, 0));
         for r in &f.reflectors {
             r.apply_left(&mut s.d, 0..m);
             r.apply_left(&mut s.c, 0..n);
@@ -122,6 +182,9 @@ pub(crate) fn reduce(mut s: Sys, tol: f64) -> (Sys, ReduceLog) {
         let c2t = s.c.rows(rho, p - rho).transpose();
         let g = rank_revealing_qr(&c2t, tol);
         let mu = g.rank;
+        if let Some(last) = log.passes.last_mut() {
+            last.2 = mu;
+        }
         for r in &g.reflectors {
             r.apply_left(&mut s.a, 0..n);
             r.apply_right(&mut s.a, 0..n);
@@ -164,11 +227,28 @@ pub fn default_tol(n: usize, m: usize, p: usize) -> f64 {
     ((n + p) * (n + m)).max(1) as f64 * f64::EPSILON
 }
 
-/// Invariant zeros of (A, B, C, D), A n×n, B n×m, C p×n, D p×m with m = p (see the
-/// [module docs](self)); `tol` relative (`None`: (n + p)(n + m)·ε).
+/// Invariant zeros of (A, B, C, D), A n×n, B n×m, C p×n, D p×m, any m and p, with the
+/// Kronecker structure of the pencil (see the [module docs](self)); `tol` relative (`None`:
+/// (n + p)(n + m)·ε).
 ///
-/// Errors: inconsistent dimensions, non-finite entries, a non-square system, a transfer
-/// matrix that is singular for every s (normal rank deficient: the zeros are not isolated).
+/// Errors: inconsistent dimensions, non-finite entries, a zero beyond the range of f64, or
+/// (not met in the tests) two reductions whose rank decisions leave no regular part.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use ltikit::numeric::linalg::invariant_zeros;
+/// // Two outputs, one input: G = [1; 1]·(s − 3)/((s + 1)(s + 2)). The zero 3, normal rank 1,
+/// // one left index 0 (the two outputs are equal), one infinite zero of order 1.
+/// let a = DMatrix::from_row_slice(2, 2, &[-3.0, -2.0, 1.0, 0.0]);
+/// let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+/// let c = DMatrix::from_row_slice(2, 2, &[1.0, -3.0, 1.0, -3.0]);
+/// let z = invariant_zeros(&a, &b, &c, &DMatrix::zeros(2, 1), None).unwrap();
+/// assert_eq!(z.zeros.len(), 1);
+/// assert!((z.zeros[0].re - 3.0).abs() < 1e-14);
+/// assert_eq!(z.structure.normal_rank, 1);
+/// assert_eq!(z.structure.left_indices, vec![0]);
+/// assert_eq!(z.structure.infinite_orders, vec![1]);
+/// ```
 ///
 /// ```
 /// use nalgebra::DMatrix;
@@ -190,11 +270,6 @@ pub fn invariant_zeros(
     tol: Option<f64>,
 ) -> Result<InvariantZeros> {
     let (n, m, p) = super::checks::check_system(a, b, c, d)?;
-    if m != p {
-        return Err(LtiError::invalid(format!(
-            "invariant zeros need a square system (as many inputs as outputs), got {p} outputs and {m} inputs"
-        )));
-    }
     let sys = Sys {
         a: a.clone(),
         b: b.clone(),
@@ -217,24 +292,35 @@ pub fn invariant_zeros(
     let f = dual.transpose();
     let (nf, mf, pf) = (f.a.nrows(), f.b.ncols(), f.c.nrows());
     let not_regular = || {
-        LtiError::invalid(
-            "the transfer matrix is singular for every s (normal rank deficient): its invariant zeros are not isolated",
-        )
+        LtiError::invalid(format!(
+            "the system pencil's regular part could not be isolated ({pf} outputs and {mf} inputs left after the reductions, rank tolerance {rel:.1e}): its zeros are not decided"
+        ))
     };
-    // A zero row of the pencil (dropped) means the normal rank is deficient.
-    if mf != pf || log1.dropped + log2.dropped > 0 {
+    let ldf = f.d.clone().lu();
+    let structure = KroneckerStructure {
+        normal_rank: log1.final_rank(),
+        infinite_orders: {
+            let mut v = log1.infinite_orders();
+            v.extend(log2.infinite_orders());
+            v.sort_unstable();
+            v
+        },
+        left_indices: log1.kronecker_indices(),
+        right_indices: log2.kronecker_indices(),
+    };
+    // After both reductions the pencil is regular: D_f square and invertible (Van Dooren
+    // 1979; `AB08ND`'s "Y square invertible"). Anything else is a rank decision that the two
+    // passes made inconsistently — said, not guessed.
+    if mf != pf || (mf > 0 && !ldf.is_invertible()) {
         return Err(not_regular());
     }
-    let ldf = f.d.clone().lu();
     if nf == 0 {
-        if mf > 0 && !ldf.is_invertible() {
-            return Err(not_regular());
-        }
         return Ok(InvariantZeros {
             zeros: Vec::new(),
             distinct: Vec::new(),
             n_infinite: n,
             tol: rel,
+            structure,
         });
     }
     let m_f = if mf == 0 {
@@ -266,6 +352,7 @@ pub fn invariant_zeros(
         zeros,
         distinct,
         tol: rel,
+        structure,
     })
 }
 
@@ -292,4 +379,83 @@ pub fn transmission_zeros(
 ) -> Result<InvariantZeros> {
     let min = minimal_realization(a, b, c, d, tol)?;
     invariant_zeros(&min.a, &min.b, &min.c, &min.d, tol)
+}
+
+/// The residual of a zero z of (A, B, C, D) whose transfer matrix has normal rank r: the
+/// (n + r)-th singular value of the Rosenbrock matrix P(z) = \[A − zI  B; C  D\] relative to
+/// ‖P(z)‖_F. P has rank n + r for all but finitely many λ, and below it exactly at the
+/// zeros: a value near ε says z is a zero of a system within that relative distance
+/// (backward error), a value near 1 that it is not. O((n + p)(n + m)²) by a complex SVD.
+///
+/// Errors: inconsistent dimensions, non-finite entries or z, r > min(p, m), an SVD that does
+/// not converge.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use num_complex::Complex64;
+/// use ltikit::numeric::linalg::zeros::pencil_residual;
+/// // G(s) = (s − 1)/((s + 2)(s + 3)): the zero 1 has a residual near ε; at 2 the smallest
+/// // singular value of P(2) is 0.0416 of σ = (9.29, 2.59, 0.0416), ‖P(2)‖_F = 9.64 (numpy).
+/// let a = DMatrix::from_row_slice(2, 2, &[-5.0, -6.0, 1.0, 0.0]);
+/// let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+/// let c = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+/// let d = DMatrix::zeros(1, 1);
+/// assert!(pencil_residual(&a, &b, &c, &d, Complex64::new(1.0, 0.0), 1).unwrap() < 1e-15);
+/// let r2 = pencil_residual(&a, &b, &c, &d, Complex64::new(2.0, 0.0), 1).unwrap();
+/// assert!((r2 - 0.0043175).abs() < 1e-6);
+/// ```
+pub fn pencil_residual(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    z: Complex64,
+    normal_rank: usize,
+) -> Result<f64> {
+    let (n, m, p) = super::checks::check_system(a, b, c, d)?;
+    if !(z.re.is_finite() && z.im.is_finite()) {
+        return Err(LtiError::NonFinite {
+            what: "the zero whose residual is asked".into(),
+            value: z.norm(),
+        });
+    }
+    if normal_rank > m.min(p) {
+        return Err(LtiError::invalid(format!(
+            "a normal rank of {normal_rank} exceeds min(outputs, inputs) = {}",
+            m.min(p)
+        )));
+    }
+    let k = n + normal_rank;
+    if k == 0 {
+        return Ok(0.0);
+    }
+    let pz = DMatrix::<Complex64>::from_fn(n + p, n + m, |i, j| {
+        let x = match (i < n, j < n) {
+            (true, true) => a[(i, j)],
+            (true, false) => b[(i, j - n)],
+            (false, true) => c[(i - n, j)],
+            (false, false) => d[(i - n, j - n)],
+        };
+        if i == j && i < n {
+            Complex64::new(x, 0.0) - z
+        } else {
+            Complex64::new(x, 0.0)
+        }
+    });
+    let norm = pz.norm();
+    if norm == 0.0 {
+        return Ok(0.0);
+    }
+    let scaled = pz.unscale(norm);
+    let svd = scaled
+        .try_svd(
+            false,
+            false,
+            f64::EPSILON,
+            crate::numeric::lstsq::MAX_SVD_ITER,
+        )
+        .ok_or_else(|| LtiError::invalid("the SVD of the Rosenbrock matrix did not converge"))?;
+    let mut s: Vec<f64> = svd.singular_values.iter().copied().collect();
+    s.sort_by(|x, y| y.total_cmp(x));
+    Ok(s.get(k - 1).copied().unwrap_or(0.0))
 }
