@@ -31,5 +31,4 @@ pub use text::{
 #[cfg(feature = "cli")]
 pub(crate) use file::read_text;
 pub use record::Plant;
-#[cfg(feature = "cli")]
 pub(crate) use record::physical_model_has_no_dt;
