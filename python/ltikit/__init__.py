@@ -9,8 +9,10 @@ G(s) = 4 / (s^2 + 0.8 s + 4)
 array([-0.4+1.95959179j, -0.4-1.95959179j])
 
 Models: :func:`tf`, :func:`zpk`, :func:`ss`, :func:`model`, :func:`plant`, :func:`pid`,
-:func:`controller`; every analysis is a method of :class:`System`; :func:`batch` analyses
-many models on all cores. Errors are :class:`LtiError` (a ``ValueError``) with the command
+:func:`controller`; every analysis, design (``lqr``, ``lqe``, ``lqg``, ``place``), norm and
+reduction is a method of :class:`System`; :func:`batch` analyses many models on all cores;
+the matrix equations are :func:`lyap`, :func:`dlyap`, :func:`sylvester`, :func:`care`,
+:func:`dare` (and :func:`lqr` on matrices). Errors are :class:`LtiError` (a ``ValueError``) with the command
 line's one-line message.
 """
 
@@ -38,6 +40,16 @@ __all__ = [
     "Nyquist",
     "RootLocus",
     "Residue",
+    "Regulator",
+    "Estimator",
+    "Lqg",
+    "Placement",
+    "PeakGain",
+    "H2Norm",
+    "Gramian",
+    "Reduction",
+    "MatrixSolution",
+    "RiccatiSolution",
     "tf",
     "zpk",
     "ss",
@@ -50,6 +62,12 @@ __all__ = [
     "batch",
     "from_control",
     "from_scipy",
+    "lqr",
+    "care",
+    "dare",
+    "lyap",
+    "dlyap",
+    "sylvester",
     "__version__",
 ]
 
@@ -254,6 +272,75 @@ class Residue(Record):
     tuples, ``direct`` the polynomial part (descending coefficients)."""
 
 
+class Regulator(Record):
+    """A linear-quadratic regulator (u = −K x): ``K`` (m × n), ``X`` (the stabilising
+    solution of the Riccati equation; the optimal cost from x₀ is x₀ᵀXx₀), ``poles`` (the
+    eigenvalues of A − BK, in s or in z), ``equation`` (``"care"`` or ``"dare"``),
+    ``residual`` (relative) and ``condition`` (an estimate)."""
+
+
+class Estimator(Record):
+    """A Kalman estimator (x̂' = A x̂ + B u + L (y − C x̂ − D u)): ``L`` (n × p), ``P`` (the
+    steady error covariance; discrete: of the one-step prediction), ``poles`` (the eigenvalues
+    of A − LC), ``noise`` (where the process noise enters: ``"states"`` or ``"inputs"``),
+    ``equation``, ``residual``, ``condition``."""
+
+
+class Lqg(Record):
+    """An LQG design: ``regulator`` (:class:`Regulator`), ``estimator`` (:class:`Estimator`)
+    and ``controller``, the :class:`System` from y to −u (so ``G.feedback(ctrl)`` is the
+    closed loop)."""
+
+
+class Placement(Record):
+    """Pole placement (u = −K x): ``K``, ``method``, ``requested`` and achieved ``poles``
+    (the eigenvalues of A − BK), ``distance`` (of each achieved pole from its request),
+    ``relative_error``, ``condition``, ``iterations``, ``note`` (a warning on conditioning, or
+    ``None``)."""
+
+
+class PeakGain(Record):
+    """A certified peak gain (H∞ or L∞ norm): ``value`` (= ``lower``, σ_max(G) at ``w``),
+    ``upper`` (a γ no singular value of G reaches), ``relative_gap`` (upper/lower − 1),
+    ``w`` (the peak frequency, rad/s; ``inf`` for ω → ∞), ``iterations``, ``norm`` (``"H∞"``
+    or ``"L∞"``), ``infinite`` (why the norm is infinite, or ``None``). ``float(n)`` is the
+    value."""
+
+    def __float__(self) -> float:
+        return float(self.__dict__["value"])
+
+
+class H2Norm(Record):
+    """The H2 norm: ``value`` (``inf`` when infinite), ``residual`` (of the Gramian it comes
+    from), ``infinite`` (why, or ``None``). ``float(n)`` is the value."""
+
+    def __float__(self) -> float:
+        return float(self.__dict__["value"])
+
+
+class Gramian(Record):
+    """A Gramian: ``gramian`` (P or Q), ``factor`` (L, lower triangular, P = L·Lᵀ) and
+    ``residual`` (relative, in its Lyapunov equation)."""
+
+
+class Reduction(Record):
+    """A balanced truncation: ``reduced`` (the :class:`System` of ``order`` states, D kept),
+    ``states`` (of the full model), ``hsv`` (its Hankel singular values), ``bound`` (the a
+    priori bound 2·Σ_{i>k} σᵢ), ``error`` (the certified ‖G − G_r‖∞, a :class:`PeakGain`),
+    ``residuals`` (of the two Gramians)."""
+
+
+class MatrixSolution(Record):
+    """The solution ``X`` of a linear matrix equation with its ``residual`` (relative) and
+    ``condition`` (a lower-bound estimate of the relative condition number)."""
+
+
+class RiccatiSolution(Record):
+    """The stabilising solution ``X`` of an algebraic Riccati equation with the gain ``K``
+    (R⁻¹(BᵀX + Sᵀ); discrete: (R + BᵀXB)⁻¹(BᵀXA + Sᵀ)), the closed-loop ``poles``
+    (eigenvalues of A − BK), ``residual`` and ``condition``."""
+
+
 # ---- argument checks ----------------------------------------------------------------------
 
 
@@ -322,6 +409,25 @@ def _dt(dt: Any) -> Optional[float]:
     if dt is True:
         raise LtiError("`dt` must be a sampling period in seconds (True leaves it unspecified)")
     return _number(dt, "dt")
+
+
+def _weight(x: ArrayLike, name: str) -> list:
+    """A weight or covariance: a matrix, or one number for that multiple of the identity."""
+    return _matrix(x, name)
+
+
+def _noise(noise: Optional[str]) -> Optional[str]:
+    if noise is None:
+        return None
+    if not isinstance(noise, str):
+        raise LtiError(f'`noise` must be "states", "inputs" or None (found {_short(noise)})')
+    return noise
+
+
+def _count(x: Any, name: str) -> int:
+    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or int(x) < 0:
+        raise LtiError(f"`{name}` must be a whole number ≥ 0 (found {_short(x)})")
+    return int(x)
 
 
 # ---- the model ----------------------------------------------------------------------------
@@ -488,9 +594,125 @@ class System:
         gains, branches, rest = self._m.rlocus(bool(negative))
         return RootLocus({"gains": gains, "branches": branches, **rest})
 
-    def __call__(self, s: complex) -> complex:
-        """G(s) at one complex point."""
-        return self._m.eval(complex(s))
+
+    # design (the model itself: no dead time, at least one state)
+    def lqr(self, Q: ArrayLike, R: ArrayLike, S: Optional[ArrayLike] = None) -> Regulator:
+        """The linear-quadratic regulator u = −K x minimising ∫ xᵀQx + uᵀRu + 2xᵀSu dt (the
+        sum in discrete time: DARE instead of CARE). One number for ``Q`` or ``R`` stands for
+        that multiple of the identity. MATLAB ``lqr``/``dlqr``; python-control ``ct.lqr``."""
+        s = None if S is None else _matrix(S, "s")
+        return Regulator(_core.design_lqr(self._m, _weight(Q, "q"), _weight(R, "r"), s))
+
+    def lqe(
+        self,
+        Qn: ArrayLike,
+        Rn: ArrayLike,
+        Nn: Optional[ArrayLike] = None,
+        noise: Optional[str] = None,
+    ) -> Estimator:
+        """The Kalman estimator gain L for process noise covariance ``Qn`` and measurement
+        noise covariance ``Rn`` (cross covariance ``Nn``). ``noise="states"``: the noise
+        enters every state (Qn n × n); ``"inputs"``: through B (Qn m × m, MATLAB's G = B);
+        ``None`` decides by the size of Qn."""
+        nn = None if Nn is None else _matrix(Nn, "nn")
+        return Estimator(
+            _core.design_lqe(self._m, _weight(Qn, "qn"), _weight(Rn, "rn"), nn, _noise(noise))
+        )
+
+    def lqg(
+        self,
+        Q: ArrayLike,
+        R: ArrayLike,
+        Qn: ArrayLike,
+        Rn: ArrayLike,
+        noise: Optional[str] = None,
+    ) -> Lqg:
+        """The LQG controller: :meth:`lqr` with Q, R and :meth:`lqe` with Qn, Rn joined as an
+        observer-based compensator; ``.controller`` is the :class:`System` from y to −u, so
+        ``G.feedback(d.controller)`` is the closed loop."""
+        d = _core.design_lqg(
+            self._m,
+            _weight(Q, "q"),
+            _weight(R, "r"),
+            _weight(Qn, "qn"),
+            _weight(Rn, "rn"),
+            _noise(noise),
+        )
+        a, b, c, dd = d.pop("controller")
+        ctrl = ss(a, b, c, dd, dt=d.pop("dt"))
+        return Lqg(
+            {
+                "regulator": Regulator(d["regulator"]),
+                "estimator": Estimator(d["estimator"]),
+                "controller": ctrl,
+            }
+        )
+
+    def place(self, poles: ArrayLike) -> Placement:
+        """The state feedback u = −K x putting the eigenvalues of A − BK at ``poles``
+        (conjugate pairs complete; in z for a discrete model). MATLAB/python-control
+        ``place``."""
+        p = Placement(_core.design_place(self._m, _vector(poles, "poles", complex, limit=_points)))
+        return p
+
+    # norms and reduction (a state-space model as given, otherwise the minimal realisation)
+    def hinf_norm(self) -> PeakGain:
+        """The certified H∞ norm: an interval [lower, upper] (upper/lower − 1 ≤ 1e-10) and
+        the peak frequency; infinite, with the reason, for an unstable model."""
+        return PeakGain(_core.peak_gain(self._m, False))
+
+    def linf_norm(self) -> PeakGain:
+        """The certified L∞ norm sup_ω σ_max(G(jω)) of a model without poles on the
+        imaginary axis (unit circle); the H∞ norm for a stable model."""
+        return PeakGain(_core.peak_gain(self._m, True))
+
+    def h2_norm(self) -> H2Norm:
+        """The H2 norm (from a Gramian); infinite, with the reason, for an unstable model or
+        a continuous one with D ≠ 0."""
+        return H2Norm(_core.norm_h2(self._m))
+
+    def gram(self, kind: str = "c") -> Gramian:
+        """The controllability (``"c"``: A P + P Aᵀ + B Bᵀ = 0) or observability (``"o"``:
+        Aᵀ Q + Q A + Cᵀ C = 0) Gramian of a stable model (the Stein equations in discrete
+        time)."""
+        return Gramian(_core.gram(self._m, str(kind)))
+
+    def hsv(self) -> np.ndarray:
+        """The Hankel singular values of a stable model, largest first."""
+        return np.asarray(_core.hsv(self._m), dtype=float)
+
+    def balred(self, order: Optional[int] = None, error: Optional[float] = None) -> Reduction:
+        """Balanced truncation (square-root method) to ``order`` states, or to the smallest
+        order whose bound 2·Σ_{i>k} σᵢ is at most ``error``; with the bound and the certified
+        error ‖G − G_r‖∞."""
+        k = None if order is None else _count(order, "order")
+        e = None if error is None else _number(error, "error")
+        r = _core.balred(self._m, k, e)
+        a, b, c, d = r.pop("reduced")
+        reduced = ss(a, b, c, d, dt=r.pop("dt"))
+        r["hsv"] = np.asarray(r["hsv"], dtype=float)
+        r["error"] = PeakGain(r["error"])
+        return Reduction({"reduced": reduced, **r})
+
+    def sigma(self, w: ArrayLike) -> np.ndarray:
+        """The singular values of G(jω) (G(e^(jωT)) in discrete time) at each frequency of
+        ``w`` rad/s: one row per frequency, largest first."""
+        return _core.sigma(self._m, _vector(w, "w", limit=_points))
+
+    def eval(self, s: complex) -> Any:
+        """G at the complex point ``s`` (z in discrete time, the dead time included): a
+        complex number for a SISO model, the p × m complex array of a MIMO one. An error at
+        a pole, naming it (and the channel)."""
+        try:
+            point = complex(s)
+        except (TypeError, ValueError):
+            raise LtiError(f"`s` must be a complex number (found {_short(s)})") from None
+        g = self._m.eval_matrix(point)
+        return complex(g[0, 0]) if self.is_siso() else g
+
+    def __call__(self, s: complex) -> Any:
+        """G(s) at one complex point (:meth:`eval`)."""
+        return self.eval(s)
 
     # interconnections
     def feedback(self, h: Union["System", float] = 1.0, sign: float = -1.0) -> "System":
@@ -736,6 +958,63 @@ def batch(plants: Sequence[System]) -> List[Analysis]:
             raise LtiError(f"`plants`: item {i} is a {type(p).__name__}, not a System")
         cores.append(p._m)
     return [Analysis(d) for d in _core.batch(cores)]
+
+
+# ---- matrix equations ---------------------------------------------------------------------
+
+
+def lyap(A: ArrayLike, Q: ArrayLike) -> MatrixSolution:
+    """Solves A X + X Aᵀ + Q = 0 (MATLAB ``lyap(A, Q)``). Note the sign: scipy's
+    ``solve_continuous_lyapunov(A, Q)`` solves A X + X Aᴴ = Q, so it equals ``lyap(A, -Q).X``."""
+    return MatrixSolution(_core.solve_lyap(_matrix(A, "a"), _matrix(Q, "q")))
+
+
+def dlyap(A: ArrayLike, Q: ArrayLike) -> MatrixSolution:
+    """Solves A X Aᵀ − X + Q = 0 (MATLAB ``dlyap(A, Q)``; scipy's
+    ``solve_discrete_lyapunov(A, Q)`` solves the same equation)."""
+    return MatrixSolution(_core.solve_dlyap(_matrix(A, "a"), _matrix(Q, "q")))
+
+
+def sylvester(A: ArrayLike, B: ArrayLike, C: ArrayLike) -> MatrixSolution:
+    """Solves A X + X B = C (scipy's ``solve_sylvester(A, B, C)``; MATLAB ``sylvester``)."""
+    return MatrixSolution(
+        _core.solve_sylvester(_matrix(A, "a"), _matrix(B, "b"), _matrix(C, "c"))
+    )
+
+
+def care(
+    A: ArrayLike, B: ArrayLike, Q: ArrayLike, R: ArrayLike, S: Optional[ArrayLike] = None
+) -> RiccatiSolution:
+    """The stabilising solution of AᵀX + XA − (XB + S)R⁻¹(BᵀX + Sᵀ) + Q = 0 (scipy's
+    ``solve_continuous_are(A, B, Q, R, s=S)``), with the gain K and the closed-loop poles."""
+    s = None if S is None else _matrix(S, "s")
+    return RiccatiSolution(
+        _core.solve_riccati(_matrix(A, "a"), _matrix(B, "b"), _matrix(Q, "q"), _matrix(R, "r"), s, False)
+    )
+
+
+def dare(
+    A: ArrayLike, B: ArrayLike, Q: ArrayLike, R: ArrayLike, S: Optional[ArrayLike] = None
+) -> RiccatiSolution:
+    """The stabilising solution of AᵀXA − X − (AᵀXB + S)(R + BᵀXB)⁻¹(BᵀXA + Sᵀ) + Q = 0
+    (scipy's ``solve_discrete_are(A, B, Q, R, s=S)``), with the gain K and the closed-loop
+    poles."""
+    s = None if S is None else _matrix(S, "s")
+    return RiccatiSolution(
+        _core.solve_riccati(_matrix(A, "a"), _matrix(B, "b"), _matrix(Q, "q"), _matrix(R, "r"), s, True)
+    )
+
+
+def lqr(
+    A: ArrayLike, B: ArrayLike, Q: ArrayLike, R: ArrayLike, S: Optional[ArrayLike] = None
+) -> Regulator:
+    """The continuous-time LQR of ẋ = Ax + Bu (python-control's ``ct.lqr(A, B, Q, R)``):
+    ``K``, ``X``, ``poles`` (E in python-control). For a model, :meth:`System.lqr` (which
+    also designs discrete-time regulators)."""
+    a, b = _matrix(A, "a"), _matrix(B, "b")
+    outputs = [[0.0] * len(a)] if a else [[]]
+    plant = System(_core.Model.from_ss(a, b, outputs, None, None), ("from_ss", a, b, outputs, None, None))
+    return plant.lqr(Q, R, S)
 
 
 def from_control(sys: Any) -> System:

@@ -17,7 +17,11 @@ use pyo3::prelude::*;
 mod analyze;
 mod batch;
 mod convert;
+mod design;
+mod equations;
+mod matrix;
 mod model;
+mod norms;
 
 pyo3::create_exception!(
     _core,
@@ -74,6 +78,20 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(panic_for_test, m)?)?;
     m.add_function(wrap_pyfunction!(check_points, m)?)?;
     m.add_function(wrap_pyfunction!(check_order, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_lqr, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_lqe, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_lqg, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_place, m)?)?;
+    m.add_function(wrap_pyfunction!(norms::peak_gain, m)?)?;
+    m.add_function(wrap_pyfunction!(norms::norm_h2, m)?)?;
+    m.add_function(wrap_pyfunction!(norms::gram, m)?)?;
+    m.add_function(wrap_pyfunction!(norms::hsv, m)?)?;
+    m.add_function(wrap_pyfunction!(norms::balred, m)?)?;
+    m.add_function(wrap_pyfunction!(norms::sigma, m)?)?;
+    m.add_function(wrap_pyfunction!(equations::solve_lyap, m)?)?;
+    m.add_function(wrap_pyfunction!(equations::solve_dlyap, m)?)?;
+    m.add_function(wrap_pyfunction!(equations::solve_sylvester, m)?)?;
+    m.add_function(wrap_pyfunction!(equations::solve_riccati, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -79,13 +79,61 @@ impl Model {
     }
 
     /// The model as a state-space model (a transfer function realised; factors as a cascade).
-    fn state_space(&self) -> ltikit::Result<StateSpace> {
+    pub(crate) fn state_space(&self) -> ltikit::Result<StateSpace> {
         match &self.source {
             Source::Plant(p) => p.state_space(),
             Source::Factored(f) => {
                 Ok(StateSpace::from_zpk(f.zeros(), f.poles(), f.gain())?.with_domain(f.domain()))
             }
         }
+    }
+
+    /// The state-space model a design (`lqr`, `lqe`, `lqg`, `place`) works on: the plant
+    /// itself, refused (as the command line refuses it) with a plant file's controller, a
+    /// dead time, or no states.
+    pub(crate) fn design_state_space(&self, command: &str) -> ltikit::Result<StateSpace> {
+        let delay = match &self.source {
+            Source::Plant(p) => {
+                if p.controller.is_some() {
+                    return Err(LtiError::invalid(format!(
+                        "{command} designs on the plant itself: the plant file's [controller] is not taken"
+                    )));
+                }
+                p.delay()
+            }
+            Source::Factored(f) => f.delay(),
+        };
+        if delay > 0.0 {
+            return Err(LtiError::invalid(format!(
+                "{command}: the plant has a dead time of {} s; the design needs a delay-free \
+                 state-space model",
+                ltikit::fmt::fmt_num(delay)
+            )));
+        }
+        let ss = self.state_space()?;
+        if !ss.input_delays.is_empty() || !ss.output_delays.is_empty() {
+            return Err(LtiError::invalid(format!(
+                "{command}: the plant has dead times on its inputs or outputs"
+            )));
+        }
+        if ss.order() == 0 {
+            return Err(LtiError::invalid(format!(
+                "{command}: the plant has no states (a static gain): there is nothing to design"
+            )));
+        }
+        Ok(ss)
+    }
+
+    /// The state-space model a norm, Gramian or reduction works on (as the command line's):
+    /// a state-space model as given, otherwise the minimal realisation of the factored form.
+    pub(crate) fn norm_state_space(&self) -> PyResult<StateSpace> {
+        if let Source::Plant(p) = &self.source
+            && let LtiModel::Ss(ss) = &p.model
+        {
+            return Ok(ss.clone());
+        }
+        let f = self.factored()?;
+        guard(|| f.norm_realization())
     }
 
     fn domain(&self) -> Domain {
@@ -861,6 +909,27 @@ impl Model {
     /// The complex value G(s) at one point.
     fn eval(&self, s: Complex64) -> PyResult<Complex64> {
         Ok(self.factored()?.eval(s))
+    }
+
+    /// G(s) of every channel at one point (`values[output][input]`): the library's
+    /// `transfer_matrix` (an error at a pole, naming the channel).
+    fn eval_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        s: Complex64,
+    ) -> PyResult<Bound<'py, PyArray2<Complex64>>> {
+        let rows = match &self.source {
+            // a MIMO model channel by channel
+            Source::Plant(p) if !self.is_siso() => {
+                guard(|| ltikit::analysis::point::transfer_matrix(&p.model, s))?
+            }
+            // one channel: its factored form, the dead time included
+            _ => {
+                let f = self.factored()?;
+                vec![vec![guard(|| ltikit::analysis::point::value_at(f, s))?]]
+            }
+        };
+        array2(py, &rows)
     }
 
     /// `[re, im]` pairs of the poles (the JSON contract's form), for tests and documents.

@@ -168,4 +168,8 @@ def test_every_public_name_has_a_docstring():
     for attr in dir(lk._core.Model):
         if not attr.startswith("_") and not (getattr(lk._core.Model, attr).__doc__ or "").strip():
             missing.append(f"_core.Model.{attr}")
+    for attr in dir(lk._core):
+        member = getattr(lk._core, attr)
+        if not attr.startswith("_") and callable(member) and not (member.__doc__ or "").strip():
+            missing.append(f"_core.{attr}")
     assert missing == []
