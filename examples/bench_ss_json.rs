@@ -1,7 +1,8 @@
 //! Timings of ltikit's state-space kernels on the seed's lattice (N = 128, 256 states), as
 //! JSON on stdout, for `benches/compare/compare_ss.py` (which times python-control on the same
 //! model in the same run). Medians of repeated runs, in seconds. The `general_*` keys time the
-//! same model with interleaved states, which the second-order recognition does not take.
+//! same model with interleaved states, which the second-order recognition does not take; the
+//! `random_*` keys a random dense stable 256-state model (`random_dense`), piece by piece.
 
 #[path = "../benches/common/ss.rs"]
 mod lattice;
@@ -10,7 +11,10 @@ use std::time::Instant;
 
 use ltikit::analysis::Factored;
 use ltikit::numeric::linalg::modal::ModalForm;
-use ltikit::numeric::linalg::{HessenbergResponse, eigen_structure};
+use ltikit::numeric::linalg::{
+    HessenbergResponse, SchurOptions, eigen_structure, minimal_realization, real_schur,
+    schur_eigenvalues, transmission_zeros,
+};
 use num_complex::Complex64;
 
 /// Median seconds per call over `reps` calls (after one warm-up call).
@@ -30,6 +34,7 @@ fn median<T>(reps: usize, mut f: impl FnMut() -> T) -> f64 {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ss = lattice::lattice();
     let general = lattice::lattice_interleaved();
+    let random = lattice::random_dense();
     let s: Vec<Complex64> = lattice::freq_grid(10_000)
         .iter()
         .map(|&w| Complex64::new(0.0, w))
@@ -66,6 +71,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "general_channel_factored": median(7, || Factored::from_state_space(&general)),
         "general_freq_response_mimo_10k": median(5, || general.freq_response_mimo(&w)),
         "general_step_10k": median(5, || general.step_response_from(0, &t, false)),
+        // a random dense stable model without any structure (benches/common/ss.rs
+        // `random_dense`, the same numbers in compare_ss.py): where the general path's time goes
+        "random_real_schur_with_q": median(5, || real_schur(&random.a, SchurOptions::default())),
+        "random_schur_eigenvalues": median(5, || schur_eigenvalues(&random.a)),
+        "random_modal_form": median(5, || ModalForm::new(&random.a, &random.b, &random.c, &random.d)),
+        "random_eigenvalues": median(5, || eigen_structure(&random.a)),
+        "random_minimal_realization": median(5, || {
+            minimal_realization(&random.a, &random.b, &random.c, &random.d, None)
+        }),
+        "random_transmission_zeros": median(5, || {
+            transmission_zeros(&random.a, &random.b, &random.c, &random.d, None)
+        }),
+        "random_channel_factored": median(5, || Factored::from_state_space(&random)),
+        "random_step_10k": median(5, || random.step_response_from(0, &t, false)),
+        "random_step_y_end": random.step_response_from(0, &t, false)?.y[0][t.len() - 1],
         "freq_max_rel_diff_vs_modal": max_rel,
     });
     println!("{out}");

@@ -84,3 +84,35 @@ pub fn modal_sum(poles: &[Complex64], res: &[Complex64], w: &[f64]) -> Vec<Compl
         })
         .collect()
 }
+
+/// Uniform in [−1, 1) from xorshift64 (the same numbers in `benches/compare/compare_ss.py`).
+fn uniform(seed: &mut u64) -> f64 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 7;
+    *seed ^= *seed << 17;
+    (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+}
+
+/// A random dense stable SISO system without structure: A = R/16 − I with R (256×256) uniform
+/// in [−1, 1) (the spectrum of R/16 lies in a disc of radius ≈ 0.58, so A's in Re s < −0.4),
+/// then b and c uniform; xorshift64 from seed 0x5eed_0256, filled row by row A, b, c.
+pub fn random_dense() -> StateSpace {
+    let n = 256;
+    let mut s = 0x5eed_0256u64;
+    let mut a = nalgebra::DMatrix::zeros(n, n);
+    for i in 0..n {
+        for j in 0..n {
+            a[(i, j)] = uniform(&mut s) / 16.0 - if i == j { 1.0 } else { 0.0 };
+        }
+    }
+    let b = nalgebra::DMatrix::from_fn(n, 1, |_, _| 0.0);
+    let mut b = b;
+    for i in 0..n {
+        b[(i, 0)] = uniform(&mut s);
+    }
+    let mut c = nalgebra::DMatrix::zeros(1, n);
+    for j in 0..n {
+        c[(0, j)] = uniform(&mut s);
+    }
+    StateSpace::new(a, b, c, nalgebra::DMatrix::zeros(1, 1)).expect("the random dense model")
+}

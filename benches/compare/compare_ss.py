@@ -36,6 +36,25 @@ def lattice():
     return ct.ss(a, b, c, np.zeros((1, 1)))
 
 
+MASK = (1 << 64) - 1
+
+
+def random_dense():
+    """benches/common/ss.rs `random_dense`: A = R/16 - I (256x256), b, c; xorshift64 from
+    0x5eed0256, uniform in [-1, 1), filled row by row A, b, c (the same doubles)."""
+    n, seed = 256, 0x5EED0256
+    vals = []
+    for _ in range(n * n + 2 * n):
+        seed ^= (seed << 13) & MASK
+        seed ^= seed >> 7
+        seed ^= (seed << 17) & MASK
+        vals.append((seed >> 11) / float(1 << 53) * 2.0 - 1.0)
+    a = np.array(vals[:n * n]).reshape(n, n) / 16.0 - np.eye(n)
+    b = np.array(vals[n * n:n * n + n]).reshape(n, 1)
+    c = np.array(vals[n * n + n:]).reshape(1, n)
+    return ct.ss(a, b, c, np.zeros((1, 1)))
+
+
 def median_time(fn, repeat=5):
     fn()
     ts = []
@@ -90,6 +109,23 @@ def main():
     print(f"{'freq_modal_eval_10k (ltikit)':28} {'':12} {lt['freq_modal_eval_10k']:12.4g}"
           f"   modal eval/modal sum = {lt['freq_modal_eval_10k'] / lt['freq_modal_sum_10k']:.2f}")
     print("channel_factored (python):", py["channel_factored_note"])
+    # a random dense stable model without structure: python-control against ltikit's general path
+    rnd = random_dense()
+    y_end = ct.step_response(rnd, T=t).outputs[-1]
+    assert abs(y_end - lt["random_step_y_end"]) <= 1e-9 * max(1.0, abs(y_end)), (y_end, lt["random_step_y_end"])
+    def rnd_poles_zeros():
+        rnd.poles(); rnd.zeros()
+    pr = {
+        "eigenvalues": median_time(lambda: np.linalg.eigvals(rnd.A)),
+        "channel_factored": median_time(rnd_poles_zeros, 3),
+        "step_10k": median_time(lambda: ct.step_response(rnd, T=t), 3),
+    }
+    print("random dense stable, 256 states (no structure):")
+    for key in ["eigenvalues", "channel_factored", "step_10k"]:
+        p, l = pr[key], lt["random_" + key]
+        print(f"  {key:26} {p:12.4g} {l:12.4g} {p / l:8.1f}")
+    for key in ["real_schur_with_q", "schur_eigenvalues", "modal_form", "minimal_realization", "transmission_zeros"]:
+        print(f"  {key + ' (ltikit)':26} {'':12} {lt['random_' + key]:12.4g}")
     print(f"max relative difference Hessenberg vs modal sum: {lt['freq_max_rel_diff_vs_modal']:.2e}")
 
 

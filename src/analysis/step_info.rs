@@ -39,6 +39,7 @@ use crate::error::{LtiError, Result};
 use crate::lti::TransferFunction;
 
 mod grid;
+mod realised;
 pub(crate) mod search;
 
 use search::{Budget, Scanner, crossing, envelope_peak, horizon, reach_in};
@@ -225,7 +226,11 @@ impl Factored {
         let y = Decomposition::new(self, &Input::Step, &[])?
             .closed_form()?
             .closed_form;
-        let info = step_info_of(&y, y_inf, opts)?;
+        let mut info = step_info_of(&y, y_inf, opts)?;
+        if let Some(ss) = self.source().state_space() {
+            // a state-space source: the closed form's metrics checked on the realisation
+            realised::check(ss, &y, y_inf, &mut info);
+        }
         Ok(Some(info.delayed(self.delay())))
     }
 }

@@ -79,3 +79,4 @@ pub(crate) use interconnect::{close, series_parts};
 pub use minreal::{NEAR_PAIR_REL, NearPair};
 pub use pole_zero::{MAX_FACTORED_ORDER, PoleZero};
 pub(crate) use series::ScaledProduct;
+pub(crate) use ss_source::SsSource;

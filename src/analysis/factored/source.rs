@@ -51,6 +51,14 @@ impl Source {
         }
     }
 
+    /// The realisation of a state-space source.
+    pub(crate) fn state_space(&self) -> Option<&SsSource> {
+        match self {
+            Source::StateSpace(ss) => Some(ss),
+            Source::Coefficients(_) | Source::Factors => None,
+        }
+    }
+
     pub(crate) fn coefficients_of(tf: TransferFunction, reduced: TransferFunction) -> Source {
         Source::Coefficients(Box::new(Coeffs { tf, reduced }))
     }

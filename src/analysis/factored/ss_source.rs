@@ -338,6 +338,12 @@ impl SsSource {
         self.response.eval_siso(s)
     }
 
+    /// G(s), G′(s) and the size of the terms summed for G, from the Hessenberg form of the
+    /// minimal realisation (what the margins refine their crossings on).
+    pub(crate) fn eval_with_derivative(&self, s: Complex64) -> Option<(Complex64, Complex64, f64)> {
+        self.response.eval_siso_with_derivative(s)
+    }
+
     /// The dc gain D − C·A⁻¹·B of the minimal realisation by an LU solve; `None` when A is
     /// singular to working precision (the caller then takes the asymptote from the factors).
     pub(crate) fn low_frequency(&self) -> Option<LowFrequency> {

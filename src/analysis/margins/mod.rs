@@ -39,6 +39,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 pub(crate) mod crossing;
 mod delayed;
+mod realised;
 
 pub use crossing::{GainCrossing, Margins, PhaseCrossing};
 pub(crate) use crossing::{dedup_by_w, wrap_deg};
@@ -99,14 +100,39 @@ impl Factored {
             .chain(form.axis_zeros())
             .copied()
             .collect();
+        // a state-space source: every crossing is refined on the realisation's own G(jω)
+        let real = self
+            .source()
+            .state_space()
+            .map(|ss| realised::Realised::new(ss, form));
+        let ln_mag = |w: f64| match &real {
+            Some(r) => r.ln_mag(w),
+            None => form.eval(w).ln_mag(),
+        };
+        let phase_deg = |w: f64| match &real {
+            Some(r) => r.phase_rad(w).to_degrees(),
+            None => form.eval(w).phase_deg(),
+        };
+        // the gain margin at a phase crossing, as a ratio and in dB
+        let gain_margin = |w: f64| match &real {
+            Some(r) => {
+                let lm = r.ln_mag(w);
+                ((-lm).exp(), -20.0 * std::f64::consts::LOG10_E * lm)
+            }
+            None => {
+                let e = form.eval(w);
+                ((-e.ln_mag()).exp(), -e.db())
+            }
+        };
 
         // gain crossings
         for w in cand.gain_crossings(form)? {
             if let Some(w) = polish(|x| form.eval(x).ln_mag(), w, &singular, 1e-10) {
+                let w = real.as_ref().map_or(w, |r| r.level(w, 0.0, &singular));
                 out.gain_crossings.push(GainCrossing {
                     w,
                     phase_margin_deg: wrap_deg(
-                        180.0 + form.eval(w).phase_deg() - (w * self.delay()).to_degrees(),
+                        180.0 + phase_deg(w) - (w * self.delay()).to_degrees(),
                     ),
                 });
             }
@@ -149,11 +175,12 @@ impl Factored {
                 continue; // G real positive here
             }
             if let Some(w) = polish(|x| form.eval(x).phase_rad() - target, w, &singular, 1e-10) {
-                let e = form.eval(w);
+                let w = real.as_ref().map_or(w, |r| r.phase(w, target, &singular));
+                let (gain_margin, gain_margin_db) = gain_margin(w);
                 out.phase_crossings.push(PhaseCrossing {
                     w,
-                    gain_margin: (-e.ln_mag()).exp(),
-                    gain_margin_db: -e.db(),
+                    gain_margin,
+                    gain_margin_db,
                 });
             }
         }
@@ -170,6 +197,7 @@ impl Factored {
         let level = dc.ln() - 0.15 * std::f64::consts::LN_10;
         for w in cand.level_crossings(form, dc * dc * 10f64.powf(-0.3), level)? {
             if let Some(w) = polish(|x| form.eval(x).ln_mag() - level, w, &singular, 1e-10) {
+                let w = real.as_ref().map_or(w, |r| r.level(w, level, &singular));
                 out.bandwidth = Some(w);
                 break;
             }
@@ -188,7 +216,8 @@ impl Factored {
         }
         let mut best: Option<(f64, f64)> = None;
         for w in resonance_candidates(&cand, form, &singular)? {
-            let lm = form.eval(w).ln_mag();
+            let w = real.as_ref().map_or(w, |r| r.peak(w, &singular));
+            let lm = ln_mag(w);
             if best.is_none_or(|(_, l)| lm > l) {
                 best = Some((w, lm));
             }
