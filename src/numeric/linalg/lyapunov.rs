@@ -345,7 +345,7 @@ fn lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>, eq: Equation) -> Result<MatrixSo
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// vec(X) from the Kronecker form: (I⊗A + Bᵀ⊗I)·vec X = vec C by an LU solve.

@@ -535,16 +535,7 @@ fn condition(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    pub(super) fn random(n: usize, m: usize, seed: u64) -> DMatrix<f64> {
-        let mut state = seed;
-        DMatrix::from_fn(n, m, |_, _| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((state >> 11) as f64 / (1u64 << 53) as f64) - 0.5
-        })
-    }
+    use crate::numeric::linalg::lyapunov::tests::random;
 
     #[test]
     fn double_integrator_lqr() {
