@@ -37,7 +37,8 @@ pub struct CholeskySolution {
 /// controllability Gramian of (A, B); the observability Gramian of (A, C) is
 /// `lyap_cholesky(&a.transpose(), &c.transpose())`).
 ///
-/// Errors: non-square or non-finite A, B without n rows, an eigenvalue of A with Re λ ≥ 0
+/// Errors: non-square or non-finite A, B without n rows, an eigenvalue of A with Re λ ≥ −τ,
+/// τ = 1000·ε·max(‖A‖_F, 1): unstable or stable only within rounding
 /// ([`LtiError::Undefined`], naming it).
 ///
 /// ```
@@ -56,7 +57,7 @@ pub fn lyap_cholesky(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<CholeskySolut
 /// The Cholesky factor of the solution of A·X·Aᵀ − X + B·Bᵀ = 0 for Schur-stable A (all
 /// |λ| < 1): the discrete controllability Gramian.
 ///
-/// Errors: as [`lyap_cholesky`], with |λ| ≥ 1.
+/// Errors: as [`lyap_cholesky`], with |λ| ≥ 1 − τ.
 ///
 /// ```
 /// use nalgebra::DMatrix;
@@ -86,22 +87,25 @@ fn hammarling(a: &DMatrix<f64>, b: &DMatrix<f64>, discrete: bool) -> Result<Chol
         want_t: true,
     };
     let real = real_schur(&a.transpose(), opts)?;
+    // Stable by more than rounding: an eigenvalue computed as −1e-17 (a rigid-body mode) would
+    // give a "solution" of order 1e15 that is nothing but rounding.
+    let tol = 1e3 * f64::EPSILON * a.norm().max(1.0);
     for z in real.eigenvalues() {
         let unstable = if discrete {
-            z.norm() >= 1.0
+            z.norm() >= 1.0 - tol
         } else {
-            z.re >= 0.0
+            z.re >= -tol
         };
         if unstable {
             let (what, region) = if discrete {
                 (
                     "the Cholesky factor of the discrete Lyapunov solution",
-                    "on or outside the unit circle",
+                    "on or outside the unit circle (within rounding)",
                 )
             } else {
                 (
                     "the Cholesky factor of the Lyapunov solution",
-                    "in the closed right half-plane",
+                    "in the closed right half-plane (within rounding)",
                 )
             };
             return Err(LtiError::Undefined {
@@ -315,6 +319,15 @@ mod tests {
         let osc = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -1.0, 0.0]);
         let e = lyap_cholesky(&osc, &b).unwrap_err().to_string();
         assert!(e.contains("closed right half-plane"), "{e}");
+        // A rigid-body mode computed as −5.7e-17 (the periodic lattice's, before this check
+        // gave a "Gramian" of 1e15 with residual 0.68): stable only within rounding, refused.
+        let rigid = DMatrix::from_row_slice(2, 2, &[-5.7e-17, 0.0, 0.0, -1.0]);
+        let e = lyap_cholesky(&rigid, &DMatrix::from_element(2, 1, 1.0))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("within rounding"), "{e}");
+        let slow = DMatrix::from_row_slice(2, 2, &[-1e-9, 0.0, 0.0, -1.0]);
+        assert!(lyap_cholesky(&slow, &DMatrix::from_element(2, 1, 1.0)).is_ok());
         let e = dlyap_cholesky(&DMatrix::identity(1, 1), &DMatrix::identity(1, 1))
             .unwrap_err()
             .to_string();
