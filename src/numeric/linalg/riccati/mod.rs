@@ -21,7 +21,8 @@
 //!
 //! Both are then refined by Newton steps in defect-correction form (Newton–Kleinman for care,
 //! Hewer for dare): the correction Δ solves the closed-loop Lyapunov equation
-//! A_clᵀΔ + ΔA_cl + 𝓡(X) = 0 (resp. A_clᵀΔA_cl − Δ + 𝓡(X) = 0) with [`lyap`] / [`dlyap`],
+//! A_clᵀΔ + ΔA_cl + 𝓡(X) = 0 (resp. A_clᵀΔA_cl − Δ + 𝓡(X) = 0) with
+//! [`lyap`](super::lyap) / [`dlyap`](super::dlyap),
 //! while the residual decreases (at most 6 steps).
 //!
 //! # Existence (checked, each with its own error)
@@ -43,12 +44,18 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use super::complex_schur::complex_schur;
-use super::lyapunov::{MatrixSolution, check_coefficient, check_shape, dlyap, lyap};
-use super::modal::schur_path::swap;
+use super::lyapunov::{check_coefficient, check_shape};
 use super::norms::frobenius;
-use super::schur::{SchurOptions, real_schur, schur_eigenvalues};
+use super::schur::schur_eigenvalues;
 use crate::error::{LtiError, Result, complex_number, number};
+
+mod doubling;
+mod hamiltonian;
+mod refine;
+
+use doubling::doubling;
+use hamiltonian::hamiltonian_solution;
+use refine::refine;
 
 /// The stabilising solution of an algebraic Riccati equation (see the [module docs](self)).
 #[derive(Clone, Debug)]
@@ -274,262 +281,6 @@ pub fn dare(
     let d = prepare(a, b, q, r, s, Kind::Discrete)?;
     let x0 = doubling(&d)?;
     refine(&d, x0, Kind::Discrete)
-}
-
-/// X = U₂U₁⁻¹ from the reordered complex Schur form of the Hamiltonian.
-fn hamiltonian_solution(d: &Data) -> Result<DMatrix<f64>> {
-    let n = d.a.nrows();
-    if n == 0 {
-        return Ok(DMatrix::zeros(0, 0));
-    }
-    let mut h = DMatrix::<f64>::zeros(2 * n, 2 * n);
-    h.view_mut((0, 0), (n, n)).copy_from(&d.at);
-    h.view_mut((0, n), (n, n)).copy_from(&(-&d.g));
-    h.view_mut((n, 0), (n, n)).copy_from(&(-&d.qt));
-    h.view_mut((n, n), (n, n)).copy_from(&(-d.at.transpose()));
-    let opts = SchurOptions {
-        balance: false,
-        want_q: true,
-        want_t: true,
-    };
-    let real = real_schur(&h, opts)?;
-    let tol = 100.0 * (2 * n) as f64 * f64::EPSILON * frobenius(h.iter());
-    for z in real.eigenvalues() {
-        if z.re.abs() <= tol {
-            return Err(LtiError::SingularEquation {
-                equation: Kind::Continuous.equation().into(),
-                reason: format!(
-                    "no stabilising solution: the Hamiltonian matrix has the eigenvalue {} on the imaginary axis (|Re| ≤ {}; is a mode of A on the axis unobservable through Q?)",
-                    complex_number(z.re, z.im),
-                    number(tol)
-                ),
-            });
-        }
-    }
-    let cs = complex_schur(&real);
-    let mut s = cs.s;
-    let qr = real
-        .q
-        .ok_or_else(|| LtiError::invalid("the Schur vectors were not formed"))?;
-    let mut w = qr.map(|x| Complex64::new(x, 0.0));
-    for &(k, [g11, g12, g21, g22]) in &cs.rotations {
-        for i in 0..2 * n {
-            let (x, y) = (w[(i, k)], w[(i, k + 1)]);
-            w[(i, k)] = x * g11 + y * g21;
-            w[(i, k + 1)] = x * g12 + y * g22;
-        }
-    }
-    // Stable eigenvalues to the top, keeping their order.
-    let mut top = 0;
-    for k in 0..2 * n {
-        if s[(k, k)].re < 0.0 {
-            for j in (top..k).rev() {
-                swap(&mut s, &mut w, j);
-            }
-            top += 1;
-        }
-    }
-    if top != n {
-        return Err(LtiError::SingularEquation {
-            equation: Kind::Continuous.equation().into(),
-            reason: format!(
-                "no stabilising solution: the Hamiltonian matrix has {top} stable eigenvalues instead of {n}"
-            ),
-        });
-    }
-    let u1 = w.view((0, 0), (n, n)).clone_owned();
-    let u2 = w.view((n, 0), (n, n)).clone_owned();
-    // Xᴴ = U₁⁻ᴴU₂ᴴ.
-    let lu = u1.adjoint().lu();
-    let xh = lu.solve(&u2.adjoint()).ok_or_else(|| LtiError::SingularEquation {
-        equation: Kind::Continuous.equation().into(),
-        reason: "no stabilising solution: the stable invariant subspace of the Hamiltonian is not a graph (U₁ singular)".into(),
-    })?;
-    let mut x = xh.adjoint().map(|z| z.re);
-    symmetrise(&mut x);
-    if x.iter().any(|v| !v.is_finite()) {
-        return Err(LtiError::SingularEquation {
-            equation: Kind::Continuous.equation().into(),
-            reason: "no stabilising solution: U₁ of the stable invariant subspace is numerically singular".into(),
-        });
-    }
-    Ok(x)
-}
-
-/// The most doubling steps (quadratic convergence: ρ(A_cl)^(2^k); 60 steps cover spectral
-/// radii up to 1 − 1e-16).
-const MAX_DOUBLING: usize = 60;
-
-/// The structure-preserving doubling algorithm for the discrete equation (module docs).
-fn doubling(d: &Data) -> Result<DMatrix<f64>> {
-    let n = d.a.nrows();
-    let mut ak = d.at.clone();
-    let mut gk = d.g.clone();
-    let mut hk = d.qt.clone();
-    let id = DMatrix::<f64>::identity(n, n);
-    for _ in 0..MAX_DOUBLING {
-        let w = &id + &gk * &hk;
-        let lu = w.lu();
-        let (Some(v1), Some(v2)) = (lu.solve(&ak), lu.solve(&gk)) else {
-            return Err(LtiError::SingularEquation {
-                equation: Kind::Discrete.equation().into(),
-                reason: "no stabilising solution found: I + G·H became singular in the doubling (is [Q S; Sᵀ R] indefinite?)"
-                    .into(),
-            });
-        };
-        let a_next = &ak * &v1;
-        let mut g_next = &gk + &ak * v2 * ak.transpose();
-        let mut h_next = &hk + ak.transpose() * &hk * &v1;
-        symmetrise(&mut g_next);
-        symmetrise(&mut h_next);
-        if h_next.iter().chain(g_next.iter()).any(|v| !v.is_finite()) {
-            break;
-        }
-        let change = frobenius((&h_next - &hk).iter());
-        let size = frobenius(h_next.iter());
-        ak = a_next;
-        gk = g_next;
-        hk = h_next;
-        if change <= f64::EPSILON * size || frobenius(ak.iter()) <= f64::EPSILON {
-            return Ok(hk);
-        }
-    }
-    Err(LtiError::SingularEquation {
-        equation: Kind::Discrete.equation().into(),
-        reason: format!(
-            "no stabilising solution: the doubling did not converge in {MAX_DOUBLING} steps (the symplectic pencil has eigenvalues on or extremely close to the unit circle)"
-        ),
-    })
-}
-
-/// 𝓡(X), K(X), and the Frobenius norms of 𝓡's terms summed.
-fn residual(d: &Data, x: &DMatrix<f64>, kind: Kind) -> Option<(DMatrix<f64>, DMatrix<f64>, f64)> {
-    let (a, b, q, r, s) = (&d.a, &d.b, &d.q, &d.r, &d.s);
-    let fro = |m: &DMatrix<f64>| frobenius(m.iter());
-    match kind {
-        Kind::Continuous => {
-            let xa = x * a;
-            let xb_s = x * b + s;
-            let k = r.clone().cholesky()?.solve(&xb_s.transpose());
-            let quad = &xb_s * &k;
-            let mut res = xa.transpose() + &xa - &quad + q;
-            symmetrise(&mut res);
-            let scale = 2.0 * fro(&xa) + fro(&quad) + fro(q);
-            Some((res, k, scale))
-        }
-        Kind::Discrete => {
-            let xa = x * a;
-            let ata = a.transpose() * &xa;
-            let bx = b.transpose() * x;
-            let m = r + &bx * b;
-            let lhs = &bx * a + s.transpose();
-            let k = m.clone().cholesky()?.solve(&lhs);
-            let quad = lhs.transpose() * &k;
-            let mut res = &ata - x - &quad + q;
-            symmetrise(&mut res);
-            let scale = fro(&ata) + fro(x) + fro(&quad) + fro(q);
-            Some((res, k, scale))
-        }
-    }
-}
-
-/// Newton steps in defect-correction form while the residual decreases; the closed loop
-/// checked.
-fn refine(d: &Data, x0: DMatrix<f64>, kind: Kind) -> Result<Riccati> {
-    let fail = |why: &str| LtiError::SingularEquation {
-        equation: kind.equation().into(),
-        reason: why.to_string(),
-    };
-    let rel = |res: &DMatrix<f64>, scale: f64| {
-        if scale == 0.0 {
-            0.0
-        } else {
-            frobenius(res.iter()) / scale
-        }
-    };
-    let mut x = x0;
-    let (mut res, mut k, scale) = residual(d, &x, kind).ok_or_else(|| {
-        fail("no stabilising solution: R + BᵀXB is not positive definite at the computed X")
-    })?;
-    let mut best = rel(&res, scale);
-    let mut steps = 0;
-    let mut sep_solution: Option<MatrixSolution> = None;
-    for _ in 0..6 {
-        let acl = &d.a - &d.b * &k;
-        let step = match kind {
-            Kind::Continuous => lyap(&acl.transpose(), &res),
-            Kind::Discrete => dlyap(&acl.transpose(), &res),
-        };
-        let Ok(step) = step else { break };
-        let trial = &x + &step.x;
-        let Some((r2, k2, s2)) = residual(d, &trial, kind) else {
-            break;
-        };
-        let e = rel(&r2, s2);
-        sep_solution = Some(step);
-        if e.is_nan() || e >= best {
-            break;
-        }
-        x = trial;
-        res = r2;
-        k = k2;
-        best = e;
-        steps += 1;
-        if best <= f64::EPSILON {
-            break;
-        }
-    }
-    let acl = &d.a - &d.b * &k;
-    let closed_loop = schur_eigenvalues(&acl)?;
-    for z in &closed_loop {
-        let bad = match kind {
-            Kind::Continuous => z.re >= 0.0,
-            Kind::Discrete => z.norm() >= 1.0,
-        };
-        if bad {
-            return Err(fail(&format!(
-                "no stabilising solution: the computed solution leaves the closed-loop eigenvalue {} unstable",
-                complex_number(z.re, z.im)
-            )));
-        }
-    }
-    let condition = condition(d, &x, &acl, sep_solution, kind);
-    Ok(Riccati {
-        x,
-        gain: k,
-        closed_loop,
-        residual: best,
-        condition,
-        refinements: steps,
-    })
-}
-
-/// The condition estimate of the module docs.
-fn condition(
-    d: &Data,
-    x: &DMatrix<f64>,
-    acl: &DMatrix<f64>,
-    step: Option<MatrixSolution>,
-    kind: Kind,
-) -> f64 {
-    let fro = |m: &DMatrix<f64>| frobenius(m.iter());
-    let nx = fro(x);
-    if nx == 0.0 {
-        return 0.0;
-    }
-    let na = fro(&d.a);
-    let nacl = fro(acl);
-    // condition of the Lyapunov step = coeff·sep⁻¹ (lower bound) ⇒ sep⁻¹ ≥ condition/coeff.
-    let sep_inv = match (step, kind) {
-        (Some(s), Kind::Continuous) if nacl > 0.0 => s.condition / (2.0 * nacl),
-        (Some(s), Kind::Discrete) => s.condition / (nacl * nacl + 1.0),
-        _ => 0.0,
-    };
-    let (lin, quad) = match kind {
-        Kind::Continuous => (2.0 * na, fro(&d.g)),
-        Kind::Discrete => (na * na, fro(&d.g) * na * na),
-    };
-    sep_inv * (fro(&d.q) + lin * nx + quad * nx * nx) / nx
 }
 
 #[cfg(test)]
