@@ -1,4 +1,5 @@
-//! Overflow-safe balancing and power-of-two scaling of real square matrices.
+//! Overflow-safe balancing and power-of-two scaling of real square matrices and of the system
+//! matrix of a state-space model.
 //!
 //! nalgebra's `balance_parlett_reinsch` loops for ever when a squared row or column norm
 //! overflows (an entry of 1e200 is enough: `inf / 2 == inf`). `balance` makes the same
@@ -105,9 +106,48 @@ fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> (f64, f64, f64) {
 /// The input must be square and finite; the result is finite.
 pub(crate) fn balance(m: &mut DMatrix<f64>) -> Vec<f64> {
     let n = m.nrows();
+    if n != m.ncols() || n < 2 {
+        return vec![1.0; n];
+    }
+    balance_leading(m, n)
+}
+
+/// Balances the system matrix S = \[A B; C 0\] of a state-space model by a diagonal
+/// similarity of the states only, (D⁻¹AD, D⁻¹B, CD) with powers of two (exact), so that each
+/// state's row of \[A B\] and column of \[A; C\] have comparable norms (SLICOT `TB01ID`,
+/// which `TB01PD` runs before its staircases). Returns the diagonal of D. Rank decisions
+/// made relative to a norm (staircases, pencil reductions) then see every state at its own
+/// scale: an input entry of 5e8 feeding a state whose coupling to the others is 1e-18 no
+/// longer hides that coupling below the rounding of ‖\[A B\]‖.
+///
+/// The inputs must be finite with consistent sizes; the results are finite.
+pub(crate) fn balance_system(
+    a: &mut DMatrix<f64>,
+    b: &mut DMatrix<f64>,
+    c: &mut DMatrix<f64>,
+) -> Vec<f64> {
+    let n = a.nrows();
+    let (m, p) = (b.ncols(), c.nrows());
+    if n == 0 || a.ncols() != n || b.nrows() != n || c.ncols() != n {
+        return vec![1.0; n];
+    }
+    let mut s = DMatrix::<f64>::zeros(n + p, n + m);
+    s.view_mut((0, 0), (n, n)).copy_from(a);
+    s.view_mut((0, n), (n, m)).copy_from(b);
+    s.view_mut((n, 0), (p, n)).copy_from(c);
+    let d = balance_leading(&mut s, n);
+    a.copy_from(&s.view((0, 0), (n, n)));
+    b.copy_from(&s.view((0, n), (n, m)));
+    c.copy_from(&s.view((n, 0), (p, n)));
+    d
+}
+
+/// The balancing loop on the leading k rows and columns of `m` (k ≤ its sizes): row i is
+/// divided and column i multiplied by the same power of two, for i < k only.
+fn balance_leading(m: &mut DMatrix<f64>, n: usize) -> Vec<f64> {
     let mut d = vec![1.0; n];
     let mut d_exp = vec![0i32; n];
-    if n != m.ncols() || n < 2 {
+    if n > m.nrows().min(m.ncols()) {
         return d;
     }
     for _sweep in 0..MAX_BALANCE_SWEEPS {

@@ -17,11 +17,19 @@
 //! The controllable dimension is ρ₁ + … + ρₖ; the eigenvalues of A_uc are the uncontrollable
 //! modes. Observability is the same on the dual (Aᵀ, Cᵀ).
 //!
+//! **Balancing first.** The system matrix \[A B; C 0\] is balanced by an exact diagonal
+//! similarity with powers of two (D⁻¹AD, D⁻¹B, CD), as SLICOT's `TB01PD` does with `TB01ID`
+//! before its staircases. Without it one large entry sets the tolerance for every state:
+//! ControlSystems.jl's "difficult test case for zeros" has an input entry of 5e8 into a state
+//! whose couplings are 1e-18, and the unbalanced staircase called three of its four modes
+//! uncontrollable (minimal order 1 instead of 3).
+//!
 //! **Tolerance.** A block is of rank ρ when its pivoted QR leaves only columns of norm
-//! ≤ tol·‖[A B]‖_F, with the default tol = n²·ε (`TB01UD`'s default); setting the rest to
-//! zero is a perturbation of that size, so the computed form is exactly that of a system
-//! within n²·ε·‖[A B]‖_F·√m per step of the given one. All transformations are products of
-//! Householder reflectors (backward stable, O(n³)).
+//! ≤ tol·‖[A B]‖_F (of the balanced system), with the default tol = n²·ε (`TB01UD`'s
+//! default); setting the rest to zero is a perturbation of that size, so the computed form is
+//! exactly that of a system within n²·ε·‖[A B]‖_F·√m per step of the balanced one. All
+//! transformations after the balancing are products of Householder reflectors (backward
+//! stable, O(n³)).
 
 use nalgebra::DMatrix;
 
@@ -41,8 +49,11 @@ pub struct Staircase {
     pub b: DMatrix<f64>,
     /// CZ.
     pub c: DMatrix<f64>,
-    /// Z (orthogonal), when requested.
+    /// Z (orthogonal), when requested: the form is ZᵀD⁻¹ADZ, ZᵀD⁻¹B, CDZ.
     pub z: Option<DMatrix<f64>>,
+    /// The diagonal of D, the balancing's exact power-of-two scaling of the states (all ones
+    /// for a well-scaled system).
+    pub scaling: Vec<f64>,
     /// Dimension of the controllable (observable) part: the leading states.
     pub dim: usize,
     /// Sizes ρ₁, ρ₂, … of the staircase steps (ρ₁ = rank of B, resp. C).
@@ -94,6 +105,7 @@ pub fn controllability_staircase(
     let mut a = a.clone();
     let mut b = b.clone();
     let mut c = c.clone();
+    let scaling = crate::numeric::balance::balance_system(&mut a, &mut b, &mut c);
     let mut z = want_z.then(|| DMatrix::<f64>::identity(n, n));
     let norm = super::norms::frobenius(a.iter().chain(b.iter()));
     let abs_tol = tol.unwrap_or_else(|| default_tol(n)) * norm;
@@ -152,6 +164,7 @@ pub fn controllability_staircase(
         b,
         c,
         z,
+        scaling,
         dim: r0,
         blocks,
         abs_tol,
@@ -160,7 +173,8 @@ pub fn controllability_staircase(
 
 /// Observability staircase of (A, C), B transformed along: the controllability staircase of
 /// the dual (Aᵀ, Cᵀ, Bᵀ), transposed back. The result has A = [A_o 0; * A_uo],
-/// C = [C_o 0]; `dim` is the observable dimension. `tol` is relative to ‖[A; C]‖_F.
+/// C = [C_o 0]; `dim` is the observable dimension. `tol` is relative to ‖[A; C]‖_F (of the
+/// balanced system; `scaling` is D of the primal form ZᵀD⁻¹ADZ).
 ///
 /// ```
 /// use nalgebra::DMatrix;
@@ -187,6 +201,8 @@ pub fn observability_staircase(
         b: dual.c.transpose(),
         c: dual.b.transpose(),
         z: dual.z,
+        // The dual was balanced as E⁻¹AᵀE: back in the primal that is D = E⁻¹.
+        scaling: dual.scaling.iter().map(|e| 1.0 / e).collect(),
         dim: dual.dim,
         blocks: dual.blocks,
         abs_tol: dual.abs_tol,
@@ -223,6 +239,11 @@ mod tests {
         assert_eq!(s.dim, 3);
         assert_eq!(s.blocks, vec![1, 1, 1]);
         let z = s.z.clone().unwrap();
+        let d = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(s.scaling.clone()));
+        let d_inv = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(
+            s.scaling.iter().map(|x| 1.0 / x).collect(),
+        ));
+        let (a, b, c) = (&d_inv * &a * &d, &d_inv * &b, &c * &d);
         assert!((z.transpose() * &a * &z - &s.a).norm() < 1e-14 * a.norm());
         assert!((z.transpose() * &b - &s.b).norm() < 1e-15);
         assert!((&c * &z - &s.c).norm() < 1e-14);
