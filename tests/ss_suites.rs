@@ -264,8 +264,11 @@ fn cs_model(name: &str) -> [DMatrix<f64>; 4] {
     [mat("a"), mat("b"), mat("c"), mat("d")]
 }
 
+/// (w, margin) pairs.
+type Pairs = Vec<(f64, f64)>;
+
 /// (w, gain margin) of each phase crossing and (w, phase margin) of each gain crossing.
-fn crossings(r: &Value) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn crossings(r: &Value) -> (Pairs, Pairs) {
     let pc = r["phase_crossings"]
         .as_array()
         .unwrap()
@@ -400,7 +403,7 @@ fn controlsystems_rhp_loop_phase_margin() {
 #[test]
 fn controlsystems_difficult_zeros() {
     let [a, b, c, d] = cs_model("difficult_zeros");
-    let want = [-2.031_531_035_971_633_8e-9, 0.0, 0.462_726_168_593_873_98];
+    let want = [-2.031_531_035_971_633_8e-9, 0.0, 0.462_726_168_593_874];
     let r = run("analyze", &a, &b, &c, &d);
     // The whole model's invariant zeros and the channel's zeros, each within 1e-13 absolute
     // (the model's norm is 5e8).
