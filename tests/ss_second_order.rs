@@ -514,11 +514,15 @@ fn commuting_damping_not_of_rayleigh_form() {
     let (l0, l1) = (so.modes[0].stiffness, so.modes[d - 1].stiffness);
     assert!((so.modes[0].damping - (0.01 + 0.002 * l0 * l0)).abs() < 1e-15);
     assert!((so.modes[d - 1].damping - (0.01 + 0.002 * l1 * l1)).abs() < 1e-14);
-    // (zeros up to |s| = 125: both paths' pencils agree to 2e-9 relative.) The gain is the
+    // Zeros up to |s| = 125: against a 60-digit reference (mpmath: the eigenvalues of
+    // (I − b·(cA⁴b)⁻¹·cA⁴)·A) the second-order path is within 4.7e-7 and the general path
+    // within 1.4e-6 (6.7e-7 before the staircases balanced the system), both at the zero −125,
+    // which the small leading coefficient 9.6e-8 makes the sensitive one (1.1e-8 relative);
+    // every other zero within 3e-9. The paths are compared to 3e-6. The gain is the
     // Markov parameter C·A⁴·B: v₃ reaches q₈ through two damper couplings two particles wide
     // (−0.002 each) and one one particle wide (+0.008), in three orders: exactly 9.6e-8; the
     // pencil reductions give it to 1.2e-10 (model coordinates) and 2.3e-9 (staircase form).
-    let f = compare_paths_gain(&model, "E = 0.01 I + 0.002 G²", 1e-6, 1e-8);
+    let f = compare_paths_gain(&model, "E = 0.01 I + 0.002 G²", 3e-6, 1e-8);
     assert_eq!(f.relative_degree(), Some(5));
     assert!((f.gain() - 9.6e-8).abs() < 1e-9 * 9.6e-8, "{:e}", f.gain());
 }
