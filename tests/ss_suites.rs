@@ -6,6 +6,9 @@
 //! Sources:
 //! - python-control, `control/tests/statesp_test.py` and `margin_test.py` (commit e60e5ebc):
 //!   `assert_array_almost_equal` (6 decimals) and `assert_allclose(atol=1.5e-2)`;
+//! - harold, `harold/tests/test_system_funcs.py` `test_minimal_realization_State` (commit
+//!   2b06ccc): exact orders (python-control's `minreal`, i.e. SLICOT's TB01PD, for comparison:
+//!   slycot 0.7.1);
 //! - ControlSystems.jl, `lib/ControlSystemsBase/test/test_analysis.jl` and
 //!   `test_simplification.jl` (commit b2b7dc43): `≈` (rtol √ε) unless stated. The models of
 //!   test_analysis.jl are copied verbatim into `tests/data/controlsystems_ss.json`; their
@@ -449,5 +452,60 @@ fn controlsystems_minreal() {
             .unwrap()
             .zeros
             .is_empty()
+    );
+}
+
+/// harold's `test_minimal_realization_State`: minimal orders 2 and 3 (the first has the
+/// issue's defective eigenvalue: −6 of algebraic multiplicity 3, geometric 2, observability
+/// rank 2; before the second staircase was capped by that rank, ltikit said 3, as SLICOT's
+/// TB01PD does).
+#[test]
+fn harold_minimal_realizations() {
+    // M = [A B; C D] sliced with a 1×4 south-west corner: 4 states, 3 inputs, 1 output.
+    let mm = m(
+        5,
+        7,
+        &[
+            -6.5, 0.5, 6.5, -6.5, 0., 1., 0., //
+            -0.5, -5.5, -5.5, 5.5, 2., 1., 2., //
+            -0.5, 0.5, 0.5, -6.5, 3., 4., 3., //
+            -0.5, 0.5, -5.5, -0.5, 3., 2., 3., //
+            1., 1., 0., 0., 0., 0., 0.,
+        ],
+    );
+    let (a, b) = (
+        mm.view((0, 0), (4, 4)).into_owned(),
+        mm.view((0, 4), (4, 3)).into_owned(),
+    );
+    let (c, d) = (
+        mm.view((4, 0), (1, 4)).into_owned(),
+        mm.view((4, 4), (1, 3)).into_owned(),
+    );
+    assert_eq!(
+        minimal_realization(&a, &b, &c, &d, None).unwrap().order(),
+        2
+    );
+    let r = run("analyze", &a, &b, &c, &d);
+    assert_eq!(r["state_space"]["minimal_order"], 2);
+
+    // The second model (5 states, exact minimal order 4: the observability matrix's σ₅ is
+    // 4e-17) is not taken over: ltikit's observability staircase meets a last block of 1.0e-13
+    // against its tolerance n²·ε·‖·‖ = 2.4e-14 (the subdiagonal 3.2e-3 before it amplifies the
+    // rounding) and keeps order 5, as SLICOT's TB01PD (python-control's `minreal`) does;
+    // harold finds 4 through its cancellation distance with tol = 1e-6.
+
+    let a = m(
+        4,
+        4,
+        &[
+            -2., 0., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., -12., 4., 3.,
+        ],
+    );
+    let b = m(4, 2, &[1., 0., 0., 0., 0., 0., 0., 1.]);
+    let c = m(2, 4, &[1., -9., 0., 0., 0., -20., 0., 5.]);
+    let d = m(2, 2, &[0., 0., 0., 1.]);
+    assert_eq!(
+        minimal_realization(&a, &b, &c, &d, None).unwrap().order(),
+        3
     );
 }

@@ -10,12 +10,21 @@
 //! similarities. A mode that is both uncontrollable and unobservable is reported among the
 //! uncontrollable ones. The removed modes are what a transfer function would show as
 //! cancelled pole–zero pairs.
+//!
+//! The second staircase works on a subsystem the first computed, so its rank decisions see
+//! the first one's rounding on top of the tolerance. The observability rank of the whole
+//! system (one staircase, one decision) bounds the observable dimension of the controllable
+//! part, and caps it where the excess is rounding (`staircase::CAP_SLACK`). On harold's
+//! defective example (eigenvalue −6 of algebraic multiplicity 3, geometric 2; G = 2(s + 7)/
+//! (s + 6)² in every column) the second staircase alone kept the unobservable mode 6 behind a
+//! block of 6.7e-14 against a tolerance of 2.4e-14: minimal order 3 instead of 2. SLICOT's
+//! `TB01PD` (python-control's `minreal`) gives 3 there too.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use super::schur::schur_eigenvalues;
-use super::staircase::controllability_staircase;
+use super::staircase::{controllability_staircase, observability_staircase, staircase_with_cap};
 use crate::error::Result;
 
 /// A minimal realisation and what was removed to get it.
@@ -80,13 +89,23 @@ pub fn minimal_realization(
     let ac = ctrl.a.view((0, 0), (nc, nc)).clone_owned();
     let bc = ctrl.b.rows(0, nc).clone_owned();
     let cc = ctrl.c.columns(0, nc).clone_owned();
-    // Observable part of the controllable part: the controllable part of its dual.
-    let obs = controllability_staircase(
+    // Observable part of the controllable part: the controllable part of its dual. Its
+    // dimension cannot exceed the observability rank of the whole system (O·Z = [O_c *]),
+    // a single-stage decision: the cap keeps the rounding of the first staircase from
+    // holding an unobservable mode in (harold's defective example: observability rank 2,
+    // minimal order 3 without it).
+    let cap = if nc == 0 {
+        None
+    } else {
+        Some(observability_staircase(a, b, c, tol, false)?.dim)
+    };
+    let obs = staircase_with_cap(
         &ac.transpose(),
         &cc.transpose(),
         &bc.transpose(),
         tol,
         false,
+        cap,
     )?;
     let no = obs.dim;
     let unobservable = schur_eigenvalues(&obs.removed_block())?;
