@@ -24,7 +24,9 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use super::schur::schur_eigenvalues;
-use super::staircase::{controllability_staircase, observability_staircase, staircase_with_cap};
+use super::staircase::{
+    CAP_SLACK, controllability_staircase, observability_staircase, staircase_with_cap,
+};
 use crate::error::Result;
 
 /// A minimal realisation and what was removed to get it.
@@ -94,19 +96,16 @@ pub fn minimal_realization(
     // a single-stage decision: the cap keeps the rounding of the first staircase from
     // holding an unobservable mode in (harold's defective example: observability rank 2,
     // minimal order 3 without it).
-    let cap = if nc == 0 {
-        None
-    } else {
-        Some(observability_staircase(a, b, c, tol, false)?.dim)
-    };
-    let obs = staircase_with_cap(
-        &ac.transpose(),
-        &cc.transpose(),
-        &bc.transpose(),
-        tol,
-        false,
-        cap,
-    )?;
+    let dual = (ac.transpose(), cc.transpose(), bc.transpose());
+    let mut obs = staircase_with_cap(&dual.0, &dual.1, &dual.2, tol, false, None)?;
+    // Only a decision within CAP_SLACK of the tolerance can be capped: then (and only then)
+    // the whole system's observability rank is computed.
+    if obs.smallest_pivot <= CAP_SLACK * obs.abs_tol {
+        let cap = observability_staircase(a, b, c, tol, false)?.dim;
+        if cap < obs.dim {
+            obs = staircase_with_cap(&dual.0, &dual.1, &dual.2, tol, false, Some(cap))?;
+        }
+    }
     let no = obs.dim;
     let unobservable = schur_eigenvalues(&obs.removed_block())?;
     Ok(MinimalRealization {

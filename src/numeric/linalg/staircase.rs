@@ -60,6 +60,10 @@ pub struct Staircase {
     pub blocks: Vec<usize>,
     /// The absolute rank tolerance used (tol·‖[A B]‖_F).
     pub abs_tol: f64,
+    /// The smallest pivot accepted as non-zero (the last diagonal entry of each block's
+    /// pivoted QR); ∞ when no block was kept. Its ratio to `abs_tol` says how close the
+    /// closest rank decision was.
+    pub smallest_pivot: f64,
 }
 
 impl Staircase {
@@ -133,6 +137,7 @@ pub(crate) fn staircase_with_cap(
     let norm = super::norms::frobenius(a.iter().chain(b.iter()));
     let abs_tol = tol.unwrap_or_else(|| default_tol(n)) * norm;
     let mut blocks = Vec::new();
+    let mut smallest_pivot = f64::INFINITY;
     let mut r0 = 0; // first row not yet in the staircase
     let mut c_prev = 0; // first column of the block being compressed (in A)
     while r0 < n {
@@ -150,6 +155,9 @@ pub(crate) fn staircase_with_cap(
             if dropped <= CAP_SLACK * abs_tol {
                 rho = keep;
             }
+        }
+        if rho > 0 {
+            smallest_pivot = smallest_pivot.min(f.r[(rho - 1, rho - 1)].abs());
         }
         for refl in f.reflectors.iter().take(rho) {
             let r = Reflector {
@@ -199,6 +207,7 @@ pub(crate) fn staircase_with_cap(
         dim: r0,
         blocks,
         abs_tol,
+        smallest_pivot,
     })
 }
 
@@ -237,6 +246,7 @@ pub fn observability_staircase(
         dim: dual.dim,
         blocks: dual.blocks,
         abs_tol: dual.abs_tol,
+        smallest_pivot: dual.smallest_pivot,
     })
 }
 
