@@ -32,6 +32,8 @@ __all__ = [
     "System",
     "Record",
     "Analysis",
+    "StateSpaceAnalysis",
+    "ZeroStructure",
     "StepInfo",
     "Margins",
     "Stability",
@@ -72,6 +74,8 @@ __all__ = [
 ]
 
 __version__: str = _core.__version__
+
+_MAX_COEFFICIENTS: int = _core.MAX_ORDER + 1
 
 ArrayLike = Any
 """Numbers as a list, tuple or numpy array."""
@@ -210,6 +214,50 @@ class Analysis(Record):
         mg = d.get("margins")
         if isinstance(mg, Record):
             d["margins"] = Margins(mg.to_dict())
+
+
+class StateSpaceAnalysis(Analysis):
+    """The whole-model analysis of a state-space model (any numbers of inputs and outputs),
+    what ``ltikit analyze`` reports for one: ``n``, ``m``, ``p`` (states, inputs, outputs),
+    ``poles`` (the eigenvalues of A with repetition), ``eigenvalues`` (distinct, with
+    ``algebraic`` and ``geometric`` multiplicities), ``controllability`` and
+    ``observability`` (staircase ``rank`` and ``tol``), ``minimal_order``,
+    ``uncontrollable_modes``, ``unobservable_modes``, ``invariant_zeros`` (of this
+    realisation, with multiplicities; ``None`` with ``invariant_zeros_note``),
+    ``zero_structure`` (``normal_rank``, ``infinite_orders``, ``left_indices``,
+    ``right_indices``, ``residuals``), ``dc_gain`` (p × m array, ``inf`` where a channel has a
+    pole at 0), ``internally_stable`` with ``internal_reason``, ``bibo_stable`` (p × m bool
+    array, per channel) and ``modes`` (``value``, ``wn``, ``zeta``, ``tau``)."""
+
+    def _fill(self, fields: Mapping[str, Any]) -> None:
+        doc = dict(fields)
+        eig = doc.get("eigenvalues", [])
+        doc["poles"] = np.array(
+            [complex(*e["value"]) for e in eig for _ in range(e["algebraic"])], dtype=complex
+        )
+        for e in eig:
+            e["value"] = complex(*e["value"])
+        for m in doc.get("modes", []):
+            m["value"] = complex(*m["value"])
+        for key in ("uncontrollable_modes", "unobservable_modes"):
+            doc[key] = _complex(doc.get(key, []))
+        iz = doc.get("invariant_zeros")
+        if iz is not None:
+            doc["invariant_zeros"] = [(complex(*z), int(k)) for z, k in iz]
+        doc["dc_gain"] = np.array(
+            [[math.inf if g == "infinite" else float(g["finite"]) for g in row] for row in doc["dc_gain"]],
+            dtype=float,
+        ).reshape(doc["p"], doc["m"])
+        doc["bibo_stable"] = np.array(doc["bibo_stable"], dtype=bool).reshape(doc["p"], doc["m"])
+        Record._fill(self, doc)
+
+
+class ZeroStructure(Record):
+    """The transmission zeros of a model with the Kronecker structure of its (minimal) system
+    pencil [A − sI  B; C  D]: ``zeros`` (complex, with repetition), ``multiplicities``
+    (``[(zero, m), …]``), ``normal_rank`` (of G(s)), ``infinite_orders`` (orders of the zeros
+    at infinity), ``left_indices`` and ``right_indices`` (the Kronecker minimal indices; a
+    non-square or rank-deficient G has them)."""
 
 
 class StepInfo(Record):
@@ -375,6 +423,8 @@ def _points(name: str, a: np.ndarray) -> None:
 
 def _order(name: str, a: np.ndarray) -> None:
     """The library's limit on the order (MAX_ORDER), leading zeros not counted."""
+    if a.size <= _MAX_COEFFICIENTS:
+        return  # within the limit whatever the leading zeros (the common case, no scan)
     nonzero = np.flatnonzero(a)
     _core.check_order(name, a.size - int(nonzero[0]) if nonzero.size else 0)
 
@@ -394,6 +444,26 @@ def _matrix(x: ArrayLike, name: str) -> list:
     if a.ndim != 2:
         raise LtiError(f"`{name}` must be a 2-D matrix (found shape {a.shape})")
     return a.tolist()
+
+
+def _samples(u: ArrayLike, n: int, m: int) -> list:
+    """Input samples as a flat list, row by row: ``n`` values for one input, or an array of
+    shape (n, m) for m inputs (checked here, before it is copied)."""
+    if isinstance(u, (str, bytes)):
+        raise LtiError("`u` must be an array of numbers (found a string)")
+    try:
+        a = np.asarray(u, dtype=float)
+    except (ValueError, TypeError) as e:
+        raise LtiError(f"`u` must be an array of numbers ({_first_line(e)})") from None
+    _points("`u`", a)
+    if m == 1 and a.ndim == 1:
+        a = a.reshape(-1, 1)
+    if a.ndim != 2 or a.shape != (n, m):
+        raise LtiError(
+            f"`u` has shape {a.shape}: the model has {m} input{'s' if m != 1 else ''} and "
+            f"`t` {n} times, give shape ({n}, {m})" + (f" or ({n},)" if m == 1 else "")
+        )
+    return a.ravel().tolist()
 
 
 def _number(x: Any, name: str) -> float:
@@ -443,11 +513,13 @@ class System:
     with exact multiplicities) is computed once, at the first analysis.
     """
 
-    __slots__ = ("_m", "_recipe")
+    __slots__ = ("_m", "_recipe", "_whole")
 
     def __init__(self, core: _core.Model, recipe: Tuple[Any, ...]) -> None:
         self._m = core
         self._recipe = recipe
+        # a MIMO model answers the whole-model calls (state-space analysis) itself
+        self._whole = core.shape() != (1, 1)
 
     # what it is
     def __repr__(self) -> str:
@@ -502,12 +574,27 @@ class System:
     # analyses
     def poles(self) -> np.ndarray:
         """The poles (roots of the characteristic polynomial, cancelled ones included), a
-        complex array with repeated poles repeated, sorted by decreasing real part."""
+        complex array with repeated poles repeated, sorted by decreasing real part. For a
+        MIMO model the eigenvalues of A (python-control's ``poles()``)."""
+        if self._whole:
+            return self._m.whole_poles()
         return self._m.poles()
 
     def zeros(self) -> np.ndarray:
-        """The finite zeros, a complex array with repeated zeros repeated."""
+        """The finite zeros, a complex array with repeated zeros repeated. For a MIMO model
+        (square or not) the transmission zeros: the finite zeros of the minimal realisation's
+        system pencil; :meth:`zero_structure` gives the rest of its Kronecker structure."""
+        if self._whole:
+            return self._m.whole_zeros()[0]
         return self._m.zeros()
+
+    def zero_structure(self) -> ZeroStructure:
+        """The transmission zeros with the Kronecker structure of the minimal system pencil
+        [A − sI  B; C  D] (any model; a transfer function through its realisation): see
+        :class:`ZeroStructure`."""
+        z, doc = self._m.whole_zeros()
+        doc["multiplicities"] = [(complex(*v), int(k)) for v, k in doc["multiplicities"]]
+        return ZeroStructure({"zeros": z, **doc})
 
     def pole_multiplicities(self) -> List[Tuple[complex, int]]:
         """Distinct poles with their exact multiplicities: ``[(pole, m), …]``."""
@@ -522,16 +609,30 @@ class System:
         """The gain k of G = k·Π(s − z)/Π(s − p)."""
         return self._m.gain()
 
-    def dc_gain(self) -> float:
-        """The dc gain G(0) of the reduced G (G(1) in discrete time); ``inf`` when infinite."""
+    def dc_gain(self) -> Union[float, np.ndarray]:
+        """The dc gain G(0) of the reduced G (G(1) in discrete time); ``inf`` when infinite.
+        For a MIMO model the p × m matrix (``inf`` where a channel has a pole at 0)."""
+        if self._whole:
+            p, m = self.shape
+            return self._m.whole_dc_gain().reshape(p, m)
         return self._m.dc_gain()
 
     def is_stable(self) -> Stability:
-        """Stability with the reason; true when internally stable (``bool(G.is_stable())``)."""
+        """Stability with the reason; true when internally stable (``bool(G.is_stable())``).
+        For a MIMO model also ``channels_bibo_stable`` (p × m, each channel's minimal
+        realisation)."""
+        if self._whole:
+            d = self._m.whole_stability()
+            d["channels_bibo_stable"] = np.array(d["channels_bibo_stable"], dtype=bool)
+            return Stability(d)
         return Stability(self._m.stability())
 
-    def analyze(self) -> Analysis:
-        """Everything ``ltikit analyze --json`` reports, as an :class:`Analysis`."""
+    def analyze(self, whole: bool = False) -> Analysis:
+        """Everything ``ltikit analyze --json`` reports, as an :class:`Analysis`. A MIMO
+        model (or any model with ``whole=True``) gets the whole-model state-space analysis,
+        a :class:`StateSpaceAnalysis`."""
+        if self._whole or whole:
+            return StateSpaceAnalysis(self._m.whole_analysis())
         return Analysis(self._m.analyze())
 
     def residue(self) -> Residue:
@@ -540,26 +641,75 @@ class System:
 
     def step(self, t: Optional[ArrayLike] = None) -> TimeResponse:
         """Unit-step response at the times ``t`` (an automatic grid when ``None``), with the
-        closed form."""
+        closed form. For a MIMO model ``y`` has shape (outputs, inputs, len(t)): the response
+        of every output to a unit step on each input in turn (python-control's
+        ``step_response``)."""
         return self.response("step", t)
 
     def impulse(self, t: Optional[ArrayLike] = None) -> TimeResponse:
-        """Unit-impulse response at the times ``t`` (a D·δ(t) term is not in the values)."""
+        """Unit-impulse response at the times ``t`` (a D·δ(t) term is not in the values); for
+        a MIMO model shaped (outputs, inputs, len(t)) as :meth:`step`."""
         return self.response("impulse", t)
 
     def response(
-        self, u: Union[str, ArrayLike], t: Optional[ArrayLike] = None, hold: str = "foh"
+        self,
+        u: Union[str, ArrayLike],
+        t: Optional[ArrayLike] = None,
+        hold: str = "foh",
+        x0: Optional[ArrayLike] = None,
     ) -> TimeResponse:
         """The response to ``u``: a standard input by name (``"step"``, ``"impulse"``,
         ``"ramp"``, ``"exp:A"``, ``"sin:W"``, ``"cos:W"``) with its closed form, or input
-        samples at the times ``t`` (``hold="foh"`` linear between samples, ``"zoh"`` held)."""
+        samples at the times ``t`` (``hold="foh"`` linear between samples, ``"zoh"`` held):
+        one value per time, or for m inputs an array of shape (len(t), m); ``y`` then has one
+        row per output (a 1-D array for one output). ``x0``: the initial state of a
+        state-space model (with a named input only ``"step"`` and ``"impulse"``; the free
+        response :meth:`initial` is added)."""
         tt = None if t is None else _vector(t, "t", limit=_points)
         if isinstance(u, str):
+            if x0 is not None:
+                return self._forced_from(u, tt, x0)
+            if self._whole:
+                if u not in ("step", "impulse"):
+                    raise LtiError(
+                        f"a MIMO model's response takes \"step\", \"impulse\" or input samples (found {u!r})"
+                    )
+                tw, yw = self._m.whole_step(tt, u == "impulse")
+                p, m = self.shape
+                return TimeResponse({"t": tw, "y": yw.reshape(p, m, tw.size)})
             return TimeResponse(self._m.response(u, tt))
         if tt is None:
             raise LtiError("`t`: give the times of the input samples `u`")
-        y = self._m.lsim(_vector(u, "u", limit=_points), tt, hold)
-        return TimeResponse({"t": np.asarray(tt), "y": y})
+        uu = _samples(u, len(tt), self.shape[1])
+        xx = None if x0 is None else _vector(x0, "x0")
+        y = self._m.lsim(uu, tt, hold, xx)
+        return TimeResponse({"t": np.asarray(tt), "y": self._outputs(y, len(tt))})
+
+    def initial(self, x0: ArrayLike, t: Optional[ArrayLike] = None) -> TimeResponse:
+        """The free response (u = 0) of a state-space model from the initial state ``x0`` at
+        the times ``t`` (an automatic grid when ``None``); ``y`` has one row per output (a
+        1-D array for one output), python-control's ``initial_response``."""
+        tt = None if t is None else _vector(t, "t", limit=_points)
+        tw, y = self._m.initial(_vector(x0, "x0"), tt)
+        return TimeResponse({"t": tw, "y": self._outputs(y, tw.size)})
+
+    def _outputs(self, y: np.ndarray, n: int) -> np.ndarray:
+        """Flat output samples as (outputs, n), or 1-D for one output."""
+        p = self.shape[0]
+        return y if p == 1 else y.reshape(p, n)
+
+    def _forced_from(self, u: str, t: Optional[list], x0: ArrayLike) -> TimeResponse:
+        """A step or impulse response of a state-space model plus the free response from x0."""
+        if u not in ("step", "impulse"):
+            raise LtiError(
+                f"`x0` goes with \"step\", \"impulse\" or input samples (found {u!r})"
+            )
+        xx = _vector(x0, "x0")
+        tw, yw = self._m.whole_step(t, u == "impulse")
+        _, free = self._m.initial(xx, tw.tolist())
+        p, m = self.shape
+        forced = yw.reshape(p, m, tw.size) + free.reshape(p, 1, tw.size)
+        return TimeResponse({"t": tw, "y": forced[0, 0] if (p, m) == (1, 1) else forced})
 
     def step_info(self) -> StepInfo:
         """Step metrics (MATLAB ``stepinfo``); ``LtiError`` with the reason when there are
@@ -572,7 +722,15 @@ class System:
     def freq(self, w: Optional[ArrayLike] = None) -> FrequencyResponse:
         """Frequency response at ``w`` rad/s (an automatic grid when ``None``): magnitude,
         phase in degrees (continuous in ω), and the complex values."""
-        ww, mag, phase, g = self._m.freq(None if w is None else _vector(w, "w", limit=_points))
+        wv = None if w is None else _vector(w, "w", limit=_points)
+        if self._whole:
+            ww, mag, phase, g = self._m.whole_freq(wv)
+            p, m = self.shape
+            mag = mag.reshape(p, m, ww.size)
+            phase = phase.reshape(p, m, ww.size)
+            g = g.reshape(p, m, ww.size)
+        else:
+            ww, mag, phase, g = self._m.freq(wv)
         with np.errstate(divide="ignore"):
             db = 20.0 * np.log10(mag)
         return FrequencyResponse(
