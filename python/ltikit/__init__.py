@@ -35,6 +35,8 @@ __all__ = [
     "StateSpaceAnalysis",
     "ZeroStructure",
     "StepInfo",
+    "RouthTable",
+    "JuryTable",
     "Margins",
     "Stability",
     "TimeResponse",
@@ -258,6 +260,27 @@ class ZeroStructure(Record):
     (``[(zero, m), …]``), ``normal_rank`` (of G(s)), ``infinite_orders`` (orders of the zeros
     at infinity), ``left_indices`` and ``right_indices`` (the Kronecker minimal indices; a
     non-square or rank-deficient G has them)."""
+
+
+class RouthTable(Record):
+    """The Routh–Hurwitz table of a characteristic polynomial: ``polynomial`` (descending
+    coefficients of D, or D + K·N with a gain), ``rows`` (a 2-D array, s^n down to s^0),
+    ``powers`` (the power of s of each row), ``events`` (a zero first element replaced by ε,
+    or a zero row with its auxiliary polynomial), the root counts ``rhp``, ``axis``, ``lhp``
+    (decided in exact rational arithmetic on the coefficients as typed when ``exact``,
+    otherwise read from the table; the table's own counts are ``table_rhp`` …), ``stable``,
+    and ``stable_gains``: the exact set of gains K for which D + K·N has every root in the
+    open left half plane, as ``(low, high)`` open intervals (±``inf`` for no bound)."""
+
+
+class JuryTable(Record):
+    """The Jury table of a characteristic polynomial in z (Åström–Wittenmark form):
+    ``polynomial``, ``rows`` (a list of arrays, two per stage, each one shorter than the
+    stage before), ``alphas``, ``first`` (the
+    first elements), ``singular_at`` (the stage at which the table stops, or ``None``), the
+    counts ``inside``, ``on``, ``outside`` the unit circle (exact when ``exact``; the table's
+    own ``table_inside`` …), ``stable``, and ``stable_gains``: the exact set of gains K for
+    which D + K·N has every root strictly inside the unit circle, ``(low, high)`` intervals."""
 
 
 class StepInfo(Record):
@@ -737,6 +760,22 @@ class System:
             {"w": ww, "magnitude": mag, "magnitude_db": db, "phase_deg": phase, "response": g}
         )
 
+    def routh(self, gain: Optional[float] = None, gains: bool = True) -> RouthTable:
+        """The Routh–Hurwitz table of a continuous-time transfer function's characteristic
+        polynomial D (with ``gain=K``: of the closed loop D + K·N in unity negative
+        feedback), the root counts decided exactly, and with ``gains`` the exact set of
+        stabilising gains (``ltikit routh --json``). See :class:`RouthTable`."""
+        k = None if gain is None else _number(gain, "gain")
+        return RouthTable(_table(self._m.routh(k, bool(gains))))
+
+    def jury(self, gain: Optional[float] = None, gains: bool = True) -> JuryTable:
+        """The Jury table of a discrete-time transfer function's characteristic polynomial
+        in z (with ``gain=K``: of D + K·N), the counts inside, on and outside the unit circle
+        (exact for the coefficients as typed), and with ``gains`` the exact stabilising gains
+        (``ltikit jury --json``). See :class:`JuryTable`."""
+        k = None if gain is None else _number(gain, "gain")
+        return JuryTable(_table(self._m.jury(k, bool(gains)), ragged=True))
+
     def margins(self) -> Margins:
         """Gain and phase margins (MATLAB ``margin``), every crossing, bandwidth, resonance
         and the delay margin."""
@@ -989,6 +1028,17 @@ class System:
 
     def __reduce__(self) -> Any:
         return (_rebuild, (self._recipe,))
+
+
+def _table(doc: Dict[str, Any], ragged: bool = False) -> Dict[str, Any]:
+    """A Routh document with its rows as a 2-D array (a Jury document's shrinking rows as a
+    list of arrays) and gain intervals as tuples."""
+    rows = doc["rows"]
+    doc["rows"] = [np.array(r, dtype=float) for r in rows] if ragged else np.array(rows, dtype=float)
+    doc["polynomial"] = np.array(doc["polynomial"], dtype=float)
+    if "stable_gains" in doc:
+        doc["stable_gains"] = [(float(lo), float(hi)) for lo, hi in doc["stable_gains"]]
+    return doc
 
 
 def _as_system(x: Union[System, float]) -> System:

@@ -23,6 +23,7 @@ mod matrix;
 mod mimo;
 mod model;
 mod norms;
+mod tables;
 
 pyo3::create_exception!(
     _core,

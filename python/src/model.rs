@@ -22,7 +22,7 @@ use crate::analyze::{analysis_json, step_info_json};
 use crate::convert::{
     array, array2, carray, finite, multiplicities, pair, roots_array, ser_to_py, to_py,
 };
-use crate::{attempt, guard, mimo};
+use crate::{attempt, guard, mimo, tables};
 
 /// Times and sampled values (flat), handed to Python together.
 type Samples<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -82,6 +82,35 @@ impl Model {
                 .get_or_init(|| attempt(|| p.factored()))
                 .as_ref()
                 .map_err(Clone::clone),
+        }
+    }
+
+    /// The transfer function (with the coefficients as typed, when typed) a Routh or Jury
+    /// table is built on: refused for a state-space model, as the command line refuses it.
+    fn transfer_function(
+        &self,
+        command: &str,
+    ) -> ltikit::Result<(TransferFunction, Option<&tables::Typed>)> {
+        match &self.source {
+            Source::Plant(p) => match &p.model {
+                LtiModel::Tf(g) => Ok((g.clone(), p.typed.as_ref())),
+                LtiModel::Ss(_) => Err(LtiError::invalid(format!(
+                    "{command} needs a transfer function (its characteristic polynomial); this \
+                     model is a state-space model"
+                ))),
+            },
+            Source::Factored(f) => match f.transfer_function() {
+                Some(g) => Ok((g.clone(), None)),
+                None => Ok((
+                    TransferFunction::from_zpk(
+                        &crate::convert::repeated(f.zeros()),
+                        &crate::convert::repeated(f.poles()),
+                        f.gain(),
+                    )?
+                    .with_domain(f.domain()),
+                    None,
+                )),
+            },
         }
     }
 
@@ -678,6 +707,42 @@ impl Model {
             Ok((t, y))
         })?;
         Ok((array(py, t), array(py, y)))
+    }
+
+    // ---- Routh and Jury -----------------------------------------------------------------
+
+    /// The Routh–Hurwitz table of the characteristic polynomial (of D + K·N with `gain`),
+    /// the root counts (exact for the coefficients as typed) and, with `gains`, the exact set
+    /// of gains K for which the unity negative-feedback loop is stable (a dict).
+    #[pyo3(signature = (gain=None, gains=true))]
+    fn routh<'py>(
+        &self,
+        py: Python<'py>,
+        gain: Option<f64>,
+        gains: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let doc = guard(|| {
+            let (g, typed) = self.transfer_function("routh")?;
+            tables::routh_doc(&g, typed, gain, gains)
+        })?;
+        to_py(py, &doc)
+    }
+
+    /// The Jury table of the characteristic polynomial in z (of D + K·N with `gain`), the
+    /// counts inside, on and outside the unit circle and, with `gains`, the exact stabilising
+    /// gains (a dict).
+    #[pyo3(signature = (gain=None, gains=true))]
+    fn jury<'py>(
+        &self,
+        py: Python<'py>,
+        gain: Option<f64>,
+        gains: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let doc = guard(|| {
+            let (g, typed) = self.transfer_function("jury")?;
+            tables::jury_doc(&g, typed, gain, gains)
+        })?;
+        to_py(py, &doc)
     }
 
     // ---- the whole model (any numbers of inputs and outputs) ----------------------------

@@ -45,6 +45,8 @@ def usage() -> None:
     dcm = mimo.dc_gain()
     ir: lk.TimeResponse = di.initial([1.0, 0.0], np.linspace(0, 1, 5))
     fo: lk.TimeResponse = mimo.response(np.ones((3, 2)), [0.0, 0.5, 1.0], x0=[1.0, 0.0])
+    rt: lk.RouthTable = g.routh(gain=2.0)
+    jt: lk.JuryTable = lk.tf([1], [1, -0.5], dt=0.1).jury(gains=False)
     hinf: lk.PeakGain = g.hinf_norm()
     h2: float = float(g.h2_norm())
     gr: lk.Gramian = g.gram("c")
