@@ -63,6 +63,8 @@ __all__ = [
     "plant_line",
     "pid",
     "controller",
+    "connect",
+    "diagram",
     "batch",
     "from_control",
     "from_scipy",
@@ -562,6 +564,13 @@ class System:
     def shape(self) -> Tuple[int, int]:
         """(outputs, inputs)."""
         return self._m.shape()
+
+    @property
+    def signals(self) -> Dict[str, List[str]]:
+        """The names of the ``inputs``, ``outputs`` and ``states`` (a connected diagram's
+        signals; empty lists when the model has none)."""
+        i, o, x = self._m.signal_names()
+        return {"inputs": i, "outputs": o, "states": x}
 
     def is_siso(self) -> bool:
         """True for one input and one output."""
@@ -1064,6 +1073,10 @@ def _rebuild(recipe: Tuple[Any, ...]) -> System:
         return System(args[0]._m.c2d(args[1], args[2], args[3]), recipe)
     if kind == "d2c":
         return System(args[0]._m.d2c(args[1], args[2]), recipe)
+    if kind == "connect":
+        spec, sm, ins, outs, name = args
+        core = _core.Model.connect([(n, s._m, i, o) for n, s, i, o in spec], sm, ins, outs, name)
+        return System(core, recipe)
     return System(getattr(_core.Model, kind)(*args), recipe)
 
 
@@ -1090,23 +1103,38 @@ def tf(
     return System(_core.Model.from_tf(*args), ("from_tf",) + args)
 
 
-def zpk(zeros: ArrayLike, poles: ArrayLike, gain: float, dt: Optional[float] = None) -> System:
+def zpk(
+    zeros: ArrayLike,
+    poles: ArrayLike,
+    gain: float,
+    dt: Optional[float] = None,
+    delay: Optional[float] = None,
+) -> System:
     """A model from its zeros, poles (conjugate pairs complete; repeated roots repeated) and
-    gain k of G = k·Π(s − z)/Π(s − p). No root finding: the multiplicities are as given."""
+    gain k of G = k·Π(s − z)/Π(s − p). No root finding: the multiplicities are as given.
+    ``delay=T`` is a dead time e^(−sT) as in :func:`tf` (discrete time: z^(−d), a whole
+    number d of periods)."""
     args = (
         _vector(zeros, "zeros", complex, limit=_points),
         _vector(poles, "poles", complex, limit=_points),
         _number(gain, "gain"),
         _dt(dt),
+        None if delay is None else _number(delay, "delay"),
     )
     return System(_core.Model.from_zpk(*args), ("from_zpk",) + args)
 
 
 def ss(
-    A: ArrayLike, B: ArrayLike, C: ArrayLike, D: ArrayLike = None, dt: Optional[float] = None
+    A: ArrayLike,
+    B: ArrayLike,
+    C: ArrayLike,
+    D: ArrayLike = None,
+    dt: Optional[float] = None,
+    delay: Optional[float] = None,
 ) -> System:
     """A state-space model ẋ = Ax + Bu, y = Cx + Du (x[k+1] = … with ``dt``); D zero when
-    omitted (a scalar D fills the p×m matrix)."""
+    omitted (a scalar D fills the p×m matrix). ``delay=T``: the dead time T on every input,
+    u(t − T) (kept exact: responses shifted, phase lag ωT on every channel)."""
     a, b, c = _matrix(A, "a"), _matrix(B, "b"), _matrix(C, "c")
     d: Optional[list] = None
     if D is not None:
@@ -1116,7 +1144,7 @@ def ss(
             d = None if value == 0 else [[value] * inputs for _ in c]
         else:
             d = _matrix(D, "d")
-    args = (a, b, c, d, _dt(dt))
+    args = (a, b, c, d, _dt(dt), None if delay is None else _number(delay, "delay"))
     return System(_core.Model.from_ss(*args), ("from_ss",) + args)
 
 
@@ -1155,6 +1183,101 @@ def pid(kp: float = 0.0, ki: float = 0.0, kd: float = 0.0, tf: float = 0.0) -> S
     out)."""
     params = {"kp": kp, "ki": ki, "kd": kd, "tf": tf}
     return controller("pid", **{k: v for k, v in params.items() if k == "kp" or v != 0})
+
+
+def _signals(x: Any, what: str) -> List[str]:
+    """One signal name or a list of them."""
+    if isinstance(x, str):
+        return [x]
+    if isinstance(x, (list, tuple)) and all(isinstance(v, str) for v in x):
+        return list(x)
+    raise LtiError(f"{what} must be a signal name or a list of names (found {_short(x)})")
+
+
+def connect(
+    blocks: Mapping[str, Tuple[Any, Any, Any]],
+    inputs: Union[str, Sequence[str]],
+    outputs: Union[str, Sequence[str]],
+    sums: Optional[Mapping[str, str]] = None,
+    name: Optional[str] = None,
+) -> System:
+    """Systems joined by named signals, as a diagram file joins its blocks (the library's
+    ``connect``, MATLAB's and python-control's ``connect``): ``blocks`` maps a block name to
+    ``(system, input signal(s), output signal(s))``; ``sums`` maps a signal to an expression
+    such as ``"r - y"`` or ``"2*a + 0.5*b"``; ``inputs`` are the external inputs, ``outputs``
+    any signals. The result is one state-space model, its states in the order of the block
+    names (``BLOCK.x1``, …), its signals named. Unity feedback around P::
+
+        T = lk.connect({"P": (P, "e", "y")}, inputs="r", outputs="y", sums={"e": "r - y"})
+
+    Errors (each naming the block or signal): a signal driven twice or never, signal lists
+    that do not match a block's inputs and outputs, mixed domains, a dead time, an algebraic
+    loop that is not well posed."""
+    if not isinstance(blocks, Mapping):
+        raise LtiError("`blocks` must map block names to (system, inputs, outputs)")
+    spec = []
+    for key in sorted(blocks):
+        item = blocks[key]
+        if not (isinstance(item, (tuple, list)) and len(item) == 3 and isinstance(item[0], System)):
+            raise LtiError(
+                f"block `{key}` must be (system, input signal(s), output signal(s)) (found {_short(item)})"
+            )
+        spec.append((str(key), item[0], _signals(item[1], f"block `{key}`: inputs"),
+                     _signals(item[2], f"block `{key}`: outputs")))
+    sm = [] if sums is None else [(str(k), str(v)) for k, v in dict(sums).items()]
+    ins, outs = _signals(inputs, "`inputs`"), _signals(outputs, "`outputs`")
+    core = _core.Model.connect([(n, s._m, i, o) for n, s, i, o in spec], sm, ins, outs, name)
+    return System(core, ("connect", spec, sm, ins, outs, name))
+
+
+def diagram(d: Mapping[str, Any]) -> System:
+    """A diagram given as a dict with the keys of a diagram file (docs/DIAGRAMS.md):
+    ``inputs``, ``outputs``, ``blocks`` (name → a dict with ``input``, ``output`` and one of
+    ``system`` (a :class:`System`), ``num``/``den``, ``a``/``b``/``c``/``d``, ``controller``
+    (``"pid:kp=2,ki=1"``) or ``plant`` (a plant file)), optional ``sums``, ``dt`` (coefficient,
+    matrix and controller blocks in discrete time; a continuous controller sampled by Tustin)
+    and ``name``; closed by :func:`connect`."""
+    if not isinstance(d, Mapping):
+        raise LtiError("a diagram is a dict with `inputs`, `outputs`, `blocks` (and `sums`)")
+    known = {"inputs", "outputs", "blocks", "sums", "dt", "name", "description"}
+    extra = sorted(set(d) - known)
+    if extra:
+        raise LtiError(f"unknown diagram key `{extra[0]}` (keys: {', '.join(sorted(known))})")
+    for key in ("inputs", "outputs", "blocks"):
+        if key not in d:
+            raise LtiError(f"the diagram has no `{key}`")
+    dt = _dt(d.get("dt"))
+    blocks: Dict[str, Tuple[Any, Any, Any]] = {}
+    if not isinstance(d["blocks"], Mapping):
+        raise LtiError("`blocks` must map block names to block dicts")
+    for key, b in d["blocks"].items():
+        if not isinstance(b, Mapping):
+            raise LtiError(f"block `{key}` must be a dict (found {_short(b)})")
+        kinds = [k for k in ("system", "num", "a", "controller", "plant") if k in b]
+        if len(kinds) != 1:
+            raise LtiError(
+                f"block `{key}` must have exactly one of `system`, `num`/`den`, `a`/`b`/`c` "
+                f"(optional `d`), `controller` or `plant`"
+            )
+        for s in ("input", "output"):
+            if s not in b:
+                raise LtiError(f"block `{key}` has no `{s}` signal")
+        kind = kinds[0]
+        if kind == "system":
+            if not isinstance(b["system"], System):
+                raise LtiError(f"block `{key}`: `system` must be a System")
+            sys = b["system"]
+        elif kind == "num":
+            sys = tf(b["num"], b.get("den", [1]), dt=dt)
+        elif kind == "a":
+            sys = ss(b["a"], b.get("b"), b.get("c"), b.get("d"), dt=dt)
+        elif kind == "controller":
+            spec = str(b["controller"])
+            sys = System(_core.Model.from_controller_spec(spec, dt), ("from_controller_spec", spec, dt))
+        else:
+            sys = plant(b["plant"])
+        blocks[str(key)] = (sys, b["input"], b["output"])
+    return connect(blocks, d["inputs"], d["outputs"], d.get("sums"), d.get("name"))
 
 
 def batch(plants: Sequence[System]) -> List[Analysis]:

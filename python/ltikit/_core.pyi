@@ -26,7 +26,11 @@ class Model:
     ) -> Model: ...
     @staticmethod
     def from_zpk(
-        zeros: Sequence[complex], poles: Sequence[complex], gain: float, dt: Optional[float] = None
+        zeros: Sequence[complex],
+        poles: Sequence[complex],
+        gain: float,
+        dt: Optional[float] = None,
+        delay: Optional[float] = None,
     ) -> Model: ...
     @staticmethod
     def from_ss(
@@ -35,7 +39,19 @@ class Model:
         c: Sequence[Sequence[float]],
         d: Optional[Sequence[Sequence[float]]] = None,
         dt: Optional[float] = None,
+        delay: Optional[float] = None,
     ) -> Model: ...
+    @staticmethod
+    def connect(
+        blocks: Sequence[Tuple[str, Model, Sequence[str], Sequence[str]]],
+        sums: Sequence[Tuple[str, str]],
+        inputs: Sequence[str],
+        outputs: Sequence[str],
+        name: Optional[str] = None,
+    ) -> Model: ...
+    @staticmethod
+    def from_controller_spec(spec: str, dt: Optional[float] = None) -> Model: ...
+    def signal_names(self) -> Tuple[list[str], list[str], list[str]]: ...
     @staticmethod
     def from_model(name: str, params: Sequence[Tuple[str, float]]) -> Model: ...
     @staticmethod

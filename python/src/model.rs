@@ -198,13 +198,21 @@ impl Model {
     }
 
     /// The model as a state-space model (a transfer function realised; factors as a cascade).
+    /// A dead time stays on the realisation's input, so that a call that cannot take one
+    /// (a simulated response) says so instead of dropping it.
     pub(crate) fn state_space(&self) -> ltikit::Result<StateSpace> {
-        match &self.source {
-            Source::Plant(p) => p.state_space(),
-            Source::Factored(f) => {
-                Ok(StateSpace::from_zpk(f.zeros(), f.poles(), f.gain())?.with_domain(f.domain()))
-            }
+        let (ss, delay) = match &self.source {
+            Source::Plant(p) => (p.state_space()?, p.delay()),
+            Source::Factored(f) => (
+                StateSpace::from_zpk(f.zeros(), f.poles(), f.gain())?.with_domain(f.domain()),
+                f.delay(),
+            ),
+        };
+        if delay > 0.0 && !ss.has_delays() {
+            let m = ss.n_inputs();
+            return ss.with_delays(vec![delay; m], vec![]);
         }
+        Ok(ss)
     }
 
     /// The state-space model a design (`lqr`, `lqe`, `lqg`, `place`) works on: the plant
@@ -373,29 +381,36 @@ impl Model {
 
     /// Zeros, poles (complex, conjugate pairs complete, listed with repetition) and gain.
     #[staticmethod]
-    #[pyo3(signature = (zeros, poles, gain, dt=None))]
+    #[pyo3(signature = (zeros, poles, gain, dt=None, delay=None))]
     fn from_zpk(
         zeros: Vec<Complex64>,
         poles: Vec<Complex64>,
         gain: f64,
         dt: Option<f64>,
+        delay: Option<f64>,
     ) -> PyResult<Model> {
         guard(|| {
-            let f = Factored::from_zpk(&roots_of(&zeros), &roots_of(&poles), gain)?;
-            Ok(f.with_domain(domain_of(dt)?))
+            let f = Factored::from_zpk(&roots_of(&zeros), &roots_of(&poles), gain)?
+                .with_domain(domain_of(dt)?);
+            match delay {
+                Some(t) => f.with_delay(t),
+                None => Ok(f),
+            }
         })
         .map(Model::of_factored)
     }
 
-    /// A state-space model from the rows of A, B, C and D (D zero when `None`).
+    /// A state-space model from the rows of A, B, C and D (D zero when `None`), with the dead
+    /// time `delay` on every input.
     #[staticmethod]
-    #[pyo3(signature = (a, b, c, d=None, dt=None))]
+    #[pyo3(signature = (a, b, c, d=None, dt=None, delay=None))]
     fn from_ss(
         a: Vec<Vec<f64>>,
         b: Vec<Vec<f64>>,
         c: Vec<Vec<f64>>,
         d: Option<Vec<Vec<f64>>>,
         dt: Option<f64>,
+        delay: Option<f64>,
     ) -> PyResult<Model> {
         guard(|| {
             let (a, b, c) = (matrix(a, "`a`")?, matrix(b, "`b`")?, matrix(c, "`c`")?);
@@ -404,9 +419,96 @@ impl Model {
                 None => DMatrix::zeros(c.nrows(), b.ncols()),
             };
             let ss = StateSpace::new(a, b, c, d)?.with_domain(domain_of(dt)?);
-            Plant::from_state_space(ss, None)
+            Plant::from_state_space(ss, None)?.with_delay(delay.unwrap_or(0.0))
         })
         .map(Model::of_plant)
+    }
+
+    /// Blocks joined by named signals (the library's `connect`, what a diagram file is read
+    /// into): each block (name, model, input signals, output signals), the summing junctions
+    /// (signal, expression such as `"r - y"`), the external inputs and the outputs; one
+    /// state-space model with the states in block order, named `BLOCK.x1`, ….
+    #[staticmethod]
+    #[pyo3(signature = (blocks, sums, inputs, outputs, name=None))]
+    #[allow(clippy::type_complexity)]
+    fn connect(
+        blocks: Vec<(String, PyRef<'_, Model>, Vec<String>, Vec<String>)>,
+        sums: Vec<(String, String)>,
+        inputs: Vec<String>,
+        outputs: Vec<String>,
+        name: Option<String>,
+    ) -> PyResult<Model> {
+        use ltikit::lti::connect::{Block, Sum, connect};
+        guard(|| {
+            let mut bs = Vec::with_capacity(blocks.len());
+            for (n, m, ins, outs) in &blocks {
+                let what = format!("block `{}`", ltikit::error::abbreviate(n));
+                let model = match &m.source {
+                    // refused with a dead time, as a diagram file's block
+                    Source::Plant(p) => ltikit::lti::connect::state_space_of(&p.model, &what)?,
+                    Source::Factored(f) if f.delay() > 0.0 => {
+                        return Err(LtiError::invalid(format!(
+                            "{what} has a dead time: it is connected exactly only as a \
+                             rational model (replace the delay by a Padé approximant)"
+                        )));
+                    }
+                    Source::Factored(_) => m.state_space()?,
+                };
+                bs.push(Block {
+                    name: n.clone(),
+                    model,
+                    inputs: ins.clone(),
+                    outputs: outs.clone(),
+                });
+            }
+            let sums = sums
+                .iter()
+                .map(|(n, e)| Sum::parse(n, e))
+                .collect::<ltikit::Result<Vec<_>>>()?;
+            let ss = connect(&bs, &sums, &inputs, &outputs)?;
+            let states = bs
+                .iter()
+                .flat_map(|b| (1..=b.model.order()).map(move |k| format!("{}.x{k}", b.name)))
+                .collect();
+            let name = name.unwrap_or_else(|| format!("diagram ({} blocks)", bs.len()));
+            let mut plant = Plant::from_state_space(ss, Some(name))?;
+            plant.signals = ltikit::lti::Signals::for_model(&plant.model, inputs, outputs, states)?;
+            Ok(plant)
+        })
+        .map(Model::of_plant)
+    }
+
+    /// A controller from its specification (`"pid:kp=2,ki=1"`, `"lead:k=1,z=1,p=10"`,
+    /// `"tf:NUM/DEN"`: the command line's `--controller`), in the domain of `dt` as a diagram
+    /// block takes it: a continuous controller in front of a discrete loop is sampled by the
+    /// specification's method (Tustin by default).
+    #[staticmethod]
+    #[pyo3(signature = (spec, dt=None))]
+    fn from_controller_spec(spec: &str, dt: Option<f64>) -> PyResult<Model> {
+        guard(|| {
+            let c = Controller::parse(spec)?;
+            let g = c.tf()?;
+            let domain = domain_of(dt)?;
+            let g = match domain.dt() {
+                Some(_) if c.is_given_in_loop_variable() => g.with_domain(domain),
+                Some(t) => g.c2d(t, c.method())?,
+                None => g,
+            };
+            Plant::from_tf(g, Some(c.to_string()))
+        })
+        .map(Model::of_plant)
+    }
+
+    /// The names of the inputs, outputs and states (empty when the model has none).
+    fn signal_names(&self) -> (Vec<String>, Vec<String>, Vec<String>) {
+        match &self.source {
+            Source::Plant(p) => (
+                p.signals.inputs.clone(),
+                p.signals.outputs.clone(),
+                p.signals.states.clone(),
+            ),
+            Source::Factored(_) => (vec![], vec![], vec![]),
+        }
     }
 
     /// A textbook model (or the seed's lattice) with parameter overrides.

@@ -47,6 +47,12 @@ def usage() -> None:
     fo: lk.TimeResponse = mimo.response(np.ones((3, 2)), [0.0, 0.5, 1.0], x0=[1.0, 0.0])
     rt: lk.RouthTable = g.routh(gain=2.0)
     jt: lk.JuryTable = lk.tf([1], [1, -0.5], dt=0.1).jury(gains=False)
+    zd: lk.System = lk.zpk([], [-1.0], 1.0, delay=0.5)
+    sd: lk.System = lk.ss([[-1.0]], [[1.0]], [[1.0]], delay=0.5)
+    cl: lk.System = lk.connect({"P": (g, "e", "y")}, inputs="r", outputs="y", sums={"e": "r - y"})
+    names: List[str] = cl.signals["states"]
+    dg: lk.System = lk.diagram({"inputs": ["r"], "outputs": ["y"],
+                                "blocks": {"P": {"system": g, "input": "r", "output": "y"}}})
     hinf: lk.PeakGain = g.hinf_norm()
     h2: float = float(g.h2_norm())
     gr: lk.Gramian = g.gram("c")
