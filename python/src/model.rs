@@ -856,9 +856,16 @@ impl Model {
         ser_to_py(py, self.whole()?)
     }
 
-    /// The poles of the whole model: the eigenvalues of A, with repetition.
+    /// The poles of the whole model: the eigenvalues of A, with repetition — the analysis's
+    /// (snapped) values when it has been computed, otherwise the eigenvalues alone (the whole
+    /// analysis is ten times the cost), sorted as the analysis sorts them.
     fn whole_poles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
-        Ok(carray(py, mimo::poles(self.whole()?)))
+        if let Some(Ok(a)) = self.whole.get() {
+            return Ok(carray(py, mimo::poles(a)));
+        }
+        let mut ev = guard(|| self.state_space()?.eigenvalues())?;
+        ev.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
+        Ok(carray(py, ev))
     }
 
     /// The transmission zeros of the whole model (with repetition) and the Kronecker
