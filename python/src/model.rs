@@ -878,8 +878,18 @@ impl Model {
         Ok((carray(py, z), to_py(py, &doc)?))
     }
 
-    /// The dc-gain matrix, flat row by row (`inf` where a channel has a pole at 0).
+    /// The dc-gain matrix, flat row by row (`inf` where a channel has a pole at 0): from the
+    /// analysis once it exists, otherwise directly when A is clearly nonsingular (no pole at
+    /// or near the dc point: the analysis would give the same finite values).
     fn whole_dc_gain<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        if self.whole.get().is_none() {
+            let ss = guard(|| self.state_space())?;
+            if !ss.has_delays()
+                && let Some(g) = guard(|| mimo::dc_gain_direct(&ss))?
+            {
+                return Ok(array(py, g));
+            }
+        }
         Ok(array(py, mimo::dc_gain(self.whole()?)))
     }
 

@@ -189,3 +189,20 @@ def test_initial_state_needs_state_space():
         lk.tf([1], [1, 1]).initial([1.0], [0, 1])
     with pytest.raises(lk.LtiError, match="state-space model"):
         lk.tf([1], [1, 1]).response([1, 1], [0, 1], x0=[1.0])
+
+
+@pytest.mark.parametrize("dt", [None, 0.1])
+def test_dc_gain_direct_equals_the_analysis(dt):
+    # before the whole analysis exists the dc gain is solved directly (A clearly
+    # nonsingular); the analysis (a minimal realisation per channel) gives the same values
+    rng = np.random.default_rng(7)
+    a = rng.uniform(-1, 1, (5, 5)) - (3.0 if dt is None else 0.0) * np.eye(5)
+    if dt is not None:
+        a *= 0.15  # spectral radius < 1
+    b, c, d = rng.uniform(-1, 1, (5, 2)), rng.uniform(-1, 1, (3, 5)), rng.uniform(-1, 1, (3, 2))
+    direct = lk.ss(a, b, c, d, dt=dt).dc_gain()
+    g = lk.ss(a, b, c, d, dt=dt)
+    via = g.analyze().dc_gain
+    np.testing.assert_allclose(direct, via, rtol=1e-12)
+    np.testing.assert_allclose(direct, control.dcgain(control.ss(a, b, c, d, 0 if dt is None else dt)), rtol=1e-12)
+    assert direct.shape == (3, 2)
