@@ -32,7 +32,11 @@ __all__ = [
     "System",
     "Record",
     "Analysis",
+    "StateSpaceAnalysis",
+    "ZeroStructure",
     "StepInfo",
+    "RouthTable",
+    "JuryTable",
     "Margins",
     "Stability",
     "TimeResponse",
@@ -59,6 +63,8 @@ __all__ = [
     "plant_line",
     "pid",
     "controller",
+    "connect",
+    "diagram",
     "batch",
     "from_control",
     "from_scipy",
@@ -72,6 +78,8 @@ __all__ = [
 ]
 
 __version__: str = _core.__version__
+
+_MAX_COEFFICIENTS: int = _core.MAX_ORDER + 1
 
 ArrayLike = Any
 """Numbers as a list, tuple or numpy array."""
@@ -210,6 +218,71 @@ class Analysis(Record):
         mg = d.get("margins")
         if isinstance(mg, Record):
             d["margins"] = Margins(mg.to_dict())
+
+
+class StateSpaceAnalysis(Analysis):
+    """The whole-model analysis of a state-space model (any numbers of inputs and outputs),
+    what ``ltikit analyze`` reports for one: ``n``, ``m``, ``p`` (states, inputs, outputs),
+    ``poles`` (the eigenvalues of A with repetition), ``eigenvalues`` (distinct, with
+    ``algebraic`` and ``geometric`` multiplicities), ``controllability`` and
+    ``observability`` (staircase ``rank`` and ``tol``), ``minimal_order``,
+    ``uncontrollable_modes``, ``unobservable_modes``, ``invariant_zeros`` (of this
+    realisation, with multiplicities; ``None`` with ``invariant_zeros_note``),
+    ``zero_structure`` (``normal_rank``, ``infinite_orders``, ``left_indices``,
+    ``right_indices``, ``residuals``), ``dc_gain`` (p × m array, ``inf`` where a channel has a
+    pole at 0), ``internally_stable`` with ``internal_reason``, ``bibo_stable`` (p × m bool
+    array, per channel) and ``modes`` (``value``, ``wn``, ``zeta``, ``tau``)."""
+
+    def _fill(self, fields: Mapping[str, Any]) -> None:
+        doc = dict(fields)
+        eig = doc.get("eigenvalues", [])
+        doc["poles"] = np.array(
+            [complex(*e["value"]) for e in eig for _ in range(e["algebraic"])], dtype=complex
+        )
+        for e in eig:
+            e["value"] = complex(*e["value"])
+        for m in doc.get("modes", []):
+            m["value"] = complex(*m["value"])
+        for key in ("uncontrollable_modes", "unobservable_modes"):
+            doc[key] = _complex(doc.get(key, []))
+        iz = doc.get("invariant_zeros")
+        if iz is not None:
+            doc["invariant_zeros"] = [(complex(*z), int(k)) for z, k in iz]
+        doc["dc_gain"] = np.array(
+            [[math.inf if g == "infinite" else float(g["finite"]) for g in row] for row in doc["dc_gain"]],
+            dtype=float,
+        ).reshape(doc["p"], doc["m"])
+        doc["bibo_stable"] = np.array(doc["bibo_stable"], dtype=bool).reshape(doc["p"], doc["m"])
+        Record._fill(self, doc)
+
+
+class ZeroStructure(Record):
+    """The transmission zeros of a model with the Kronecker structure of its (minimal) system
+    pencil [A − sI  B; C  D]: ``zeros`` (complex, with repetition), ``multiplicities``
+    (``[(zero, m), …]``), ``normal_rank`` (of G(s)), ``infinite_orders`` (orders of the zeros
+    at infinity), ``left_indices`` and ``right_indices`` (the Kronecker minimal indices; a
+    non-square or rank-deficient G has them)."""
+
+
+class RouthTable(Record):
+    """The Routh–Hurwitz table of a characteristic polynomial: ``polynomial`` (descending
+    coefficients of D, or D + K·N with a gain), ``rows`` (a 2-D array, s^n down to s^0),
+    ``powers`` (the power of s of each row), ``events`` (a zero first element replaced by ε,
+    or a zero row with its auxiliary polynomial), the root counts ``rhp``, ``axis``, ``lhp``
+    (decided in exact rational arithmetic on the coefficients as typed when ``exact``,
+    otherwise read from the table; the table's own counts are ``table_rhp`` …), ``stable``,
+    and ``stable_gains``: the exact set of gains K for which D + K·N has every root in the
+    open left half plane, as ``(low, high)`` open intervals (±``inf`` for no bound)."""
+
+
+class JuryTable(Record):
+    """The Jury table of a characteristic polynomial in z (Åström–Wittenmark form):
+    ``polynomial``, ``rows`` (a list of arrays, two per stage, each one shorter than the
+    stage before), ``alphas``, ``first`` (the
+    first elements), ``singular_at`` (the stage at which the table stops, or ``None``), the
+    counts ``inside``, ``on``, ``outside`` the unit circle (exact when ``exact``; the table's
+    own ``table_inside`` …), ``stable``, and ``stable_gains``: the exact set of gains K for
+    which D + K·N has every root strictly inside the unit circle, ``(low, high)`` intervals."""
 
 
 class StepInfo(Record):
@@ -375,6 +448,8 @@ def _points(name: str, a: np.ndarray) -> None:
 
 def _order(name: str, a: np.ndarray) -> None:
     """The library's limit on the order (MAX_ORDER), leading zeros not counted."""
+    if a.size <= _MAX_COEFFICIENTS:
+        return  # within the limit whatever the leading zeros (the common case, no scan)
     nonzero = np.flatnonzero(a)
     _core.check_order(name, a.size - int(nonzero[0]) if nonzero.size else 0)
 
@@ -394,6 +469,26 @@ def _matrix(x: ArrayLike, name: str) -> list:
     if a.ndim != 2:
         raise LtiError(f"`{name}` must be a 2-D matrix (found shape {a.shape})")
     return a.tolist()
+
+
+def _samples(u: ArrayLike, n: int, m: int) -> list:
+    """Input samples as a flat list, row by row: ``n`` values for one input, or an array of
+    shape (n, m) for m inputs (checked here, before it is copied)."""
+    if isinstance(u, (str, bytes)):
+        raise LtiError("`u` must be an array of numbers (found a string)")
+    try:
+        a = np.asarray(u, dtype=float)
+    except (ValueError, TypeError) as e:
+        raise LtiError(f"`u` must be an array of numbers ({_first_line(e)})") from None
+    _points("`u`", a)
+    if m == 1 and a.ndim == 1:
+        a = a.reshape(-1, 1)
+    if a.ndim != 2 or a.shape != (n, m):
+        raise LtiError(
+            f"`u` has shape {a.shape}: the model has {m} input{'s' if m != 1 else ''} and "
+            f"`t` {n} times, give shape ({n}, {m})" + (f" or ({n},)" if m == 1 else "")
+        )
+    return a.ravel().tolist()
 
 
 def _number(x: Any, name: str) -> float:
@@ -443,11 +538,13 @@ class System:
     with exact multiplicities) is computed once, at the first analysis.
     """
 
-    __slots__ = ("_m", "_recipe")
+    __slots__ = ("_m", "_recipe", "_whole")
 
     def __init__(self, core: _core.Model, recipe: Tuple[Any, ...]) -> None:
         self._m = core
         self._recipe = recipe
+        # a MIMO model answers the whole-model calls (state-space analysis) itself
+        self._whole = core.shape() != (1, 1)
 
     # what it is
     def __repr__(self) -> str:
@@ -467,6 +564,13 @@ class System:
     def shape(self) -> Tuple[int, int]:
         """(outputs, inputs)."""
         return self._m.shape()
+
+    @property
+    def signals(self) -> Dict[str, List[str]]:
+        """The names of the ``inputs``, ``outputs`` and ``states`` (a connected diagram's
+        signals; empty lists when the model has none)."""
+        i, o, x = self._m.signal_names()
+        return {"inputs": i, "outputs": o, "states": x}
 
     def is_siso(self) -> bool:
         """True for one input and one output."""
@@ -502,12 +606,27 @@ class System:
     # analyses
     def poles(self) -> np.ndarray:
         """The poles (roots of the characteristic polynomial, cancelled ones included), a
-        complex array with repeated poles repeated, sorted by decreasing real part."""
+        complex array with repeated poles repeated, sorted by decreasing real part. For a
+        MIMO model the eigenvalues of A (python-control's ``poles()``)."""
+        if self._whole:
+            return self._m.whole_poles()
         return self._m.poles()
 
     def zeros(self) -> np.ndarray:
-        """The finite zeros, a complex array with repeated zeros repeated."""
+        """The finite zeros, a complex array with repeated zeros repeated. For a MIMO model
+        (square or not) the transmission zeros: the finite zeros of the minimal realisation's
+        system pencil; :meth:`zero_structure` gives the rest of its Kronecker structure."""
+        if self._whole:
+            return self._m.whole_zeros()[0]
         return self._m.zeros()
+
+    def zero_structure(self) -> ZeroStructure:
+        """The transmission zeros with the Kronecker structure of the minimal system pencil
+        [A − sI  B; C  D] (any model; a transfer function through its realisation): see
+        :class:`ZeroStructure`."""
+        z, doc = self._m.whole_zeros()
+        doc["multiplicities"] = [(complex(*v), int(k)) for v, k in doc["multiplicities"]]
+        return ZeroStructure({"zeros": z, **doc})
 
     def pole_multiplicities(self) -> List[Tuple[complex, int]]:
         """Distinct poles with their exact multiplicities: ``[(pole, m), …]``."""
@@ -522,16 +641,30 @@ class System:
         """The gain k of G = k·Π(s − z)/Π(s − p)."""
         return self._m.gain()
 
-    def dc_gain(self) -> float:
-        """The dc gain G(0) of the reduced G (G(1) in discrete time); ``inf`` when infinite."""
+    def dc_gain(self) -> Union[float, np.ndarray]:
+        """The dc gain G(0) of the reduced G (G(1) in discrete time); ``inf`` when infinite.
+        For a MIMO model the p × m matrix (``inf`` where a channel has a pole at 0)."""
+        if self._whole:
+            p, m = self.shape
+            return self._m.whole_dc_gain().reshape(p, m)
         return self._m.dc_gain()
 
     def is_stable(self) -> Stability:
-        """Stability with the reason; true when internally stable (``bool(G.is_stable())``)."""
+        """Stability with the reason; true when internally stable (``bool(G.is_stable())``).
+        For a MIMO model also ``channels_bibo_stable`` (p × m, each channel's minimal
+        realisation)."""
+        if self._whole:
+            d = self._m.whole_stability()
+            d["channels_bibo_stable"] = np.array(d["channels_bibo_stable"], dtype=bool)
+            return Stability(d)
         return Stability(self._m.stability())
 
-    def analyze(self) -> Analysis:
-        """Everything ``ltikit analyze --json`` reports, as an :class:`Analysis`."""
+    def analyze(self, whole: bool = False) -> Analysis:
+        """Everything ``ltikit analyze --json`` reports, as an :class:`Analysis`. A MIMO
+        model (or any model with ``whole=True``) gets the whole-model state-space analysis,
+        a :class:`StateSpaceAnalysis`."""
+        if self._whole or whole:
+            return StateSpaceAnalysis(self._m.whole_analysis())
         return Analysis(self._m.analyze())
 
     def residue(self) -> Residue:
@@ -540,26 +673,75 @@ class System:
 
     def step(self, t: Optional[ArrayLike] = None) -> TimeResponse:
         """Unit-step response at the times ``t`` (an automatic grid when ``None``), with the
-        closed form."""
+        closed form. For a MIMO model ``y`` has shape (outputs, inputs, len(t)): the response
+        of every output to a unit step on each input in turn (python-control's
+        ``step_response``)."""
         return self.response("step", t)
 
     def impulse(self, t: Optional[ArrayLike] = None) -> TimeResponse:
-        """Unit-impulse response at the times ``t`` (a D·δ(t) term is not in the values)."""
+        """Unit-impulse response at the times ``t`` (a D·δ(t) term is not in the values); for
+        a MIMO model shaped (outputs, inputs, len(t)) as :meth:`step`."""
         return self.response("impulse", t)
 
     def response(
-        self, u: Union[str, ArrayLike], t: Optional[ArrayLike] = None, hold: str = "foh"
+        self,
+        u: Union[str, ArrayLike],
+        t: Optional[ArrayLike] = None,
+        hold: str = "foh",
+        x0: Optional[ArrayLike] = None,
     ) -> TimeResponse:
         """The response to ``u``: a standard input by name (``"step"``, ``"impulse"``,
         ``"ramp"``, ``"exp:A"``, ``"sin:W"``, ``"cos:W"``) with its closed form, or input
-        samples at the times ``t`` (``hold="foh"`` linear between samples, ``"zoh"`` held)."""
+        samples at the times ``t`` (``hold="foh"`` linear between samples, ``"zoh"`` held):
+        one value per time, or for m inputs an array of shape (len(t), m); ``y`` then has one
+        row per output (a 1-D array for one output). ``x0``: the initial state of a
+        state-space model (with a named input only ``"step"`` and ``"impulse"``; the free
+        response :meth:`initial` is added)."""
         tt = None if t is None else _vector(t, "t", limit=_points)
         if isinstance(u, str):
+            if x0 is not None:
+                return self._forced_from(u, tt, x0)
+            if self._whole:
+                if u not in ("step", "impulse"):
+                    raise LtiError(
+                        f"a MIMO model's response takes \"step\", \"impulse\" or input samples (found {u!r})"
+                    )
+                tw, yw = self._m.whole_step(tt, u == "impulse")
+                p, m = self.shape
+                return TimeResponse({"t": tw, "y": yw.reshape(p, m, tw.size)})
             return TimeResponse(self._m.response(u, tt))
         if tt is None:
             raise LtiError("`t`: give the times of the input samples `u`")
-        y = self._m.lsim(_vector(u, "u", limit=_points), tt, hold)
-        return TimeResponse({"t": np.asarray(tt), "y": y})
+        uu = _samples(u, len(tt), self.shape[1])
+        xx = None if x0 is None else _vector(x0, "x0")
+        y = self._m.lsim(uu, tt, hold, xx)
+        return TimeResponse({"t": np.asarray(tt), "y": self._outputs(y, len(tt))})
+
+    def initial(self, x0: ArrayLike, t: Optional[ArrayLike] = None) -> TimeResponse:
+        """The free response (u = 0) of a state-space model from the initial state ``x0`` at
+        the times ``t`` (an automatic grid when ``None``); ``y`` has one row per output (a
+        1-D array for one output), python-control's ``initial_response``."""
+        tt = None if t is None else _vector(t, "t", limit=_points)
+        tw, y = self._m.initial(_vector(x0, "x0"), tt)
+        return TimeResponse({"t": tw, "y": self._outputs(y, tw.size)})
+
+    def _outputs(self, y: np.ndarray, n: int) -> np.ndarray:
+        """Flat output samples as (outputs, n), or 1-D for one output."""
+        p = self.shape[0]
+        return y if p == 1 else y.reshape(p, n)
+
+    def _forced_from(self, u: str, t: Optional[list], x0: ArrayLike) -> TimeResponse:
+        """A step or impulse response of a state-space model plus the free response from x0."""
+        if u not in ("step", "impulse"):
+            raise LtiError(
+                f"`x0` goes with \"step\", \"impulse\" or input samples (found {u!r})"
+            )
+        xx = _vector(x0, "x0")
+        tw, yw = self._m.whole_step(t, u == "impulse")
+        _, free = self._m.initial(xx, tw.tolist())
+        p, m = self.shape
+        forced = yw.reshape(p, m, tw.size) + free.reshape(p, 1, tw.size)
+        return TimeResponse({"t": tw, "y": forced[0, 0] if (p, m) == (1, 1) else forced})
 
     def step_info(self) -> StepInfo:
         """Step metrics (MATLAB ``stepinfo``); ``LtiError`` with the reason when there are
@@ -572,12 +754,36 @@ class System:
     def freq(self, w: Optional[ArrayLike] = None) -> FrequencyResponse:
         """Frequency response at ``w`` rad/s (an automatic grid when ``None``): magnitude,
         phase in degrees (continuous in ω), and the complex values."""
-        ww, mag, phase, g = self._m.freq(None if w is None else _vector(w, "w", limit=_points))
+        wv = None if w is None else _vector(w, "w", limit=_points)
+        if self._whole:
+            ww, mag, phase, g = self._m.whole_freq(wv)
+            p, m = self.shape
+            mag = mag.reshape(p, m, ww.size)
+            phase = phase.reshape(p, m, ww.size)
+            g = g.reshape(p, m, ww.size)
+        else:
+            ww, mag, phase, g = self._m.freq(wv)
         with np.errstate(divide="ignore"):
             db = 20.0 * np.log10(mag)
         return FrequencyResponse(
             {"w": ww, "magnitude": mag, "magnitude_db": db, "phase_deg": phase, "response": g}
         )
+
+    def routh(self, gain: Optional[float] = None, gains: bool = True) -> RouthTable:
+        """The Routh–Hurwitz table of a continuous-time transfer function's characteristic
+        polynomial D (with ``gain=K``: of the closed loop D + K·N in unity negative
+        feedback), the root counts decided exactly, and with ``gains`` the exact set of
+        stabilising gains (``ltikit routh --json``). See :class:`RouthTable`."""
+        k = None if gain is None else _number(gain, "gain")
+        return RouthTable(_table(self._m.routh(k, bool(gains))))
+
+    def jury(self, gain: Optional[float] = None, gains: bool = True) -> JuryTable:
+        """The Jury table of a discrete-time transfer function's characteristic polynomial
+        in z (with ``gain=K``: of D + K·N), the counts inside, on and outside the unit circle
+        (exact for the coefficients as typed), and with ``gains`` the exact stabilising gains
+        (``ltikit jury --json``). See :class:`JuryTable`."""
+        k = None if gain is None else _number(gain, "gain")
+        return JuryTable(_table(self._m.jury(k, bool(gains)), ragged=True))
 
     def margins(self) -> Margins:
         """Gain and phase margins (MATLAB ``margin``), every crossing, bandwidth, resonance
@@ -833,6 +1039,17 @@ class System:
         return (_rebuild, (self._recipe,))
 
 
+def _table(doc: Dict[str, Any], ragged: bool = False) -> Dict[str, Any]:
+    """A Routh document with its rows as a 2-D array (a Jury document's shrinking rows as a
+    list of arrays) and gain intervals as tuples."""
+    rows = doc["rows"]
+    doc["rows"] = [np.array(r, dtype=float) for r in rows] if ragged else np.array(rows, dtype=float)
+    doc["polynomial"] = np.array(doc["polynomial"], dtype=float)
+    if "stable_gains" in doc:
+        doc["stable_gains"] = [(float(lo), float(hi)) for lo, hi in doc["stable_gains"]]
+    return doc
+
+
 def _as_system(x: Union[System, float]) -> System:
     if isinstance(x, System):
         return x
@@ -856,6 +1073,10 @@ def _rebuild(recipe: Tuple[Any, ...]) -> System:
         return System(args[0]._m.c2d(args[1], args[2], args[3]), recipe)
     if kind == "d2c":
         return System(args[0]._m.d2c(args[1], args[2]), recipe)
+    if kind == "connect":
+        spec, sm, ins, outs, name = args
+        core = _core.Model.connect([(n, s._m, i, o) for n, s, i, o in spec], sm, ins, outs, name)
+        return System(core, recipe)
     return System(getattr(_core.Model, kind)(*args), recipe)
 
 
@@ -882,23 +1103,38 @@ def tf(
     return System(_core.Model.from_tf(*args), ("from_tf",) + args)
 
 
-def zpk(zeros: ArrayLike, poles: ArrayLike, gain: float, dt: Optional[float] = None) -> System:
+def zpk(
+    zeros: ArrayLike,
+    poles: ArrayLike,
+    gain: float,
+    dt: Optional[float] = None,
+    delay: Optional[float] = None,
+) -> System:
     """A model from its zeros, poles (conjugate pairs complete; repeated roots repeated) and
-    gain k of G = k·Π(s − z)/Π(s − p). No root finding: the multiplicities are as given."""
+    gain k of G = k·Π(s − z)/Π(s − p). No root finding: the multiplicities are as given.
+    ``delay=T`` is a dead time e^(−sT) as in :func:`tf` (discrete time: z^(−d), a whole
+    number d of periods)."""
     args = (
         _vector(zeros, "zeros", complex, limit=_points),
         _vector(poles, "poles", complex, limit=_points),
         _number(gain, "gain"),
         _dt(dt),
+        None if delay is None else _number(delay, "delay"),
     )
     return System(_core.Model.from_zpk(*args), ("from_zpk",) + args)
 
 
 def ss(
-    A: ArrayLike, B: ArrayLike, C: ArrayLike, D: ArrayLike = None, dt: Optional[float] = None
+    A: ArrayLike,
+    B: ArrayLike,
+    C: ArrayLike,
+    D: ArrayLike = None,
+    dt: Optional[float] = None,
+    delay: Optional[float] = None,
 ) -> System:
     """A state-space model ẋ = Ax + Bu, y = Cx + Du (x[k+1] = … with ``dt``); D zero when
-    omitted (a scalar D fills the p×m matrix)."""
+    omitted (a scalar D fills the p×m matrix). ``delay=T``: the dead time T on every input,
+    u(t − T) (kept exact: responses shifted, phase lag ωT on every channel)."""
     a, b, c = _matrix(A, "a"), _matrix(B, "b"), _matrix(C, "c")
     d: Optional[list] = None
     if D is not None:
@@ -908,7 +1144,7 @@ def ss(
             d = None if value == 0 else [[value] * inputs for _ in c]
         else:
             d = _matrix(D, "d")
-    args = (a, b, c, d, _dt(dt))
+    args = (a, b, c, d, _dt(dt), None if delay is None else _number(delay, "delay"))
     return System(_core.Model.from_ss(*args), ("from_ss",) + args)
 
 
@@ -947,6 +1183,101 @@ def pid(kp: float = 0.0, ki: float = 0.0, kd: float = 0.0, tf: float = 0.0) -> S
     out)."""
     params = {"kp": kp, "ki": ki, "kd": kd, "tf": tf}
     return controller("pid", **{k: v for k, v in params.items() if k == "kp" or v != 0})
+
+
+def _signals(x: Any, what: str) -> List[str]:
+    """One signal name or a list of them."""
+    if isinstance(x, str):
+        return [x]
+    if isinstance(x, (list, tuple)) and all(isinstance(v, str) for v in x):
+        return list(x)
+    raise LtiError(f"{what} must be a signal name or a list of names (found {_short(x)})")
+
+
+def connect(
+    blocks: Mapping[str, Tuple[Any, Any, Any]],
+    inputs: Union[str, Sequence[str]],
+    outputs: Union[str, Sequence[str]],
+    sums: Optional[Mapping[str, str]] = None,
+    name: Optional[str] = None,
+) -> System:
+    """Systems joined by named signals, as a diagram file joins its blocks (the library's
+    ``connect``, MATLAB's and python-control's ``connect``): ``blocks`` maps a block name to
+    ``(system, input signal(s), output signal(s))``; ``sums`` maps a signal to an expression
+    such as ``"r - y"`` or ``"2*a + 0.5*b"``; ``inputs`` are the external inputs, ``outputs``
+    any signals. The result is one state-space model, its states in the order of the block
+    names (``BLOCK.x1``, …), its signals named. Unity feedback around P::
+
+        T = lk.connect({"P": (P, "e", "y")}, inputs="r", outputs="y", sums={"e": "r - y"})
+
+    Errors (each naming the block or signal): a signal driven twice or never, signal lists
+    that do not match a block's inputs and outputs, mixed domains, a dead time, an algebraic
+    loop that is not well posed."""
+    if not isinstance(blocks, Mapping):
+        raise LtiError("`blocks` must map block names to (system, inputs, outputs)")
+    spec = []
+    for key in sorted(blocks):
+        item = blocks[key]
+        if not (isinstance(item, (tuple, list)) and len(item) == 3 and isinstance(item[0], System)):
+            raise LtiError(
+                f"block `{key}` must be (system, input signal(s), output signal(s)) (found {_short(item)})"
+            )
+        spec.append((str(key), item[0], _signals(item[1], f"block `{key}`: inputs"),
+                     _signals(item[2], f"block `{key}`: outputs")))
+    sm = [] if sums is None else [(str(k), str(v)) for k, v in dict(sums).items()]
+    ins, outs = _signals(inputs, "`inputs`"), _signals(outputs, "`outputs`")
+    core = _core.Model.connect([(n, s._m, i, o) for n, s, i, o in spec], sm, ins, outs, name)
+    return System(core, ("connect", spec, sm, ins, outs, name))
+
+
+def diagram(d: Mapping[str, Any]) -> System:
+    """A diagram given as a dict with the keys of a diagram file (docs/DIAGRAMS.md):
+    ``inputs``, ``outputs``, ``blocks`` (name → a dict with ``input``, ``output`` and one of
+    ``system`` (a :class:`System`), ``num``/``den``, ``a``/``b``/``c``/``d``, ``controller``
+    (``"pid:kp=2,ki=1"``) or ``plant`` (a plant file)), optional ``sums``, ``dt`` (coefficient,
+    matrix and controller blocks in discrete time; a continuous controller sampled by Tustin)
+    and ``name``; closed by :func:`connect`."""
+    if not isinstance(d, Mapping):
+        raise LtiError("a diagram is a dict with `inputs`, `outputs`, `blocks` (and `sums`)")
+    known = {"inputs", "outputs", "blocks", "sums", "dt", "name", "description"}
+    extra = sorted(set(d) - known)
+    if extra:
+        raise LtiError(f"unknown diagram key `{extra[0]}` (keys: {', '.join(sorted(known))})")
+    for key in ("inputs", "outputs", "blocks"):
+        if key not in d:
+            raise LtiError(f"the diagram has no `{key}`")
+    dt = _dt(d.get("dt"))
+    blocks: Dict[str, Tuple[Any, Any, Any]] = {}
+    if not isinstance(d["blocks"], Mapping):
+        raise LtiError("`blocks` must map block names to block dicts")
+    for key, b in d["blocks"].items():
+        if not isinstance(b, Mapping):
+            raise LtiError(f"block `{key}` must be a dict (found {_short(b)})")
+        kinds = [k for k in ("system", "num", "a", "controller", "plant") if k in b]
+        if len(kinds) != 1:
+            raise LtiError(
+                f"block `{key}` must have exactly one of `system`, `num`/`den`, `a`/`b`/`c` "
+                f"(optional `d`), `controller` or `plant`"
+            )
+        for s in ("input", "output"):
+            if s not in b:
+                raise LtiError(f"block `{key}` has no `{s}` signal")
+        kind = kinds[0]
+        if kind == "system":
+            if not isinstance(b["system"], System):
+                raise LtiError(f"block `{key}`: `system` must be a System")
+            sys = b["system"]
+        elif kind == "num":
+            sys = tf(b["num"], b.get("den", [1]), dt=dt)
+        elif kind == "a":
+            sys = ss(b["a"], b.get("b"), b.get("c"), b.get("d"), dt=dt)
+        elif kind == "controller":
+            spec = str(b["controller"])
+            sys = System(_core.Model.from_controller_spec(spec, dt), ("from_controller_spec", spec, dt))
+        else:
+            sys = plant(b["plant"])
+        blocks[str(key)] = (sys, b["input"], b["output"])
+    return connect(blocks, d["inputs"], d["outputs"], d.get("sums"), d.get("name"))
 
 
 def batch(plants: Sequence[System]) -> List[Analysis]:

@@ -20,8 +20,10 @@ mod convert;
 mod design;
 mod equations;
 mod matrix;
+mod mimo;
 mod model;
 mod norms;
+mod tables;
 
 pyo3::create_exception!(
     _core,
@@ -93,6 +95,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(equations::solve_sylvester, m)?)?;
     m.add_function(wrap_pyfunction!(equations::solve_riccati, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("MAX_ORDER", ltikit::MAX_ORDER)?;
     Ok(())
 }
 

@@ -12,7 +12,7 @@ use pyo3::types::PyDict;
 use serde_json::json;
 
 use ltikit::analysis::{
-    Factored, Hold, Input, InputSignal, RootLocusOptions, auto_frequency_grid, auto_time_grid,
+    Factored, Input, RootLocusOptions, SsAnalysis, auto_frequency_grid, auto_time_grid,
 };
 use ltikit::lti::plant::{coefficients_of, matrix_of_rows};
 use ltikit::lti::{Controller, Domain, Model as LtiModel, Plant, StateSpace, TransferFunction};
@@ -22,7 +22,10 @@ use crate::analyze::{analysis_json, step_info_json};
 use crate::convert::{
     array, array2, carray, finite, multiplicities, pair, roots_array, ser_to_py, to_py,
 };
-use crate::{attempt, guard};
+use crate::{attempt, guard, mimo, tables};
+
+/// Times and sampled values (flat), handed to Python together.
+type Samples<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// Points of the automatic time and frequency grids (`t=None`, `w=None`).
 const AUTO_POINTS: usize = 1000;
@@ -44,6 +47,8 @@ pub struct Model {
     source: Source,
     /// The factored form of a SISO model, computed at the first analysis (or its error).
     factored: OnceLock<Result<Factored, String>>,
+    /// The whole-model state-space analysis, computed at the first whole-model call.
+    whole: OnceLock<Result<SsAnalysis, String>>,
 }
 
 impl Model {
@@ -51,6 +56,7 @@ impl Model {
         Model {
             source: Source::Plant(Box::new(p)),
             factored: OnceLock::new(),
+            whole: OnceLock::new(),
         }
     }
 
@@ -58,6 +64,7 @@ impl Model {
         Model {
             source: Source::Factored(Box::new(f)),
             factored: OnceLock::new(),
+            whole: OnceLock::new(),
         }
     }
 
@@ -78,14 +85,134 @@ impl Model {
         }
     }
 
-    /// The model as a state-space model (a transfer function realised; factors as a cascade).
-    pub(crate) fn state_space(&self) -> ltikit::Result<StateSpace> {
+    /// The transfer function (with the coefficients as typed, when typed) a Routh or Jury
+    /// table is built on: refused for a state-space model, as the command line refuses it.
+    fn transfer_function(
+        &self,
+        command: &str,
+    ) -> ltikit::Result<(TransferFunction, Option<&tables::Typed>)> {
         match &self.source {
-            Source::Plant(p) => p.state_space(),
-            Source::Factored(f) => {
-                Ok(StateSpace::from_zpk(f.zeros(), f.poles(), f.gain())?.with_domain(f.domain()))
+            Source::Plant(p) => match &p.model {
+                LtiModel::Tf(g) => Ok((g.clone(), p.typed.as_ref())),
+                LtiModel::Ss(_) => Err(LtiError::invalid(format!(
+                    "{command} needs a transfer function (its characteristic polynomial); this \
+                     model is a state-space model"
+                ))),
+            },
+            Source::Factored(f) => match f.transfer_function() {
+                Some(g) => Ok((g.clone(), None)),
+                None => Ok((
+                    TransferFunction::from_zpk(
+                        &crate::convert::repeated(f.zeros()),
+                        &crate::convert::repeated(f.poles()),
+                        f.gain(),
+                    )?
+                    .with_domain(f.domain()),
+                    None,
+                )),
+            },
+        }
+    }
+
+    /// The whole-model analysis of the state-space model (computed once).
+    fn whole(&self) -> PyResult<&SsAnalysis> {
+        self.whole
+            .get_or_init(|| attempt(|| self.state_space()?.analysis()))
+            .as_ref()
+            .map_err(|e| crate::LtiError::new_err(e.clone()))
+    }
+
+    /// The state-space model as given (`None` for a transfer function or factors).
+    fn given_state_space(&self) -> Option<&StateSpace> {
+        match &self.source {
+            Source::Plant(p) => match &p.model {
+                LtiModel::Ss(ss) => Some(ss),
+                LtiModel::Tf(_) => None,
+            },
+            Source::Factored(_) => None,
+        }
+    }
+
+    /// The state-space model an initial state refers to: refused for a model not given by
+    /// its matrices (its states would be those of a realisation the user never saw).
+    fn state_space_for_x0(&self) -> ltikit::Result<&StateSpace> {
+        self.given_state_space().ok_or_else(|| {
+            LtiError::invalid(
+                "an initial state needs a state-space model (lk.ss): a transfer function's \
+                 states are not defined",
+            )
+        })
+    }
+
+    /// Times for the whole model: `t`, or 1000 points over the longest automatic window of
+    /// its channels (multiples of the period in discrete time).
+    fn whole_times(&self, ss: &StateSpace, t: Option<Vec<f64>>) -> ltikit::Result<Vec<f64>> {
+        if let Some(t) = t {
+            return Ok(t);
+        }
+        let mut t_end: f64 = 0.0;
+        for j in 0..ss.n_outputs() {
+            for i in 0..ss.n_inputs() {
+                let f = Factored::from_state_space(&ss.channel(i, j)?)?;
+                t_end = t_end.max(ltikit::analysis::auto_time_span(&f)?.t_end);
             }
         }
+        if !(t_end.is_finite() && t_end > 0.0) {
+            t_end = 10.0;
+        }
+        Ok(match ss.domain.dt() {
+            Some(dt) => {
+                let k = ((t_end / dt).ceil() as usize).clamp(1, AUTO_POINTS - 1);
+                (0..=k).map(|i| i as f64 * dt).collect()
+            }
+            None => (0..AUTO_POINTS)
+                .map(|i| t_end * i as f64 / (AUTO_POINTS - 1) as f64)
+                .collect(),
+        })
+    }
+
+    /// Frequencies for the whole model: `w`, or 1000 points spanning every channel's
+    /// automatic grid.
+    fn whole_frequencies(&self, ss: &StateSpace, w: Option<Vec<f64>>) -> ltikit::Result<Vec<f64>> {
+        if let Some(w) = w {
+            return Ok(w);
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+        for j in 0..ss.n_outputs() {
+            for i in 0..ss.n_inputs() {
+                let f = Factored::from_state_space(&ss.channel(i, j)?)?;
+                let g = auto_frequency_grid(&f, AUTO_POINTS)?;
+                if let (Some(&a), Some(&b)) = (g.first(), g.last()) {
+                    lo = lo.min(a);
+                    hi = hi.max(b);
+                }
+            }
+        }
+        if !(lo.is_finite() && lo > 0.0 && hi > lo) {
+            (lo, hi) = (1e-2, 1e2);
+        }
+        let (a, b) = (lo.log10(), hi.log10());
+        Ok((0..AUTO_POINTS)
+            .map(|i| 10f64.powf(a + (b - a) * i as f64 / (AUTO_POINTS - 1) as f64))
+            .collect())
+    }
+
+    /// The model as a state-space model (a transfer function realised; factors as a cascade).
+    /// A dead time stays on the realisation's input, so that a call that cannot take one
+    /// (a simulated response) says so instead of dropping it.
+    pub(crate) fn state_space(&self) -> ltikit::Result<StateSpace> {
+        let (ss, delay) = match &self.source {
+            Source::Plant(p) => (p.state_space()?, p.delay()),
+            Source::Factored(f) => (
+                StateSpace::from_zpk(f.zeros(), f.poles(), f.gain())?.with_domain(f.domain()),
+                f.delay(),
+            ),
+        };
+        if delay > 0.0 && !ss.has_delays() {
+            let m = ss.n_inputs();
+            return ss.with_delays(vec![delay; m], vec![]);
+        }
+        Ok(ss)
     }
 
     /// The state-space model a design (`lqr`, `lqe`, `lqg`, `place`) works on: the plant
@@ -235,38 +362,55 @@ impl Model {
             if num.is_empty() {
                 return Err(LtiError::invalid("`num`: no numbers given"));
             }
-            let p = Plant::from_coefficients(coefficients_of(&num), coefficients_of(&den), None)?;
-            p.with_domain(domain_of(dt)?)?
-                .with_delay(delay.unwrap_or(0.0))
+            // named when the name is first asked for (`name`): formatting the transfer
+            // function's text is a tenth of a small plant's whole analysis
+            let p = Plant::from_coefficients(
+                coefficients_of(&num),
+                coefficients_of(&den),
+                Some(String::new()),
+            )?;
+            // (continuous time is the default: no re-typing for dt = None)
+            let p = match dt {
+                Some(_) => p.with_domain(domain_of(dt)?)?,
+                None => p,
+            };
+            p.with_delay(delay.unwrap_or(0.0))
         })
         .map(Model::of_plant)
     }
 
     /// Zeros, poles (complex, conjugate pairs complete, listed with repetition) and gain.
     #[staticmethod]
-    #[pyo3(signature = (zeros, poles, gain, dt=None))]
+    #[pyo3(signature = (zeros, poles, gain, dt=None, delay=None))]
     fn from_zpk(
         zeros: Vec<Complex64>,
         poles: Vec<Complex64>,
         gain: f64,
         dt: Option<f64>,
+        delay: Option<f64>,
     ) -> PyResult<Model> {
         guard(|| {
-            let f = Factored::from_zpk(&roots_of(&zeros), &roots_of(&poles), gain)?;
-            Ok(f.with_domain(domain_of(dt)?))
+            let f = Factored::from_zpk(&roots_of(&zeros), &roots_of(&poles), gain)?
+                .with_domain(domain_of(dt)?);
+            match delay {
+                Some(t) => f.with_delay(t),
+                None => Ok(f),
+            }
         })
         .map(Model::of_factored)
     }
 
-    /// A state-space model from the rows of A, B, C and D (D zero when `None`).
+    /// A state-space model from the rows of A, B, C and D (D zero when `None`), with the dead
+    /// time `delay` on every input.
     #[staticmethod]
-    #[pyo3(signature = (a, b, c, d=None, dt=None))]
+    #[pyo3(signature = (a, b, c, d=None, dt=None, delay=None))]
     fn from_ss(
         a: Vec<Vec<f64>>,
         b: Vec<Vec<f64>>,
         c: Vec<Vec<f64>>,
         d: Option<Vec<Vec<f64>>>,
         dt: Option<f64>,
+        delay: Option<f64>,
     ) -> PyResult<Model> {
         guard(|| {
             let (a, b, c) = (matrix(a, "`a`")?, matrix(b, "`b`")?, matrix(c, "`c`")?);
@@ -275,9 +419,96 @@ impl Model {
                 None => DMatrix::zeros(c.nrows(), b.ncols()),
             };
             let ss = StateSpace::new(a, b, c, d)?.with_domain(domain_of(dt)?);
-            Plant::from_state_space(ss, None)
+            Plant::from_state_space(ss, None)?.with_delay(delay.unwrap_or(0.0))
         })
         .map(Model::of_plant)
+    }
+
+    /// Blocks joined by named signals (the library's `connect`, what a diagram file is read
+    /// into): each block (name, model, input signals, output signals), the summing junctions
+    /// (signal, expression such as `"r - y"`), the external inputs and the outputs; one
+    /// state-space model with the states in block order, named `BLOCK.x1`, ….
+    #[staticmethod]
+    #[pyo3(signature = (blocks, sums, inputs, outputs, name=None))]
+    #[allow(clippy::type_complexity)]
+    fn connect(
+        blocks: Vec<(String, PyRef<'_, Model>, Vec<String>, Vec<String>)>,
+        sums: Vec<(String, String)>,
+        inputs: Vec<String>,
+        outputs: Vec<String>,
+        name: Option<String>,
+    ) -> PyResult<Model> {
+        use ltikit::lti::connect::{Block, Sum, connect};
+        guard(|| {
+            let mut bs = Vec::with_capacity(blocks.len());
+            for (n, m, ins, outs) in &blocks {
+                let what = format!("block `{}`", ltikit::error::abbreviate(n));
+                let model = match &m.source {
+                    // refused with a dead time, as a diagram file's block
+                    Source::Plant(p) => ltikit::lti::connect::state_space_of(&p.model, &what)?,
+                    Source::Factored(f) if f.delay() > 0.0 => {
+                        return Err(LtiError::invalid(format!(
+                            "{what} has a dead time: it is connected exactly only as a \
+                             rational model (replace the delay by a Padé approximant)"
+                        )));
+                    }
+                    Source::Factored(_) => m.state_space()?,
+                };
+                bs.push(Block {
+                    name: n.clone(),
+                    model,
+                    inputs: ins.clone(),
+                    outputs: outs.clone(),
+                });
+            }
+            let sums = sums
+                .iter()
+                .map(|(n, e)| Sum::parse(n, e))
+                .collect::<ltikit::Result<Vec<_>>>()?;
+            let ss = connect(&bs, &sums, &inputs, &outputs)?;
+            let states = bs
+                .iter()
+                .flat_map(|b| (1..=b.model.order()).map(move |k| format!("{}.x{k}", b.name)))
+                .collect();
+            let name = name.unwrap_or_else(|| format!("diagram ({} blocks)", bs.len()));
+            let mut plant = Plant::from_state_space(ss, Some(name))?;
+            plant.signals = ltikit::lti::Signals::for_model(&plant.model, inputs, outputs, states)?;
+            Ok(plant)
+        })
+        .map(Model::of_plant)
+    }
+
+    /// A controller from its specification (`"pid:kp=2,ki=1"`, `"lead:k=1,z=1,p=10"`,
+    /// `"tf:NUM/DEN"`: the command line's `--controller`), in the domain of `dt` as a diagram
+    /// block takes it: a continuous controller in front of a discrete loop is sampled by the
+    /// specification's method (Tustin by default).
+    #[staticmethod]
+    #[pyo3(signature = (spec, dt=None))]
+    fn from_controller_spec(spec: &str, dt: Option<f64>) -> PyResult<Model> {
+        guard(|| {
+            let c = Controller::parse(spec)?;
+            let g = c.tf()?;
+            let domain = domain_of(dt)?;
+            let g = match domain.dt() {
+                Some(_) if c.is_given_in_loop_variable() => g.with_domain(domain),
+                Some(t) => g.c2d(t, c.method())?,
+                None => g,
+            };
+            Plant::from_tf(g, Some(c.to_string()))
+        })
+        .map(Model::of_plant)
+    }
+
+    /// The names of the inputs, outputs and states (empty when the model has none).
+    fn signal_names(&self) -> (Vec<String>, Vec<String>, Vec<String>) {
+        match &self.source {
+            Source::Plant(p) => (
+                p.signals.inputs.clone(),
+                p.signals.outputs.clone(),
+                p.signals.states.clone(),
+            ),
+            Source::Factored(_) => (vec![], vec![], vec![]),
+        }
     }
 
     /// A textbook model (or the seed's lattice) with parameter overrides.
@@ -313,7 +544,10 @@ impl Model {
     /// The model's name (its transfer function, the model with its parameters, the file).
     fn name(&self) -> String {
         match &self.source {
-            Source::Plant(p) => p.name.clone(),
+            Source::Plant(p) => match &p.model {
+                LtiModel::Tf(g) if p.name.is_empty() => g.to_string(),
+                _ => p.name.clone(),
+            },
             Source::Factored(f) => f.to_string(),
         }
     }
@@ -536,48 +770,178 @@ impl Model {
         Ok(d)
     }
 
-    /// The response to sampled input values `u` at the times `t` (first-order hold by
-    /// default, `hold="zoh"` for zero-order), zero initial state: y at `t`.
-    #[pyo3(signature = (u, t, hold="foh"))]
+    /// The response to sampled input values `u` (flat: one row of m values per time) at the
+    /// times `t` (first-order hold by default, `hold="zoh"` for zero-order), from the initial
+    /// state `x0` (zero when `None`; a state-space model only): every output, flat
+    /// \[output\]\[time\].
+    #[pyo3(signature = (u, t, hold="foh", x0=None))]
     fn lsim<'py>(
         &self,
         py: Python<'py>,
         u: Vec<f64>,
         t: Vec<f64>,
         hold: &str,
+        x0: Option<Vec<f64>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let y = guard(|| {
-            let hold = match hold {
-                "foh" => Hold::First,
-                "zoh" => Hold::Zero,
-                other => {
-                    return Err(LtiError::invalid(format!(
-                        "`hold` must be \"zoh\" or \"foh\" (found \"{}\")",
-                        ltikit::error::abbreviate(other)
-                    )));
-                }
-            };
-            if u.len() != t.len() {
-                return Err(LtiError::invalid(format!(
-                    "`u` has {} values and `t` {}: one input value per time",
-                    u.len(),
-                    t.len()
-                )));
+            let hold = mimo::hold_of(hold)?;
+            match &x0 {
+                Some(x0) => mimo::lsim(self.state_space_for_x0()?, &u, t, hold, Some(x0)),
+                None => mimo::lsim(&self.state_space()?, &u, t, hold, None),
             }
-            let ss = self.state_space()?;
-            if ss.n_inputs() != 1 || ss.n_outputs() != 1 {
-                return Err(LtiError::invalid(
-                    "this response takes one input and one output: choose a channel G[out, in]",
-                ));
-            }
-            let sig = InputSignal {
-                u: u.iter().map(|&x| vec![x]).collect(),
-                t,
-            };
-            let r = ss.lsim(&sig, hold, None, false)?;
-            Ok(r.y.into_iter().next().unwrap_or_default())
         })?;
         Ok(array(py, y))
+    }
+
+    /// The free response from the initial state `x0` at the times `t` (a state-space model
+    /// only): every output, flat \[output\]\[time\]; the times (automatic when `None`).
+    #[pyo3(signature = (x0, t=None))]
+    fn initial<'py>(
+        &self,
+        py: Python<'py>,
+        x0: Vec<f64>,
+        t: Option<Vec<f64>>,
+    ) -> PyResult<Samples<'py>> {
+        let (t, y) = guard(|| {
+            let ss = self.state_space_for_x0()?;
+            let t = self.whole_times(ss, t)?;
+            let y = mimo::initial(ss, &x0, &t)?;
+            Ok((t, y))
+        })?;
+        Ok((array(py, t), array(py, y)))
+    }
+
+    // ---- Routh and Jury -----------------------------------------------------------------
+
+    /// The Routh–Hurwitz table of the characteristic polynomial (of D + K·N with `gain`),
+    /// the root counts (exact for the coefficients as typed) and, with `gains`, the exact set
+    /// of gains K for which the unity negative-feedback loop is stable (a dict).
+    #[pyo3(signature = (gain=None, gains=true))]
+    fn routh<'py>(
+        &self,
+        py: Python<'py>,
+        gain: Option<f64>,
+        gains: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let doc = guard(|| {
+            let (g, typed) = self.transfer_function("routh")?;
+            tables::routh_doc(&g, typed, gain, gains)
+        })?;
+        to_py(py, &doc)
+    }
+
+    /// The Jury table of the characteristic polynomial in z (of D + K·N with `gain`), the
+    /// counts inside, on and outside the unit circle and, with `gains`, the exact stabilising
+    /// gains (a dict).
+    #[pyo3(signature = (gain=None, gains=true))]
+    fn jury<'py>(
+        &self,
+        py: Python<'py>,
+        gain: Option<f64>,
+        gains: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let doc = guard(|| {
+            let (g, typed) = self.transfer_function("jury")?;
+            tables::jury_doc(&g, typed, gain, gains)
+        })?;
+        to_py(py, &doc)
+    }
+
+    // ---- the whole model (any numbers of inputs and outputs) ----------------------------
+
+    /// The whole-model analysis of the state-space model (`analyze` of a state-space model:
+    /// eigenvalues with multiplicities, controllability, observability, minimal order,
+    /// invariant zeros with the Kronecker structure, dc gains, stability, modes) as a dict.
+    fn whole_analysis<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        ser_to_py(py, self.whole()?)
+    }
+
+    /// The poles of the whole model: the eigenvalues of A, with repetition — the analysis's
+    /// (snapped) values when it has been computed, otherwise the eigenvalues alone (the whole
+    /// analysis is ten times the cost), sorted as the analysis sorts them.
+    fn whole_poles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
+        if let Some(Ok(a)) = self.whole.get() {
+            return Ok(carray(py, mimo::poles(a)));
+        }
+        let mut ev = guard(|| self.state_space()?.eigenvalues())?;
+        ev.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
+        Ok(carray(py, ev))
+    }
+
+    /// The transmission zeros of the whole model (with repetition) and the Kronecker
+    /// structure of the minimal system pencil (a dict).
+    fn whole_zeros<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyArray1<Complex64>>, Bound<'py, PyAny>)> {
+        let (z, doc) = guard(|| mimo::zeros(&self.state_space()?))?;
+        Ok((carray(py, z), to_py(py, &doc)?))
+    }
+
+    /// The dc-gain matrix, flat row by row (`inf` where a channel has a pole at 0): from the
+    /// analysis once it exists, otherwise directly when A is clearly nonsingular (no pole at
+    /// or near the dc point: the analysis would give the same finite values).
+    fn whole_dc_gain<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        if self.whole.get().is_none() {
+            let ss = guard(|| self.state_space())?;
+            if !ss.has_delays()
+                && let Some(g) = guard(|| mimo::dc_gain_direct(&ss))?
+            {
+                return Ok(array(py, g));
+            }
+        }
+        Ok(array(py, mimo::dc_gain(self.whole()?)))
+    }
+
+    /// Internal and per-channel BIBO stability of the whole model (a dict).
+    fn whole_stability<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &mimo::stability(self.whole()?))
+    }
+
+    /// The frequency response of every channel: w, then |G|, the continuous phase (degrees)
+    /// and G, each flat \[output\]\[input\]\[frequency\].
+    #[allow(clippy::type_complexity)]
+    #[pyo3(signature = (w=None))]
+    fn whole_freq<'py>(
+        &self,
+        py: Python<'py>,
+        w: Option<Vec<f64>>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<Complex64>>,
+    )> {
+        let (w, (mag, phase, g)) = guard(|| {
+            let ss = self.state_space()?;
+            let w = self.whole_frequencies(&ss, w)?;
+            let r = mimo::freq(&ss, &w)?;
+            Ok((w, r))
+        })?;
+        Ok((
+            array(py, w),
+            array(py, mag),
+            array(py, phase),
+            carray(py, g),
+        ))
+    }
+
+    /// The unit-step (`impulse=True`: unit-impulse) response of every output to each input in
+    /// turn: t, and y flat \[output\]\[input\]\[time\].
+    #[pyo3(signature = (t=None, impulse=false))]
+    fn whole_step<'py>(
+        &self,
+        py: Python<'py>,
+        t: Option<Vec<f64>>,
+        impulse: bool,
+    ) -> PyResult<Samples<'py>> {
+        let (t, y) = guard(|| {
+            let ss = self.state_space()?;
+            let t = self.whole_times(&ss, t)?;
+            let y = mimo::per_input(&ss, &t, impulse)?;
+            Ok((t, y))
+        })?;
+        Ok((array(py, t), array(py, y)))
     }
 
     /// The step metrics (MATLAB `stepinfo`) as `analyze --json` writes them, or `None` with

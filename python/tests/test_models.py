@@ -68,8 +68,10 @@ def test_mimo_channels_by_indexing():
     np.testing.assert_array_equal(g[1, 1].analyze().cancelled, [-1])
     assert abs(g[1, 1].dc_gain() - 2.0 / 3.0) < 1e-14
     assert g[0, 1].dc_gain() == 0.0  # no path from u2 to y1
+    # the whole model's poles are A's eigenvalues; SISO-only analyses still ask for a channel
+    np.testing.assert_array_equal(g.poles(), [-1, -3])
     with pytest.raises(lk.LtiError, match="choose a channel"):
-        g.poles()
+        g.margins()
     with pytest.raises(lk.LtiError, match="does not exist"):
         g[2, 0]
 
