@@ -319,9 +319,11 @@ fn rayleigh_damped_channel_zeros_in_closed_form() {
     // particle 10 and after particle 20; the ten bonds between contribute (−1)¹⁰), so H has the
     // zeros w = −4 sin²(πj/20), j = 1…9, and w = −4 sin²(πj/90), j = 1…44, gain 1 and relative
     // degree 64 − 53 = 11. Hence G has the 106 zeros of s² + (α − βw)s − w = 0, a 10-fold zero
-    // at −1/β = −100, relative degree 2·64 − 106 − 10 = 12 and gain β¹⁰ = 1e-20. (The pencil of
-    // the 128-state model cannot see this: its first non-zero Markov parameter is 1e-20 of the
-    // scale; it found relative degree 16 and six zeros scattered up to |s| = 60.)
+    // at −1/β = −100, relative degree 2·64 − 106 − 10 = 12 and gain β¹⁰ = 1e-20. (A normwise
+    // rank decision on the pencil of the 128-state model cannot see this: its first non-zero
+    // Markov parameter is 1e-20 of the scale; it found relative degree 16 and six zeros
+    // scattered up to |s| = 60. The general path now decides it componentwise: see
+    // tests/kronecker.rs.)
     let model = lattice(64, Boundary::Fixed, 0.02, 0.01, 10, 20);
     let f = Factored::from_state_space(&model).unwrap();
     assert_eq!(f.relative_degree(), Some(12));
