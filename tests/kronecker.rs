@@ -560,6 +560,7 @@ fn minimal_realisation_of_defective_chains_adversarial() {
     ];
     let mut checked = 0;
     let mut failures: Vec<String> = Vec::new();
+    let mut worst_g = 0.0f64;
     for &lambda in &[0.0, -1.0, -1e3, -1e-6] {
         for &s in &[1.0, 1e-6, 1e6] {
             let mut a0 = DMatrix::from_diagonal_element(5, 5, lambda);
@@ -577,11 +578,27 @@ fn minimal_realisation_of_defective_chains_adversarial() {
                     let obs = observability_staircase(&a, &b, &c, None, false).unwrap();
                     let mr = minimal_realization(&a, &b, &c, &d, None).unwrap();
                     let got = (ctrl.dim, obs.dim, mr.order());
-                    if got != *want || mr.uncontrollable.len() + mr.unobservable.len() != 5 - want.2
-                    {
+                    // behind an orthogonal similarity the structure is exact; behind κ = 1e4
+                    // the data is the structure perturbed by ~κε relative (T·T⁻¹ ≠ I in
+                    // floating point), which can make the hidden chains controllable or
+                    // observable to the rank tolerance — then the claim is consistency: the
+                    // minimal order within both dimensions and at least the McMillan degree,
+                    // every removed mode listed, and G unchanged (checked below).
+                    let listed = mr.uncontrollable.len() + mr.unobservable.len();
+                    let bad = if kappa == 1.0 {
+                        got != *want || listed != 5 - want.2
+                    } else {
+                        mr.order() > ctrl.dim.min(obs.dim)
+                            || mr.order() < want.2
+                            || listed != 5 - mr.order()
+                    };
+                    let g_err = transfer_mismatch(&a0, &b0, &c0, &mr, 2.0 * (lambda.abs() + s));
+                    worst_g = worst_g.max(g_err);
+                    if bad || g_err > 1e-9 {
                         failures.push(format!(
                             "case {ci}, λ = {lambda}, s = {s}, {kind}: got {got:?}, want \
-                             {want:?}; uncontrollable {:?}, unobservable {:?}",
+                             {want:?}; G mismatch {g_err:.1e}; uncontrollable {:?}, \
+                             unobservable {:?}",
                             mr.uncontrollable, mr.unobservable
                         ));
                     }
@@ -591,6 +608,10 @@ fn minimal_realisation_of_defective_chains_adversarial() {
         }
     }
     assert_eq!(checked, 4 * 3 * 6 * 2);
+    eprintln!(
+        "defective chains: {checked} combinations, G of the minimal realisation against the \
+         exact structure: worst {worst_g:.1e} (of ‖C‖‖B‖/|σ − λ|)"
+    );
     assert!(
         failures.is_empty(),
         "{} of {checked}:\n{}",
@@ -618,13 +639,67 @@ fn minimal_realisation_of_defective_chains_adversarial() {
             let ctrl = controllability_staircase(&a, &b, &c, None, false).unwrap();
             let obs = observability_staircase(&a, &b, &c, None, false).unwrap();
             let mr = minimal_realization(&a, &b, &c, &d, None).unwrap();
-            assert_eq!(
-                (ctrl.dim, obs.dim, mr.order()),
-                (4, 4, 4),
-                "±2j chain, s = {s}, {kind}: uncontrollable {:?}, unobservable {:?}",
+            let got = (ctrl.dim, obs.dim, mr.order());
+            let listed = mr.uncontrollable.len() + mr.unobservable.len();
+            // Exact for s ≤ 1 behind an orthogonal similarity. For s = 1e3 the staircase counts
+            // all 6 states controllable and observable (‖A‖ ≈ 1.4e3, eigenvalues ±2j: the
+            // Krylov blocks of the perturbed chain stay above the rank tolerance although the
+            // system is within ε‖A‖ of one with 4 — the staircase's known weakness, Paige
+            // 1981): consistency and G are checked there, as for κ = 1e4.
+            let ok = if kappa == 1.0 && s <= 1.0 {
+                got == (4, 4, 4) && listed == 2
+            } else {
+                mr.order() <= ctrl.dim.min(obs.dim) && mr.order() >= 4 && listed == 6 - mr.order()
+            };
+            let g_err = transfer_mismatch(&a0, &b0, &c0, &mr, 2.0 * (w + s));
+            assert!(
+                ok && g_err <= 1e-9,
+                "±2j chain, s = {s}, {kind}: got {got:?}, G mismatch {g_err:.1e}; uncontrollable \
+                 {:?}, unobservable {:?}",
                 mr.uncontrollable,
                 mr.unobservable
             );
         }
     }
+}
+
+/// The largest difference between G(σ) of the exact structure (a0, b0, c0) and of the
+/// minimal realisation over σ = λ̄ + ρ·(1 + j)·{1, 3}, λ̄ the mean eigenvalue of a0 and ρ
+/// the given radius, relative to ‖C‖·‖B‖/|σ − λ̄| (Frobenius norms; complex LU solves). ρ of the
+/// order of ‖A‖ keeps σ outside the region where a Jordan chain's computed eigenvalues
+/// scatter (~(ε‖A‖)^(1/k)·‖A‖^(1−1/k)), where no realisation's G is determined.
+fn transfer_mismatch(
+    a0: &DMatrix<f64>,
+    b0: &DMatrix<f64>,
+    c0: &DMatrix<f64>,
+    mr: &ltikit::numeric::linalg::MinimalRealization,
+    rho: f64,
+) -> f64 {
+    let eval = |a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>, s: Complex64| {
+        let n = a.nrows();
+        if n == 0 {
+            return DMatrix::<Complex64>::zeros(c.nrows(), b.ncols());
+        }
+        let m = DMatrix::<Complex64>::from_fn(n, n, |i, j| {
+            let x = Complex64::new(-a[(i, j)], 0.0);
+            if i == j { x + s } else { x }
+        });
+        let x = m
+            .lu()
+            .solve(&b.map(|x| Complex64::new(x, 0.0)))
+            .expect("σ is not an eigenvalue");
+        c.map(|x| Complex64::new(x, 0.0)) * x
+    };
+    let mean = a0.trace() / a0.nrows() as f64;
+    let mut worst = 0.0f64;
+    for k in [1.0, 3.0] {
+        let s = Complex64::new(mean + k * rho, k * rho);
+        let g0 = eval(a0, b0, c0, s);
+        let g1 = eval(&mr.a, &mr.b, &mr.c, s);
+        // relative to ‖C‖·‖B‖/|σ − λ̄|, the size of the terms G sums (G itself is far smaller
+        // where the chain's superdiagonal is small: 1e-12/σ³)
+        let terms = c0.norm() * b0.norm() / (s - mean).norm();
+        worst = worst.max((g1 - &g0).norm() / terms);
+    }
+    worst
 }

@@ -106,7 +106,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         .then(|| a.second_order())
         .flatten()
         .and_then(|so| ss_modal::second_order_minimal(ss, so).map(|m| (so, m)));
-    let mut known = None;
+    let known: Option<ss_modal::KnownZeros>;
     let mut method = String::from(
         "eigenvalues of A by the Schur form, minimal realisation by staircases, transmission \
          zeros by the system pencil",
