@@ -150,7 +150,11 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             known = finer_structure(ss, &minimal, &removed)?;
             if let Some(k) = &known {
                 method = format!(
-                    "eigenvalues of A by the Schur form, minimal realisation by staircases;                      relative degree {} from the model's Markov parameters (C·A^k·B above its                      componentwise rounding bound, below the pencil's normwise tolerance),                      zeros by the system pencil reduced to that degree and refined by Newton                      on G(s) of the minimal realisation",
+                    "eigenvalues of A by the Schur form, minimal realisation by staircases; \
+                     relative degree {} from the model's Markov parameters (C·A^k·B above \
+                     its componentwise rounding bound, below the pencil's normwise \
+                     tolerance), zeros by the system pencil reduced to that degree and \
+                     refined by Newton on G(s) of the minimal realisation",
                     k.r
                 );
             }
