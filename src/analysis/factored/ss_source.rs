@@ -106,7 +106,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         .then(|| a.second_order())
         .flatten()
         .and_then(|so| ss_modal::second_order_minimal(ss, so).map(|m| (so, m)));
-    let mut known = None;
+    let known: Option<ss_modal::KnownZeros>;
     let mut method = String::from(
         "eigenvalues of A by the Schur form, minimal realisation by staircases, transmission \
          zeros by the system pencil",
@@ -147,6 +147,17 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             let Some(st) = st else {
                 return finish(Vec::new(), minimal, reduced, Vec::new(), None, "no states");
             };
+            known = finer_structure(ss, &minimal, &removed)?;
+            if let Some(k) = &known {
+                method = format!(
+                    "eigenvalues of A by the Schur form, minimal realisation by staircases; \
+                     relative degree {} from the model's Markov parameters (C·A^k·B above \
+                     its componentwise rounding bound, below the pencil's normwise \
+                     tolerance), zeros by the system pencil reduced to that degree and \
+                     refined by Newton on G(s) of the minimal realisation",
+                    k.r
+                );
+            }
             // the reduced poles and the removed modes are eigenvalues of A: its values
             let ev = Eigenvalues::new(st, n);
             let reduced = reduced
@@ -159,6 +170,33 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
     };
     let poles = eigenvalues.roots();
     finish(poles, minimal, reduced_poles, removed, known, &method)
+}
+
+/// The structure of a single channel that the pencil's normwise rank decisions miss: when
+/// the model's Markov parameters, decided against their componentwise rounding bound, give a
+/// lower relative degree than the reduction of the minimal realisation, that degree, its
+/// Markov parameter and the zeros refined on the minimal realisation
+/// (`numeric::linalg::componentwise`); `None` otherwise (the normwise results stand).
+fn finer_structure(
+    ss: &StateSpace,
+    minimal: &MinimalRealization,
+    removed: &[Complex64],
+) -> Result<Option<ss_modal::KnownZeros>> {
+    use crate::numeric::linalg::componentwise::{
+        componentwise_relative_degree, refined_channel_zeros,
+    };
+    let Some((r, gain)) = componentwise_relative_degree(&ss.a, &ss.b, &ss.c, &ss.d) else {
+        return Ok(None);
+    };
+    let normwise = relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?;
+    if normwise.r.is_none_or(|rn| r >= rn) {
+        return Ok(None);
+    }
+    let response = HessenbergResponse::new(&minimal.a, &minimal.b, &minimal.c, &minimal.d)?;
+    let Some(zeros) = refined_channel_zeros(&ss.a, &ss.b, &ss.c, r, removed, &response)? else {
+        return Ok(None);
+    };
+    Ok(Some(ss_modal::KnownZeros { zeros, r, gain }))
 }
 
 /// The pole–zero part from the poles, the minimal realisation, its poles and the removed

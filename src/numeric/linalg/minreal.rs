@@ -8,7 +8,13 @@
 //! controllable but not observable). What is left is minimal, and it has the same transfer
 //! matrix: only exactly decoupled (to the rank tolerance) parts are removed, by orthogonal
 //! similarities. A mode that is both uncontrollable and unobservable is reported among the
-//! uncontrollable ones. The removed modes are what a transfer function would show as
+//! uncontrollable ones. When the observability staircase of the whole system finds fewer
+//! observable states than that order's result, the other order (observable part, then its
+//! controllable part) is computed too and the smaller realisation kept (its modes both
+//! unobservable and uncontrollable are reported as unobservable): rank decisions in different
+//! coordinates can disagree for a defective eigenvalue behind an ill-conditioned
+//! similarity, and the minimal order must not exceed the observable (or controllable)
+//! dimension that a report states beside it. The removed modes are what a transfer function would show as
 //! cancelled pole–zero pairs.
 //!
 //! The second staircase works on a subsystem the first computed, so its rank decisions see
@@ -44,7 +50,7 @@ pub struct MinimalRealization {
     pub uncontrollable: Vec<Complex64>,
     /// Eigenvalues of the removed unobservable (controllable) part.
     pub unobservable: Vec<Complex64>,
-    /// Dimension of the controllable part (before the observability step).
+    /// Dimension of the controllable part: n less the uncontrollable modes listed.
     pub n_controllable: usize,
     /// The absolute rank tolerances of the two staircases.
     pub abs_tol: (f64, f64),
@@ -85,6 +91,34 @@ pub fn minimal_realization(
     tol: Option<f64>,
 ) -> Result<MinimalRealization> {
     super::checks::check_system(a, b, c, d)?;
+    let first = controllable_then_observable(a, b, c, d, tol)?;
+    // The observability staircase of the whole system (what a report states as its
+    // observability rank) decides its ranks in other coordinates than the second staircase
+    // above; with a defective eigenvalue behind an ill-conditioned similarity the two can
+    // disagree (issue 24: observable rank 2 of 5, yet minimal order 5 and no unobservable
+    // mode). The other order — observable part first, then its controllable part — is as
+    // valid; the smaller realisation is kept, so the order never exceeds either rank.
+    let obs =
+        controllability_staircase(&a.transpose(), &c.transpose(), &b.transpose(), tol, false)?;
+    if first.order() <= obs.dim {
+        return Ok(first);
+    }
+    let second = observable_then_controllable(a.nrows(), d, tol, obs)?;
+    Ok(if second.order() < first.order() {
+        second
+    } else {
+        first
+    })
+}
+
+/// `TB01PD`'s order: the controllable part, then its observable part.
+fn controllable_then_observable(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    tol: Option<f64>,
+) -> Result<MinimalRealization> {
     let ctrl = controllability_staircase(a, b, c, tol, false)?;
     let nc = ctrl.dim;
     let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;
@@ -116,6 +150,35 @@ pub fn minimal_realization(
         uncontrollable,
         unobservable,
         n_controllable: nc,
+        abs_tol: (ctrl.abs_tol, obs.abs_tol),
+    })
+}
+
+/// The other order: the observable part (`obs`, the staircase of the dual of the whole
+/// system), then its controllable part. A mode both unobservable and uncontrollable is then
+/// listed as unobservable.
+fn observable_then_controllable(
+    n: usize,
+    d: &DMatrix<f64>,
+    tol: Option<f64>,
+    obs: super::staircase::Staircase,
+) -> Result<MinimalRealization> {
+    let no = obs.dim;
+    let unobservable = schur_eigenvalues(&obs.removed_block())?;
+    let ao = obs.a.view((0, 0), (no, no)).transpose();
+    let bo = obs.c.columns(0, no).transpose();
+    let co = obs.b.rows(0, no).transpose();
+    let ctrl = controllability_staircase(&ao, &bo, &co, tol, false)?;
+    let nc = ctrl.dim;
+    let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;
+    Ok(MinimalRealization {
+        a: ctrl.a.view((0, 0), (nc, nc)).clone_owned(),
+        b: ctrl.b.rows(0, nc).clone_owned(),
+        c: ctrl.c.columns(0, nc).clone_owned(),
+        d: d.clone(),
+        n_controllable: n - uncontrollable.len(),
+        uncontrollable,
+        unobservable,
         abs_tol: (ctrl.abs_tol, obs.abs_tol),
     })
 }

@@ -36,6 +36,12 @@
 //! is the relative degree and the product of the compressed norms the first non-zero
 //! Markov parameter ([`super::markov`]).
 //!
+//! A normwise tolerance speaks for every system within that distance, including those with
+//! a non-zero where the model has an exact zero: a Markov parameter far below it (the damped
+//! lattice's C·A^11·B = 1e-20 with ‖A‖ ≈ 4) is called zero. The factored form of a single
+//! channel decides its relative degree componentwise instead and forces this reduction to it
+//! (`componentwise.rs`, internal).
+//!
 //! Invariant zeros include the decoupling zeros (uncontrollable and unobservable modes);
 //! [`transmission_zeros`] are the invariant zeros of the minimal realisation.
 
@@ -157,14 +163,31 @@ pub(crate) fn scale_system(s: &Sys) -> (Sys, (i32, i32, i32)) {
 }
 
 /// One full reduction (steps 1–3 of the module docs until D has full row rank).
-pub(crate) fn reduce(mut s: Sys, tol: f64) -> (Sys, ReduceLog) {
+pub(crate) fn reduce(s: Sys, tol: f64) -> (Sys, ReduceLog) {
+    reduce_with(s, |_, _| tol)
+}
+
+/// Which block a rank decision of the reduction is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Block {
+    /// D (its rank is ρ).
+    D,
+    /// C₂ (its rank is μ).
+    C2,
+}
+
+/// [`reduce`] with the absolute rank tolerance of every decision given by `tol(pass, block)`
+/// (pass 0-based): the same steps, for a caller that has decided some ranks otherwise (see
+/// [`siso_zeros_of_degree`]).
+pub(crate) fn reduce_with(mut s: Sys, tol: impl Fn(usize, Block) -> f64) -> (Sys, ReduceLog) {
     let mut log = ReduceLog::default();
     loop {
         let (n, m, p) = (s.a.nrows(), s.b.ncols(), s.c.nrows());
         if p == 0 {
             return (s, log);
         }
-        let f = rank_revealing_qr(&s.d, tol);
+        let pass = log.passes.len();
+        let f = rank_revealing_qr(&s.d, tol(pass, Block::D));
         let rho = f.rank;
         log.passes.push((p, rho, 0));
         for r in &f.reflectors {
@@ -180,7 +203,7 @@ pub(crate) fn reduce(mut s: Sys, tol: f64) -> (Sys, ReduceLog) {
             return (s, log);
         }
         let c2t = s.c.rows(rho, p - rho).transpose();
-        let g = rank_revealing_qr(&c2t, tol);
+        let g = rank_revealing_qr(&c2t, tol(pass, Block::C2));
         let mu = g.rank;
         if let Some(last) = log.passes.last_mut() {
             last.2 = mu;
@@ -354,6 +377,55 @@ pub fn invariant_zeros(
         tol: rel,
         structure,
     })
+}
+
+/// The n − r invariant zeros of a single-input single-output system whose relative degree r
+/// was decided elsewhere (by `super::componentwise`, on Markov parameters below this
+/// reduction's normwise tolerance): the reduction takes r steps with D taken as zero and C₂ of
+/// rank 1 unless exactly zero, and stops with D_f of rank 1 unless exactly zero. The
+/// zeros are the eigenvalues of A_f − B_f·D_f⁻¹·C_f as computed (no clustering: the caller
+/// refines them). `None` when the reduction cannot take those steps (an exactly zero C₂ or
+/// D_f: r is not the realisation's) or r > n.
+pub(crate) fn siso_zeros_of_degree(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    r: usize,
+) -> Result<Option<Vec<Complex64>>> {
+    let n = a.nrows();
+    if r == 0 || r > n || b.ncols() != 1 || c.nrows() != 1 {
+        return Ok(None);
+    }
+    let sys = Sys {
+        a: a.clone(),
+        b: b.clone(),
+        c: c.clone(),
+        d: DMatrix::zeros(1, 1),
+    };
+    let (scaled, (ea, _, _)) = scale_system(&sys);
+    let (f, log) = reduce_with(scaled, |pass, block| match block {
+        Block::D if pass < r => f64::INFINITY,
+        _ => 0.0,
+    });
+    let steps_ok =
+        log.steps.len() == r && log.steps.iter().all(|&(rho, mu, _)| (rho, mu) == (0, 1));
+    if !steps_ok || f.d.shape() != (1, 1) || f.d[(0, 0)] == 0.0 {
+        return Ok(None);
+    }
+    let nf = f.a.nrows();
+    if nf == 0 {
+        return Ok(Some(Vec::new()));
+    }
+    let m_f = &f.a - &f.b * (&f.c / f.d[(0, 0)]);
+    if m_f.iter().any(|x| !x.is_finite()) {
+        return Ok(None);
+    }
+    let ev = super::schur::schur_eigenvalues(&m_f)?;
+    Ok(Some(
+        ev.iter()
+            .map(|z| Complex64::new(ldexp(z.re, ea), ldexp(z.im, ea)))
+            .collect(),
+    ))
 }
 
 /// Transmission zeros: the invariant zeros of the [minimal realisation](minimal_realization)
