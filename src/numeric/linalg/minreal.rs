@@ -18,21 +18,19 @@
 //! cancelled pole–zero pairs.
 //!
 //! The second staircase works on a subsystem the first computed, so its rank decisions see
-//! the first one's rounding on top of the tolerance. The observability rank of the whole
-//! system (one staircase, one decision) bounds the observable dimension of the controllable
-//! part, and caps it where the excess is rounding (`staircase::CAP_SLACK`). On harold's
-//! defective example (eigenvalue −6 of algebraic multiplicity 3, geometric 2; G = 2(s + 7)/
-//! (s + 6)² in every column) the second staircase alone kept the unobservable mode 6 behind a
-//! block of 6.7e-14 against a tolerance of 2.4e-14: minimal order 3 instead of 2. SLICOT's
-//! `TB01PD` (python-control's `minreal`) gives 3 there too.
+//! the first one's rounding on top of the tolerance. The observability staircase of the whole
+//! system bounds the observable dimension; when the first order exceeds it, the other order
+//! (observable part first) is computed and the smaller kept. On harold's defective example
+//! (eigenvalue −6 of algebraic multiplicity 3, geometric 2; G = 2(s + 7)/(s + 6)² in every
+//! column) the second staircase alone kept the unobservable mode 6 behind a block of 6.7e-14
+//! against a tolerance of 2.4e-14: minimal order 3 instead of 2, as SLICOT's `TB01PD`
+//! (python-control's `minreal`) gives.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use super::schur::schur_eigenvalues;
-use super::staircase::{
-    CAP_SLACK, controllability_staircase, observability_staircase, staircase_with_cap,
-};
+use super::staircase::staircase;
 use crate::error::Result;
 
 /// A minimal realisation and what was removed to get it.
@@ -91,6 +89,12 @@ pub fn minimal_realization(
     tol: Option<f64>,
 ) -> Result<MinimalRealization> {
     super::checks::check_system(a, b, c, d)?;
+    // Balanced once (TB01ID, as TB01PD does); every staircase below works on these
+    // coordinates without balancing again, so the second stage sees the first one's rounding
+    // at the same scale as its tolerance.
+    let (mut a, mut b, mut c) = (a.clone(), b.clone(), c.clone());
+    crate::numeric::balance::balance_system(&mut a, &mut b, &mut c);
+    let (a, b, c) = (&a, &b, &c);
     let first = controllable_then_observable(a, b, c, d, tol)?;
     // The observability staircase of the whole system (what a report states as its
     // observability rank) decides its ranks in other coordinates than the second staircase
@@ -98,8 +102,14 @@ pub fn minimal_realization(
     // disagree (issue 24: observable rank 2 of 5, yet minimal order 5 and no unobservable
     // mode). The other order — observable part first, then its controllable part — is as
     // valid; the smaller realisation is kept, so the order never exceeds either rank.
-    let obs =
-        controllability_staircase(&a.transpose(), &c.transpose(), &b.transpose(), tol, false)?;
+    let obs = staircase(
+        &a.transpose(),
+        &c.transpose(),
+        &b.transpose(),
+        tol,
+        false,
+        false,
+    )?;
     if first.order() <= obs.dim {
         return Ok(first);
     }
@@ -119,27 +129,21 @@ fn controllable_then_observable(
     d: &DMatrix<f64>,
     tol: Option<f64>,
 ) -> Result<MinimalRealization> {
-    let ctrl = controllability_staircase(a, b, c, tol, false)?;
+    let ctrl = staircase(a, b, c, tol, false, false)?;
     let nc = ctrl.dim;
     let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;
     let ac = ctrl.a.view((0, 0), (nc, nc)).clone_owned();
     let bc = ctrl.b.rows(0, nc).clone_owned();
     let cc = ctrl.c.columns(0, nc).clone_owned();
-    // Observable part of the controllable part: the controllable part of its dual. Its
-    // dimension cannot exceed the observability rank of the whole system (O·Z = [O_c *]),
-    // a single-stage decision: the cap keeps the rounding of the first staircase from
-    // holding an unobservable mode in (harold's defective example: observability rank 2,
-    // minimal order 3 without it).
-    let dual = (ac.transpose(), cc.transpose(), bc.transpose());
-    let mut obs = staircase_with_cap(&dual.0, &dual.1, &dual.2, tol, false, None)?;
-    // Only a decision within CAP_SLACK of the tolerance can be capped: then (and only then)
-    // the whole system's observability rank is computed.
-    if obs.smallest_pivot <= CAP_SLACK * obs.abs_tol {
-        let cap = observability_staircase(a, b, c, tol, false)?.dim;
-        if cap < obs.dim {
-            obs = staircase_with_cap(&dual.0, &dual.1, &dual.2, tol, false, Some(cap))?;
-        }
-    }
+    // Observable part of the controllable part: the controllable part of its dual.
+    let obs = staircase(
+        &ac.transpose(),
+        &cc.transpose(),
+        &bc.transpose(),
+        tol,
+        false,
+        false,
+    )?;
     let no = obs.dim;
     let unobservable = schur_eigenvalues(&obs.removed_block())?;
     Ok(MinimalRealization {
@@ -168,7 +172,7 @@ fn observable_then_controllable(
     let ao = obs.a.view((0, 0), (no, no)).transpose();
     let bo = obs.c.columns(0, no).transpose();
     let co = obs.b.rows(0, no).transpose();
-    let ctrl = controllability_staircase(&ao, &bo, &co, tol, false)?;
+    let ctrl = staircase(&ao, &bo, &co, tol, false, false)?;
     let nc = ctrl.dim;
     let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;
     Ok(MinimalRealization {

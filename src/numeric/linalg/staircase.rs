@@ -60,10 +60,6 @@ pub struct Staircase {
     pub blocks: Vec<usize>,
     /// The absolute rank tolerance used (tol·‖[A B]‖_F).
     pub abs_tol: f64,
-    /// The smallest pivot accepted as non-zero (the last diagonal entry of each block's
-    /// pivoted QR); ∞ when no block was kept. Its ratio to `abs_tol` says how close the
-    /// closest rank decision was.
-    pub smallest_pivot: f64,
 }
 
 impl Staircase {
@@ -104,40 +100,33 @@ pub fn controllability_staircase(
     tol: Option<f64>,
     want_z: bool,
 ) -> Result<Staircase> {
-    staircase_with_cap(a, b, c, tol, want_z, None)
+    staircase(a, b, c, tol, want_z, true)
 }
 
-/// How far beyond the rank tolerance a block may be that a cap on the dimension sets to
-/// zero: the second staircase of a minimal realisation works on a subsystem computed by the
-/// first, whose rounding can lift an exactly zero block a few times above n²·ε·‖·‖ (2.8× on
-/// harold's defective example); 1e3 keeps the decision at the rounding level.
-pub(crate) const CAP_SLACK: f64 = 1e3;
-
-/// The controllability staircase with an upper bound `cap` on the controllable dimension,
-/// known from an independent single-stage decision (for the second stage of a minimal
-/// realisation: the observability rank of the whole system bounds the observable dimension
-/// of its controllable part). Where the staircase would pass the cap, the trailing part of
-/// the block is set to zero if its norm is at most [`CAP_SLACK`] times the tolerance (a
-/// rounding-level perturbation); otherwise the cap is ignored and the staircase decides alone.
-pub(crate) fn staircase_with_cap(
+/// The controllability staircase, with or without the balancing (a caller that balanced the
+/// system once — the minimal realisation, for both of its staircases — passes `false`).
+pub(crate) fn staircase(
     a: &DMatrix<f64>,
     b: &DMatrix<f64>,
     c: &DMatrix<f64>,
     tol: Option<f64>,
     want_z: bool,
-    cap: Option<usize>,
+    balance: bool,
 ) -> Result<Staircase> {
     let d = DMatrix::zeros(c.nrows(), b.ncols());
     let (n, m, p) = super::checks::check_system(a, b, c, &d)?;
     let mut a = a.clone();
     let mut b = b.clone();
     let mut c = c.clone();
-    let scaling = crate::numeric::balance::balance_system(&mut a, &mut b, &mut c);
+    let scaling = if balance {
+        crate::numeric::balance::balance_system(&mut a, &mut b, &mut c)
+    } else {
+        vec![1.0; n]
+    };
     let mut z = want_z.then(|| DMatrix::<f64>::identity(n, n));
     let norm = super::norms::frobenius(a.iter().chain(b.iter()));
     let abs_tol = tol.unwrap_or_else(|| default_tol(n)) * norm;
     let mut blocks = Vec::new();
-    let mut smallest_pivot = f64::INFINITY;
     let mut r0 = 0; // first row not yet in the staircase
     let mut c_prev = 0; // first column of the block being compressed (in A)
     while r0 < n {
@@ -147,19 +136,8 @@ pub(crate) fn staircase_with_cap(
             a.view((r0, c_prev), (n - r0, r0 - c_prev)).clone_owned()
         };
         let f = rank_revealing_qr(&cand, abs_tol);
-        let mut rho = f.rank;
-        if let Some(cap) = cap.filter(|&cap| r0 + rho > cap) {
-            // Keep only the cap's worth of this block if what is dropped is rounding.
-            let keep = cap.saturating_sub(r0);
-            let dropped = super::norms::frobenius(f.r.rows(keep, f.r.nrows() - keep).iter());
-            if dropped <= CAP_SLACK * abs_tol {
-                rho = keep;
-            }
-        }
-        if rho > 0 {
-            smallest_pivot = smallest_pivot.min(f.r[(rho - 1, rho - 1)].abs());
-        }
-        for refl in f.reflectors.iter().take(rho) {
+        let rho = f.rank;
+        for refl in &f.reflectors {
             let r = Reflector {
                 offset: refl.offset + r0,
                 v: refl.v.clone(),
@@ -207,7 +185,6 @@ pub(crate) fn staircase_with_cap(
         dim: r0,
         blocks,
         abs_tol,
-        smallest_pivot,
     })
 }
 
@@ -246,7 +223,6 @@ pub fn observability_staircase(
         dim: dual.dim,
         blocks: dual.blocks,
         abs_tol: dual.abs_tol,
-        smallest_pivot: dual.smallest_pivot,
     })
 }
 
