@@ -457,8 +457,8 @@ fn controlsystems_minreal() {
 
 /// harold's `test_minimal_realization_State`: minimal orders 2 and 3 (the first has the
 /// issue's defective eigenvalue: −6 of algebraic multiplicity 3, geometric 2, observability
-/// rank 2; before the second staircase was capped by that rank, ltikit said 3, as SLICOT's
-/// TB01PD does).
+/// rank 2; before the minimal realisation checked its order against that rank, ltikit said
+/// 3, as SLICOT's TB01PD does).
 #[test]
 fn harold_minimal_realizations() {
     // M = [A B; C D] sliced with a 1×4 south-west corner: 4 states, 3 inputs, 1 output.
