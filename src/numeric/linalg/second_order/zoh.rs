@@ -113,6 +113,7 @@ impl SecondOrder {
         let mut m = out.view_mut((r, c), (d, d));
         lower_product(w, &self.shapes_inv, &mut m, 0, d);
         let delta = &self.delta;
+        #[allow(clippy::float_cmp)] // exactly 1: no scaling to apply
         let unit = delta.iter().all(|&x| x == 1.0);
         for j in 0..d {
             for i in (j + 1)..d {
