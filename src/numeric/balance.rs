@@ -82,6 +82,31 @@ pub(crate) fn exponent_range(values: impl Iterator<Item = f64>) -> Option<(i32, 
 /// neither overflows nor underflows). Returns (norm, largest magnitude, smallest non-zero
 /// magnitude).
 fn scaled_norm(values: impl Iterator<Item = f64> + Clone) -> (f64, f64, f64) {
+    // One pass first: when every non-zero magnitude is within 2^±450 no square or partial
+    // sum (at most 2^905 · count) over- or underflows, and the naive sum is bitwise the
+    // scaled one (scaling by a power of two commutes with rounding).
+    let (mut big, mut small, mut sum) = (0.0f64, f64::INFINITY, 0.0f64);
+    for x in values.clone() {
+        let a = x.abs();
+        big = big.max(a);
+        if a != 0.0 {
+            small = small.min(a);
+        }
+        sum += x * x;
+    }
+    const SAFE_HI: f64 = 2.9e135; // < 2^450
+    const SAFE_LO: f64 = 3.5e-136; // > 2^-450
+    if big == 0.0 {
+        return (0.0, 0.0, 0.0);
+    }
+    if big < SAFE_HI && small > SAFE_LO && sum.is_finite() {
+        return (sum.sqrt(), big, small);
+    }
+    scaled_norm_slow(values)
+}
+
+/// [`scaled_norm`] with the power-of-two scaling (entries near the ends of the f64 range).
+fn scaled_norm_slow(values: impl Iterator<Item = f64> + Clone) -> (f64, f64, f64) {
     let big = values.clone().fold(0.0f64, |m, x| m.max(x.abs()));
     let small = values
         .clone()

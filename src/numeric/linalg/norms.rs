@@ -16,13 +16,19 @@ pub(crate) fn frobenius<'a>(values: impl Iterator<Item = &'a f64> + Clone) -> f6
 /// max(‖A‖₁, ‖A‖∞) — a cheap upper bound of the 2-norm within a factor √n, the scale in which
 /// eigenvalue tolerances are stated.
 pub(crate) fn norm_1_inf(a: &DMatrix<f64>) -> f64 {
-    let one = a
-        .column_iter()
-        .map(|c| c.iter().map(|x| x.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    let inf = a
-        .row_iter()
-        .map(|r| r.iter().map(|x| x.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
+    // one pass down the contiguous columns; the row sums accumulate in the same order
+    // (column index increasing) as a row-by-row sum would
+    let mut rows = vec![0.0f64; a.nrows()];
+    let mut one = 0.0f64;
+    for c in a.column_iter() {
+        let mut sum = 0.0;
+        for (r, x) in rows.iter_mut().zip(c.iter()) {
+            let v = x.abs();
+            sum += v;
+            *r += v;
+        }
+        one = one.max(sum);
+    }
+    let inf = rows.into_iter().fold(0.0, f64::max);
     one.max(inf)
 }

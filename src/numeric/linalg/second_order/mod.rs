@@ -45,11 +45,13 @@
 //!
 //! Files: `recognise.rs` (the recognition and the modes), `eigen.rs` (eigenvalues and
 //! eigenvectors from the modes), `modal.rs` (the modal form from the modes), `zoh.rs` (the
-//! zero-order-hold discretisation from the modes: [`SecondOrder::zoh`]).
+//! zero-order-hold discretisation from the modes: [`SecondOrder::zoh`]), `sparse.rs` (G and E
+//! by columns when sparse, for the residual of step 3 and the lower blocks of the ZOH).
 
 mod eigen;
 mod modal;
 mod recognise;
+mod sparse;
 mod zoh;
 
-pub use recognise::{SYM_REL, SecondOrder, SecondOrderMode, snap_tol};
+pub use recognise::{SPARSE_PER_COLUMN, SYM_REL, SecondOrder, SecondOrderMode, snap_tol};

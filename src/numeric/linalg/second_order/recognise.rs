@@ -4,6 +4,8 @@
 use nalgebra::{DMatrix, SymmetricEigen};
 use num_complex::Complex64;
 
+use super::sparse::ColumnSparse;
+
 /// Relative asymmetry accepted in the symmetrised stiffness and damping (rounding of the
 /// model's own construction, e.g. M⁻¹K formed in floating point).
 pub const SYM_REL: f64 = 64.0 * f64::EPSILON;
@@ -39,7 +41,15 @@ pub struct SecondOrder {
     pub modes: Vec<SecondOrderMode>,
     /// ν = max(‖A‖₁, ‖A‖∞): the scale of the tolerances.
     pub scale: f64,
+    /// δ: the diagonal of the symmetrising similarity Δ (X_q = Δ⁻¹·V).
+    pub(super) delta: Vec<f64>,
+    /// G = −A₂₁ and E = −A₂₂ by columns, when both are sparse (see [`SPARSE_PER_COLUMN`]).
+    pub(super) coupling: Option<(ColumnSparse, ColumnSparse)>,
 }
+
+/// G and E are kept sparse (products in O(nnz·d)) when each has at most this many non-zero
+/// entries per column on average: a chain has 3, a ring 3, a square grid 5.
+pub const SPARSE_PER_COLUMN: usize = 8;
 
 /// The absolute tolerance within which values of a symmetric d×d matrix of norm `norm` are
 /// equal (or 0): 64·(2d)·ε·norm — the cluster radius of a simple eigenvalue of A.
@@ -240,6 +250,12 @@ impl SecondOrder {
         let delta = symmetrizer(&g, &e)?;
         let sg = symmetrized(&g, &delta);
         let se = symmetrized(&e, &delta);
+        let max_nnz = SPARSE_PER_COLUMN * d;
+        let coupling = ColumnSparse::build(d, max_nnz, |i, j| g[(i, j)]).zip(ColumnSparse::build(
+            d,
+            max_nnz,
+            |i, j| e[(i, j)],
+        ));
         let (norm_g, norm_e) = (norm_inf(&sg), norm_inf(&se));
         // beyond f64 (entries near 1e308): the general path scales by powers of two first
         if !(norm_g.is_finite() && norm_e.is_finite() && norm_g * 4.0 < f64::MAX) {
@@ -250,10 +266,23 @@ impl SecondOrder {
         if lam.iter().chain(v.iter()).any(|x| !x.is_finite()) {
             return None;
         }
-        // residual of the stiffness decomposition
-        let resid =
-            &sg * &v - &v * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&lam));
-        let r = resid.amax();
+        // residual of the stiffness decomposition (S_G has G's pattern: sparse with it)
+        let sv = match &coupling {
+            Some(_) => ColumnSparse::build(d, max_nnz, |i, j| sg[(i, j)])
+                .map_or_else(|| &sg * &v, |s| s.mul(&v)),
+            None => &sg * &v,
+        };
+        let (mut r, mut nan) = (0.0f64, false);
+        for (j, (col, vj)) in sv.column_iter().zip(v.column_iter()).enumerate() {
+            for (x, y) in col.iter().zip(vj.iter()) {
+                let t = (x - y * lam[j]).abs();
+                nan |= t.is_nan();
+                r = r.max(t);
+            }
+        }
+        if nan {
+            return None;
+        }
         if r.is_nan() || r > tol_g.max(f64::MIN_POSITIVE) {
             return None;
         }
@@ -331,6 +360,8 @@ impl SecondOrder {
             shapes_inv,
             modes,
             scale,
+            delta,
+            coupling,
         })
     }
 

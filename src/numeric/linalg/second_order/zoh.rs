@@ -1,8 +1,10 @@
 //! The zero-order-hold discretisation of a second-order model from its modes
-//! ([`SecondOrder::zoh`]): one 4×4 exponential per mode and four products of half the order,
-//! instead of the exponential of the whole (n + m)-square augmented matrix.
+//! ([`SecondOrder::zoh`]): one 4×4 exponential per mode, two half products of half the order
+//! for the upper block row of Φ, and the lower block row from it (sparse products with the
+//! stiffness and damping when they are sparse, two more half products when not), instead of
+//! the exponential of the whole (n + m)-square augmented matrix.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DMatrixViewMut};
 
 use super::SecondOrder;
 use crate::error::Result;
@@ -12,8 +14,10 @@ impl SecondOrder {
     /// in (see the [module docs](super)): per mode, the exponential of the 4×4 matrix
     /// [[M·T, I·T], [0, 0]] (M = [[0, 1], [−λ, −γ]]) gives its φ = e^(MT) and ψ = ∫₀ᵀ e^(Mτ) dτ
     /// at once — critical modes and free modes (λ = 0) included, no closed form to cancel —
-    /// and the blocks of Φ are X_q·diag(φᵢⱼ)·X_q⁻¹ (four d×d products), Γ = diag(X_q, X_q)·ψ·
-    /// diag(X_q⁻¹, X_q⁻¹)·B.
+    /// and the blocks of Φ are X_q·diag(φᵢⱼ)·X_q⁻¹ = Δ⁻¹·V·diag(φᵢⱼ)·Vᵀ·Δ (symmetric but
+    /// for Δ: half of each by products), Γ = diag(X_q, X_q)·ψ·diag(X_q⁻¹, X_q⁻¹)·B. When G
+    /// and E are sparse (a chain, a ring) the lower block row comes from the upper one:
+    /// e^(AT) commutes with A, so Φ₂₁ = −Φ₁₂·G and Φ₂₂ = Φ₁₁ − Φ₁₂·E.
     ///
     /// The modes' stiffness and damping were snapped within [`super::snap_tol`] when
     /// recognised: Φ and Γ are those of a matrix within that distance of A.
@@ -64,15 +68,23 @@ impl SecondOrder {
         }
         let n = 2 * d;
         let mut big_phi = DMatrix::<f64>::zeros(n, n);
-        for (idx, (r, c)) in [(0, 0), (0, d), (d, 0), (d, d)].into_iter().enumerate() {
-            // X_q·diag(φ)·X_q⁻¹: scale the columns of X_q, then one product
-            let mut scaled = self.shapes.clone();
-            for (k, mut col) in scaled.column_iter_mut().enumerate() {
-                col *= phi[idx][k];
+        // Φ₁₁ and Φ₁₂: X_q·diag(φ)·X_q⁻¹ = Δ⁻¹·(V·diag(φ)·Vᵀ)·Δ, its lower half by products
+        let mut w = self.shapes.clone();
+        self.similar(&phi[0], &mut w, &mut big_phi, 0, 0);
+        self.similar(&phi[1], &mut w, &mut big_phi, 0, d);
+        match &self.coupling {
+            Some((g, e)) => {
+                // e^(AT) commutes with A: the top block rows of A·Φ = Φ·A give Φ₂₁ = −Φ₁₂·G
+                // and Φ₂₂ = Φ₁₁ − Φ₁₂·E, sparse products with G = −A₂₁ and E = −A₂₂
+                let (top, mut bottom) = big_phi.rows_range_pair_mut(0..d, d..n);
+                bottom.columns_mut(d, d).copy_from(&top.columns(0, d));
+                g.mul_left_add(&top.columns(d, d), &mut bottom.columns_mut(0, d), -1.0);
+                e.mul_left_add(&top.columns(d, d), &mut bottom.columns_mut(d, d), -1.0);
             }
-            big_phi
-                .view_mut((r, c), (d, d))
-                .copy_from(&(&scaled * &self.shapes_inv));
+            None => {
+                self.similar(&phi[2], &mut w, &mut big_phi, d, 0);
+                self.similar(&phi[3], &mut w, &mut big_phi, d, d);
+            }
         }
         let mut gamma = DMatrix::<f64>::zeros(n, m);
         gamma
@@ -83,6 +95,68 @@ impl SecondOrder {
             .copy_from(&(&self.shapes * &gv));
         Ok((big_phi, gamma))
     }
+
+    /// X_q·diag(f)·X_q⁻¹ into the d×d block of `out` at (r, c) (`w`: d×d workspace). It is
+    /// Δ⁻¹·S·Δ with S = V·diag(f)·Vᵀ symmetric: the blocks on and below the diagonal by
+    /// products (about half the work of one d×d×d product), the entries above from
+    /// M_ji = M_ij·(δᵢ/δⱼ)².
+    fn similar(&self, f: &[f64], w: &mut DMatrix<f64>, out: &mut DMatrix<f64>, r: usize, c: usize) {
+        let d = self.dof;
+        for (k, (mut col, x)) in w
+            .column_iter_mut()
+            .zip(self.shapes.column_iter())
+            .enumerate()
+        {
+            col.copy_from(&x);
+            col *= f[k];
+        }
+        let mut m = out.view_mut((r, c), (d, d));
+        lower_product(w, &self.shapes_inv, &mut m, 0, d);
+        let delta = &self.delta;
+        #[allow(clippy::float_cmp)] // exactly 1: no scaling to apply
+        let unit = delta.iter().all(|&x| x == 1.0);
+        for j in 0..d {
+            for i in (j + 1)..d {
+                let x = m[(i, j)];
+                m[(j, i)] = if unit {
+                    x
+                } else {
+                    let q = delta[i] / delta[j];
+                    x * q * q
+                };
+            }
+        }
+    }
+}
+
+/// Below this size a diagonal block of [`lower_product`] is one full product.
+const HALF_PRODUCT_BASE: usize = 32;
+
+/// The rows and columns lo..hi of W·Y on and below the diagonal (diagonal blocks up to
+/// [`HALF_PRODUCT_BASE`] in full), into `m`: two halves recursively, the block below them
+/// as one product.
+fn lower_product(
+    w: &DMatrix<f64>,
+    y: &DMatrix<f64>,
+    m: &mut DMatrixViewMut<'_, f64>,
+    lo: usize,
+    hi: usize,
+) {
+    let s = hi - lo;
+    if s <= HALF_PRODUCT_BASE {
+        m.view_mut((lo, lo), (s, s))
+            .gemm(1.0, &w.rows(lo, s), &y.columns(lo, s), 0.0);
+        return;
+    }
+    let mid = lo + s / 2;
+    lower_product(w, y, m, lo, mid);
+    m.view_mut((mid, lo), (hi - mid, mid - lo)).gemm(
+        1.0,
+        &w.rows(mid, hi - mid),
+        &y.columns(lo, mid - lo),
+        0.0,
+    );
+    lower_product(w, y, m, mid, hi);
 }
 
 #[cfg(test)]
@@ -135,18 +209,21 @@ mod tests {
 
     #[test]
     fn agrees_with_the_dense_exponential() {
-        for (alpha, beta, free) in [
-            (0.0, 0.0, false),
-            (0.05, 0.01, false),
-            (0.0, 0.02, true),
-            (0.3, 0.0, true),
+        // 12 masses: one full product per half; 70: the halves split down to 32 rows
+        for (d, alpha, beta, free) in [
+            (12, 0.0, 0.0, false),
+            (12, 0.05, 0.01, false),
+            (12, 0.0, 0.02, true),
+            (12, 0.3, 0.0, true),
+            (70, 0.05, 0.01, false),
         ] {
-            let a = chain(12, alpha, beta, free);
-            let mut b = DMatrix::<f64>::zeros(24, 2);
-            b[(12, 0)] = 1.0;
-            b[(20, 1)] = 0.5;
+            let a = chain(d, alpha, beta, free);
+            let mut b = DMatrix::<f64>::zeros(2 * d, 2);
+            b[(d, 0)] = 1.0;
+            b[(d + 8, 1)] = 0.5;
             b[(3, 1)] = 0.25; // an input on a position derivative too
             let so = SecondOrder::detect(&a).expect("a chain is second order");
+            assert!(so.coupling.is_some(), "a chain is sparse");
             for dt in [0.01, 0.1, 1.0] {
                 let (phi, gamma) = so.zoh(&b, dt).unwrap();
                 let (pd, gd) = dense(&a, &b, dt);
@@ -154,9 +231,37 @@ mod tests {
                 let eg = (&gamma - &gd).norm() / gd.norm();
                 assert!(
                     ep < 1e-13 && eg < 1e-13,
-                    "α={alpha} β={beta} T={dt}: {ep:.1e} {eg:.1e}"
+                    "d={d} α={alpha} β={beta} T={dt}: {ep:.1e} {eg:.1e}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn dense_coupling_takes_the_four_products() {
+        // every mass coupled to every other (K = L·Lᵀ + I with L dense), masses 1 + i/d,
+        // Rayleigh damping: more than SPARSE_PER_COLUMN non-zeros per column, so Φ₂₁ and Φ₂₂
+        // come from the modes rather than from Φ₁₂·G and Φ₁₂·E
+        let d = 10;
+        let l = DMatrix::from_fn(d, d, |i, j| ((3 * i + 5 * j) % 7) as f64 / 7.0 - 0.4);
+        let k = &l * l.transpose() + DMatrix::identity(d, d);
+        let mass: Vec<f64> = (0..d).map(|i| 1.0 + i as f64 / d as f64).collect();
+        let g = DMatrix::from_fn(d, d, |i, j| k[(i, j)] / mass[i]);
+        let e = DMatrix::identity(d, d) * 0.1 + &g * 0.03;
+        let mut a = DMatrix::<f64>::zeros(2 * d, 2 * d);
+        a.view_mut((0, d), (d, d))
+            .copy_from(&DMatrix::identity(d, d));
+        a.view_mut((d, 0), (d, d)).copy_from(&(-&g));
+        a.view_mut((d, d), (d, d)).copy_from(&(-&e));
+        let so = SecondOrder::detect(&a).expect("Rayleigh-damped masses are second order");
+        assert!(so.coupling.is_none(), "G is dense");
+        let b = DMatrix::from_fn(2 * d, 1, |i, _| if i == d + 2 { 1.0 } else { 0.0 });
+        for dt in [0.05, 0.5] {
+            let (phi, gamma) = so.zoh(&b, dt).unwrap();
+            let (pd, gd) = dense(&a, &b, dt);
+            let ep = (&phi - &pd).norm() / pd.norm();
+            let eg = (&gamma - &gd).norm() / gd.norm();
+            assert!(ep < 1e-13 && eg < 1e-13, "T={dt}: {ep:.1e} {eg:.1e}");
         }
     }
 
