@@ -23,7 +23,7 @@ use crate::error::{LtiError, Result};
 
 /// Smallest order for which blocks are considered (below it a sample costs a few dozen
 /// flops and the plain march is as fast).
-pub const BLOCK_MIN_ORDER: usize = 16;
+pub(crate) const BLOCK_MIN_ORDER: usize = 16;
 
 /// Largest W (J·p·n entries, 32 MB): the block length is capped so W stays below it.
 const MAX_W_ENTRIES: usize = 1 << 22;
@@ -36,7 +36,7 @@ const GEMM_RELATIVE_COST: f64 = 0.25;
 /// The block length J (a power of two, 2 ≤ J ≤ `run`) that minimises the estimated cost of a
 /// run of `run` steps of an order-`n` model with `p` outputs, or `None` when blocks would not
 /// save at least half of the plain march's n² per step.
-pub fn block_len(n: usize, p: usize, run: usize) -> Option<usize> {
+pub(crate) fn block_len(n: usize, p: usize, run: usize) -> Option<usize> {
     if n < BLOCK_MIN_ORDER || run < 4 {
         return None;
     }
@@ -60,7 +60,7 @@ pub fn block_len(n: usize, p: usize, run: usize) -> Option<usize> {
 
 /// The maps of one block length J for a step map (Φ, g) and an output map C (+ D·u).
 #[derive(Debug)]
-pub struct BlockMap {
+pub(crate) struct BlockMap {
     /// J.
     len: usize,
     /// W = \[C; CΦ; …; CΦ^(J−1)\], row j·p + o for output o after j steps.
@@ -80,7 +80,7 @@ impl BlockMap {
     /// The block maps of length `len` (≥ 2, a power of two) for x ← Φx + g, y = Cx + du.
     ///
     /// Errors: a non-finite power (Φᴶ overflows: the march diverges).
-    pub fn new(
+    pub(crate) fn new(
         phi: &DMatrix<f64>,
         g: &DVector<f64>,
         c: &DMatrix<f64>,
@@ -139,7 +139,7 @@ impl BlockMap {
 /// steps taken since and the block's outputs; x = Φʲ·x_b + sⱼ is formed only when the run
 /// ends ([`BlockState::settle`]).
 #[derive(Debug)]
-pub struct BlockState {
+pub(crate) struct BlockState {
     x: DVector<f64>,
     block: Option<Block>,
 }
@@ -153,12 +153,12 @@ struct Block {
 
 impl BlockState {
     /// The state x₀, outside any block.
-    pub fn new(x: DVector<f64>) -> BlockState {
+    pub(crate) fn new(x: DVector<f64>) -> BlockState {
         BlockState { x, block: None }
     }
 
     /// Ends a block in progress: x = Φʲ·x_b + sⱼ by j plain steps (j < J).
-    pub fn settle(&mut self) -> &mut DVector<f64> {
+    pub(crate) fn settle(&mut self) -> &mut DVector<f64> {
         if let Some(b) = self.block.take() {
             for _ in 0..b.steps {
                 self.x = &b.map.phi * &self.x + &b.map.g;
@@ -169,7 +169,7 @@ impl BlockState {
 
     /// One step with the block map `map`: a new block starts when none of this map is in
     /// progress (the block outputs W·x_b + f), the state jumps by Φᴶ at a block's end.
-    pub fn advance(&mut self, map: &Rc<BlockMap>) {
+    pub(crate) fn advance(&mut self, map: &Rc<BlockMap>) {
         let same = self.block.as_ref().is_some_and(|b| Rc::ptr_eq(&b.map, map));
         if !same {
             self.settle();
@@ -191,7 +191,7 @@ impl BlockState {
     }
 
     /// The outputs now: from the block's buffer inside a block (D·u included), else `None`.
-    pub fn outputs(&self) -> Option<&[f64]> {
+    pub(crate) fn outputs(&self) -> Option<&[f64]> {
         self.block.as_ref().map(|b| {
             let p = b.y.len() / b.map.len;
             &b.y.as_slice()[b.steps * p..(b.steps + 1) * p]
@@ -200,7 +200,7 @@ impl BlockState {
 
     /// The state x (outside a block) or the current block's start (inside one): for the norm
     /// in a divergence message.
-    pub fn anchor(&self) -> &DVector<f64> {
+    pub(crate) fn anchor(&self) -> &DVector<f64> {
         &self.x
     }
 }
@@ -213,6 +213,8 @@ mod tests {
     fn blocks_only_where_they_pay() {
         assert_eq!(block_len(8, 1, 10_000), None, "small order");
         assert_eq!(block_len(256, 1, 10), None, "short run");
+        // the dense 64-state closed-form test of tests/ss_time.rs takes blocks
+        assert!(block_len(64, 2, 5000).is_some());
         let j = block_len(256, 1, 10_000).unwrap();
         assert!(j.is_power_of_two() && (16..=256).contains(&j), "{j}");
         // W bounded: 256 outputs of 2048 states leave J ≤ 8
