@@ -83,7 +83,7 @@ fn impulse_samples(part: &Part, t: &[f64], out: &mut [f64]) -> Result<()> {
     crate::numeric::march::march(
         t,
         &mut x,
-        |h, ti| {
+        |h, ti, _| {
             // row-major e^(A h)
             let e = expm(&(&ss.a * h)).map_err(|e| overflow_reason(e, part, ti))?;
             Ok((0..n * n).map(|k| e[(k / n, k % n)]).collect::<Vec<f64>>())

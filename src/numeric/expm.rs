@@ -400,7 +400,7 @@ fn pade13(pw: Powers) -> (DMatrix<f64>, DMatrix<f64>) {
 fn pade_solve((u, v): &(DMatrix<f64>, DMatrix<f64>)) -> Result<DMatrix<f64>> {
     let p = v + u;
     let q = v - u;
-    q.lu().solve(&p).ok_or_else(|| LtiError::NoConvergence {
+    crate::numeric::linalg::lu::lu_solve(q, p).ok_or_else(|| LtiError::NoConvergence {
         what: "matrix exponential (singular Padé denominator)".into(),
         iterations: 0,
     })

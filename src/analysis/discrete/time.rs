@@ -120,7 +120,7 @@ fn samples(
     march(
         &times,
         &mut zs,
-        |m, _| Ok(matrix_power(f, m.round() as u64)),
+        |m, _, _| Ok(matrix_power(f, m.round() as u64)),
         |map, (z, scratch), _, _| {
             scratch.gemv(1.0, map, z, 0.0);
             std::mem::swap(z, scratch);

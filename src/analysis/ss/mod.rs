@@ -5,6 +5,7 @@
 //! engine). (A SISO channel's poles, zeros and everything built on them go through the
 //! factored core.)
 
+pub(crate) mod block_march;
 pub mod freq;
 pub mod modal_time;
 pub mod report;

@@ -195,7 +195,7 @@ pub(super) fn march(
         t,
         &mut state,
         // the tracks' factors e^(λh) and (e^(λh) − 1)/λ, and the general blocks' maps
-        |dt, _| {
+        |dt, _, _| {
             let mut e = Vec::with_capacity(tracks.len());
             let mut f = Vec::with_capacity(tracks.len());
             for tr in &tracks {

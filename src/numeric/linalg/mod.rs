@@ -17,6 +17,7 @@
 //! | [`second_order`] | mechanical structure [[0, I], [−G, −E]], and the eigenvalues, eigenvectors and modal form of its modes | symmetric eigenproblem of half the order (diagonal symmetrisation, classical damping) |
 //! | [`state_matrix`] | a model's A with its recognised structure: the one place the recognition runs | the modes' kernels for a second-order A, the general ones otherwise |
 //! | [`freqresp`] | C(sI − A)⁻¹B + D at many s | one Hessenberg reduction, then an O(n²) elimination per s |
+//! | `lu.rs` (internal) | A·X = B, many right-hand sides | LU with partial pivoting blocked as LAPACK `dgetrf` (panel + matrix products) |
 //! | [`rrqr`] | numerical rank | Householder QR with column pivoting |
 //! | [`staircase`] | controllability / observability | orthogonal staircase (Van Dooren 1981, Varga) |
 //! | [`minreal`] | minimal realisation | two staircases, removed modes reported |
@@ -39,6 +40,7 @@ pub mod freqresp;
 pub mod hammarling;
 pub mod hessenberg;
 pub(crate) mod householder;
+pub(crate) mod lu;
 pub mod lyapunov;
 pub mod markov;
 pub mod minreal;
