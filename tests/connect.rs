@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{json, ltikit};
+use common::{json, json_matrix, ltikit};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::path::PathBuf;
@@ -35,12 +35,6 @@ fn nums(v: &serde_json::Value) -> Vec<f64> {
         .iter()
         .map(|x| x.as_f64().unwrap())
         .collect()
-}
-
-fn matrix(v: &serde_json::Value) -> DMatrix<f64> {
-    let rows: Vec<Vec<f64>> = v.as_array().unwrap().iter().map(nums).collect();
-    let (r, c) = (rows.len(), rows.first().map_or(0, Vec::len));
-    DMatrix::from_fn(r, c, |i, j| rows[i][j])
 }
 
 /// C(sI − A)⁻¹B + D by a complex LU solve (independent of the library's evaluation).
@@ -162,10 +156,10 @@ fn mimo_series_is_the_matrix_product_and_mixed_models_become_state_space() {
     let gb = (m("-3"), m("1 2"), m("1"), m("0.5 0"));
     let v = json(&["series", &a, &b, "--json"]);
     let (aa, bb, cc, dd) = (
-        matrix(&v["a"]),
-        matrix(&v["b"]),
-        matrix(&v["c"]),
-        matrix(&v["d"]),
+        json_matrix(&v["a"]),
+        json_matrix(&v["b"]),
+        json_matrix(&v["c"]),
+        json_matrix(&v["d"]),
     );
     assert_eq!((cc.nrows(), bb.ncols()), (1, 2));
     for (re, im) in POINTS {
@@ -188,10 +182,10 @@ fn mimo_series_is_the_matrix_product_and_mixed_models_become_state_space() {
     let h = scratch("tf-h.toml", "num = [5]\nden = [1, 10]\n");
     let v = json(&["feedback", &g, &h, "--json"]);
     let (aa, bb, cc, dd) = (
-        matrix(&v["a"]),
-        matrix(&v["b"]),
-        matrix(&v["c"]),
-        matrix(&v["d"]),
+        json_matrix(&v["a"]),
+        json_matrix(&v["b"]),
+        json_matrix(&v["c"]),
+        json_matrix(&v["d"]),
     );
     for (re, im) in POINTS {
         let s = Complex64::new(re, im);
@@ -313,10 +307,10 @@ fn a_two_loop_cascade_diagram_is_one_plant() {
     let v = json(&["connect", &m, "--json"]);
     // ẋ₁ = −2x₁ + r₁, ẋ₂ = −2.5x₂ + x₁ + r₂
     assert_eq!(
-        matrix(&v["a"]),
+        json_matrix(&v["a"]),
         DMatrix::from_row_slice(2, 2, &[-2.0, 0.0, 1.0, -2.5])
     );
-    assert_eq!(matrix(&v["b"]), DMatrix::identity(2, 2));
+    assert_eq!(json_matrix(&v["b"]), DMatrix::identity(2, 2));
 }
 
 #[test]

@@ -12,27 +12,10 @@
 
 use ltikit::StateSpace;
 use ltikit::analysis::Factored;
-use nalgebra::DMatrix;
 use serde_json::Value;
 
 mod common;
-use common::rel;
-
-fn matrix(v: &Value) -> DMatrix<f64> {
-    let rows: Vec<Vec<f64>> = v
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| {
-            r.as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect()
-        })
-        .collect();
-    DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
-}
+use common::{json_matrix, rel};
 
 fn fixture() -> (StateSpace, Value) {
     let text = std::fs::read_to_string(concat!(
@@ -42,10 +25,10 @@ fn fixture() -> (StateSpace, Value) {
     .unwrap();
     let v: Value = serde_json::from_str(&text).unwrap();
     let ss = StateSpace::new(
-        matrix(&v["a"]),
-        matrix(&v["b"]),
-        matrix(&v["c"]),
-        matrix(&v["d"]),
+        json_matrix(&v["a"]),
+        json_matrix(&v["b"]),
+        json_matrix(&v["c"]),
+        json_matrix(&v["d"]),
     )
     .unwrap();
     (ss, v)

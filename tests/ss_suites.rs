@@ -20,7 +20,7 @@ use num_complex::Complex64;
 use serde_json::Value;
 
 mod common;
-use common::{json, rel};
+use common::{json, json_matrix, rel};
 
 use ltikit::numeric::linalg::{minimal_realization, transmission_zeros};
 
@@ -249,21 +249,7 @@ fn cs_model(name: &str) -> [DMatrix<f64>; 4] {
     ))
     .unwrap();
     let v: Value = serde_json::from_str(&text).unwrap();
-    let mat = |key: &str| {
-        let rows: Vec<Vec<f64>> = v[name][key]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|r| {
-                r.as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|x| x.as_f64().unwrap())
-                    .collect()
-            })
-            .collect();
-        DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
-    };
+    let mat = |key: &str| json_matrix(&v[name][key]);
     [mat("a"), mat("b"), mat("c"), mat("d")]
 }
 

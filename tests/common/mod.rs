@@ -145,3 +145,21 @@ pub fn discrete_text(num: &str, den: &str, dt: f64) -> ltikit::analysis::Factore
         .factored()
         .unwrap()
 }
+
+/// A matrix stored in JSON as a list of rows of numbers (panics on anything else).
+pub fn json_matrix(v: &serde_json::Value) -> nalgebra::DMatrix<f64> {
+    let rows: Vec<Vec<f64>> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            r.as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        })
+        .collect();
+    let (r, c) = (rows.len(), rows.first().map_or(0, Vec::len));
+    nalgebra::DMatrix::from_fn(r, c, |i, j| rows[i][j])
+}
