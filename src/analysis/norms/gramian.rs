@@ -23,15 +23,9 @@ fn require_stable(ss: &StateSpace) -> Result<()> {
     if ss.order() == 0 {
         return Ok(());
     }
-    let tol = 1e3 * f64::EPSILON * ss.a.norm().max(1.0);
     let discrete = ss.domain.is_discrete();
-    let bad = schur_eigenvalues(&ss.a)?.into_iter().find(|p| {
-        if discrete {
-            p.norm() >= 1.0 - tol
-        } else {
-            p.re >= -tol
-        }
-    });
+    let unstable = crate::numeric::linalg::checks::unstable_within_rounding(&ss.a, discrete);
+    let bad = schur_eigenvalues(&ss.a)?.into_iter().find(|p| unstable(*p));
     match bad {
         None => Ok(()),
         Some(p) => Err(LtiError::Undefined {

@@ -2,8 +2,27 @@
 //! system (A, B, C, D). Each error names the matrix and, for a bad entry, its row and column.
 
 use nalgebra::DMatrix;
+use num_complex::Complex64;
 
 use crate::error::{LtiError, Result};
+
+/// The test "not stable by more than rounding" for the eigenvalues of `a`: Re λ ≥ −τ
+/// (|λ| ≥ 1 − τ in discrete time), τ = 1000·ε·max(‖A‖_F, 1). An eigenvalue within rounding
+/// of the boundary (a rigid-body mode computed as −1e-17) would give a Lyapunov solution of
+/// order 1e15 that is nothing but rounding. One rule for the Gramians and their kernel.
+pub(crate) fn unstable_within_rounding(
+    a: &DMatrix<f64>,
+    discrete: bool,
+) -> impl Fn(Complex64) -> bool + use<> {
+    let tol = 1e3 * f64::EPSILON * a.norm().max(1.0);
+    move |z: Complex64| {
+        if discrete {
+            z.norm() >= 1.0 - tol
+        } else {
+            z.re >= -tol
+        }
+    }
+}
 
 /// Errors unless `a` is square with finite entries; returns its order.
 pub(crate) fn check_square(a: &DMatrix<f64>, what: &str) -> Result<usize> {

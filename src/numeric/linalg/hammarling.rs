@@ -87,16 +87,10 @@ fn hammarling(a: &DMatrix<f64>, b: &DMatrix<f64>, discrete: bool) -> Result<Chol
         want_t: true,
     };
     let real = real_schur(&a.transpose(), opts)?;
-    // Stable by more than rounding: an eigenvalue computed as −1e-17 (a rigid-body mode) would
-    // give a "solution" of order 1e15 that is nothing but rounding.
-    let tol = 1e3 * f64::EPSILON * a.norm().max(1.0);
+    // Stable by more than rounding (the rule of `checks::unstable_within_rounding`).
+    let unstable = super::checks::unstable_within_rounding(a, discrete);
     for z in real.eigenvalues() {
-        let unstable = if discrete {
-            z.norm() >= 1.0 - tol
-        } else {
-            z.re >= -tol
-        };
-        if unstable {
+        if unstable(z) {
             let (what, region) = if discrete {
                 (
                     "the Cholesky factor of the discrete Lyapunov solution",
