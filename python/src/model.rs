@@ -27,6 +27,14 @@ use crate::{attempt, guard, mimo, tables};
 /// Times and sampled values (flat), handed to Python together.
 type Samples<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
+/// A frequency response as arrays: w, |G|, the continuous phase (degrees), G.
+type Response<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<Complex64>>,
+);
+
 /// Points of the automatic time and frequency grids (`t=None`, `w=None`).
 const AUTO_POINTS: usize = 1000;
 
@@ -900,18 +908,8 @@ impl Model {
 
     /// The frequency response of every channel: w, then |G|, the continuous phase (degrees)
     /// and G, each flat \[output\]\[input\]\[frequency\].
-    #[allow(clippy::type_complexity)]
     #[pyo3(signature = (w=None))]
-    fn whole_freq<'py>(
-        &self,
-        py: Python<'py>,
-        w: Option<Vec<f64>>,
-    ) -> PyResult<(
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<Complex64>>,
-    )> {
+    fn whole_freq<'py>(&self, py: Python<'py>, w: Option<Vec<f64>>) -> PyResult<Response<'py>> {
         let (w, (mag, phase, g)) = guard(|| {
             let ss = self.state_space()?;
             let w = self.whole_frequencies(&ss, w)?;
@@ -964,18 +962,8 @@ impl Model {
 
     /// Frequency response at `w` (rad/s; an automatic grid when `None`): w, |G|, the
     /// continuous phase in degrees, and G(jω) (G(e^(jωT)) in discrete time).
-    #[allow(clippy::type_complexity)]
     #[pyo3(signature = (w=None))]
-    fn freq<'py>(
-        &self,
-        py: Python<'py>,
-        w: Option<Vec<f64>>,
-    ) -> PyResult<(
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray1<Complex64>>,
-    )> {
+    fn freq<'py>(&self, py: Python<'py>, w: Option<Vec<f64>>) -> PyResult<Response<'py>> {
         let f = self.factored()?;
         let fr = guard(|| {
             let w = match w {
