@@ -125,38 +125,29 @@ pub(super) fn newton_complex(p: &Poly, z0: Complex64, reach: f64) -> Option<Comp
 /// the iterate stays within `reach` of the start.
 pub(super) fn polish_real(p: &Poly, x0: f64, reach: f64) -> f64 {
     let dp = p.derivative();
-    let mut x = x0;
-    let mut fx = p.eval(x).abs();
-    for _ in 0..20 {
-        if fx == 0.0 {
-            break;
-        }
-        let d = dp.eval(x);
-        if d == 0.0 {
-            break;
-        }
-        let xn = x - p.eval(x) / d;
-        let fn_ = p.eval(xn).abs();
-        let improved = fn_ < fx;
-        if !improved || (xn - x0).abs() > reach || !xn.is_finite() {
-            break;
-        }
-        let done = (xn - x).abs() <= 2.0 * EPS * xn.abs();
-        x = xn;
-        fx = fn_;
-        if done {
-            break;
-        }
-    }
+    let x = guarded_steps_real(&dp, x0, x0, reach, 20, |x| p.eval(x));
     // the f64 residual stalls at the evaluation's rounding level: finish on the exact one
-    let mut fx = eval_dd(p, x).abs();
-    for _ in 0..DD_STEPS {
+    guarded_steps_real(&dp, x, x0, reach, DD_STEPS, |x| eval_dd(p, x))
+}
+
+/// Newton steps x ← x − f(x)/p′(x) from `x`, each kept only while |f| decreases and the
+/// iterate stays finite and within `reach` of `x0`; stops at a relative step of 2ε.
+fn guarded_steps_real(
+    dp: &Poly,
+    mut x: f64,
+    x0: f64,
+    reach: f64,
+    steps: usize,
+    f: impl Fn(f64) -> f64,
+) -> f64 {
+    let mut fx = f(x).abs();
+    for _ in 0..steps {
         let d = dp.eval(x);
         if fx == 0.0 || d == 0.0 || !d.is_finite() {
             break;
         }
-        let xn = x - eval_dd(p, x) / d;
-        let fn_ = eval_dd(p, xn).abs();
+        let xn = x - f(x) / d;
+        let fn_ = f(xn).abs();
         if fn_.partial_cmp(&fx) != Some(std::cmp::Ordering::Less)
             || (xn - x0).abs() > reach
             || !xn.is_finite()
@@ -175,38 +166,28 @@ pub(super) fn polish_real(p: &Poly, x0: f64, reach: f64) -> f64 {
 
 pub(super) fn polish_complex(p: &Poly, z0: Complex64, reach: f64) -> Complex64 {
     let dp = p.derivative();
-    let mut z = z0;
-    let mut fz = p.eval_complex(z).norm();
-    for _ in 0..20 {
-        if fz == 0.0 {
-            break;
-        }
-        let d = dp.eval_complex(z);
-        if d.norm() == 0.0 {
-            break;
-        }
-        let zn = z - p.eval_complex(z) / d;
-        let fn_ = p.eval_complex(zn).norm();
-        let improved = fn_ < fz;
-        if !improved || (zn - z0).norm() > reach || !zn.norm().is_finite() {
-            break;
-        }
-        let done = (zn - z).norm() <= 2.0 * EPS * zn.norm();
-        z = zn;
-        fz = fn_;
-        if done {
-            break;
-        }
-    }
+    let z = guarded_steps_complex(&dp, z0, z0, reach, 20, |z| p.eval_complex(z));
     // the f64 residual stalls at the evaluation's rounding level: finish on the exact one
-    let mut fz = eval_dd_complex(p, z).norm();
-    for _ in 0..DD_STEPS {
+    guarded_steps_complex(&dp, z, z0, reach, DD_STEPS, |z| eval_dd_complex(p, z))
+}
+
+/// [`guarded_steps_real`] in the complex plane.
+fn guarded_steps_complex(
+    dp: &Poly,
+    mut z: Complex64,
+    z0: Complex64,
+    reach: f64,
+    steps: usize,
+    f: impl Fn(Complex64) -> Complex64,
+) -> Complex64 {
+    let mut fz = f(z).norm();
+    for _ in 0..steps {
         let d = dp.eval_complex(z);
         if fz == 0.0 || d.norm() == 0.0 || !d.norm().is_finite() {
             break;
         }
-        let zn = z - eval_dd_complex(p, z) / d;
-        let fn_ = eval_dd_complex(p, zn).norm();
+        let zn = z - f(z) / d;
+        let fn_ = f(zn).norm();
         if fn_.partial_cmp(&fz) != Some(std::cmp::Ordering::Less)
             || (zn - z0).norm() > reach
             || !zn.norm().is_finite()
