@@ -498,3 +498,39 @@ fn fixed_lattice_is_marginally_stable() {
     );
     assert_eq!(r.bibo_stable, vec![vec![false]]);
 }
+
+/// `StateSpace::dc_gain_direct` (one LU solve) against the whole-model analysis, channel by
+/// channel, on a stable model with a mode it cannot see; `None` when A has an eigenvalue at 0
+/// (the integrator of `mimo()`), in continuous and discrete time.
+#[test]
+fn direct_dc_gain_matches_the_analysis() {
+    let mut m = mimo();
+    m.a[(3, 3)] = -0.5; // the integrator becomes 1/(s + 0.5): every gain finite
+    let direct = m.dc_gain_direct().unwrap().unwrap();
+    let r = m.analysis().unwrap();
+    for (i, row) in r.dc_gain.iter().enumerate() {
+        for (j, g) in row.iter().enumerate() {
+            let DcGain::Finite(g) = g else {
+                panic!("finite expected: {g:?}")
+            };
+            assert!((direct[(i, j)] - g).abs() <= 1e-14, "{i},{j}: {direct} {g}");
+        }
+    }
+    // G21 = 1/(s + 0.5): 2
+    assert!((direct[(1, 0)] - 2.0).abs() <= 1e-15);
+    assert!(mimo().dc_gain_direct().unwrap().is_none());
+    // discrete time: x[k+1] = 0.5·x[k] + u, y = x: G(1) = 1/(1 − 0.5) = 2; a pole at z = 1: None
+    let d = |a: f64| {
+        StateSpace::new(
+            DMatrix::from_element(1, 1, a),
+            DMatrix::from_element(1, 1, 1.0),
+            DMatrix::from_element(1, 1, 1.0),
+            DMatrix::zeros(1, 1),
+        )
+        .unwrap()
+        .with_domain(ltikit::lti::Domain::Discrete { dt: 0.1 })
+    };
+    let g = d(0.5).dc_gain_direct().unwrap().unwrap();
+    assert!((g[(0, 0)] - 2.0).abs() <= 1e-15);
+    assert!(d(1.0).dc_gain_direct().unwrap().is_none());
+}

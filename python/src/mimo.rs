@@ -52,44 +52,13 @@ pub fn dc_gain(a: &SsAnalysis) -> Vec<f64> {
         .collect()
 }
 
-/// The dc-gain matrix without the whole analysis, flat row by row: D − C·A⁻¹·B
-/// (discrete: D + C·(I − A)⁻¹·B) when every eigenvalue of A is clearly away from 0 (from 1),
-/// by more than 1e-6 of ‖A‖ + 1 — far outside the cluster radius within which the analysis
-/// makes an eigenvalue exactly 0 (1) and the gain infinite. `None` otherwise: the analysis
-/// decides channel by channel (a cancelled integrator leaves a finite gain).
+/// The dc-gain matrix without the whole analysis, flat row by row
+/// ([`StateSpace::dc_gain_direct`]); `None` when the analysis must decide channel by channel.
 pub fn dc_gain_direct(ss: &StateSpace) -> ltikit::Result<Option<Vec<f64>>> {
-    let n = ss.order();
-    let discrete = ss.domain.is_discrete();
-    let m = if discrete {
-        nalgebra::DMatrix::identity(n, n) - &ss.a
-    } else {
-        -&ss.a
-    };
-    if n > 0 {
-        let scale = ss.a.norm() + 1.0;
-        let shift = if discrete { 1.0 } else { 0.0 };
-        let ev = ss.eigenvalues()?;
-        if ev
-            .iter()
-            .any(|l| (l - Complex64::new(shift, 0.0)).norm() <= 1e-6 * scale)
-        {
-            return Ok(None);
-        }
-    }
-    let Some(x) = m.lu().solve(&ss.b) else {
-        return Ok(None);
-    };
-    let g = &ss.d + &ss.c * x;
-    if g.iter().any(|v| !v.is_finite()) {
-        return Ok(None);
-    }
-    // row by row: g is column-major
-    Ok(Some(
-        (0..g.nrows())
-            .flat_map(|j| (0..g.ncols()).map(move |i| (j, i)))
-            .map(|(j, i)| g[(j, i)])
-            .collect(),
-    ))
+    // row by row: the matrix is column-major
+    Ok(ss
+        .dc_gain_direct()?
+        .map(|g| g.transpose().iter().copied().collect()))
 }
 
 /// Stability of the whole model: internal (every eigenvalue of A inside the region) with the

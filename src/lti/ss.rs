@@ -340,6 +340,65 @@ impl StateSpace {
     pub fn eigenvalues(&self) -> Result<Vec<Complex64>> {
         eigenvalues(&self.a)
     }
+
+    /// The p×m dc-gain matrix D − C·A⁻¹·B (discrete time: D + C·(I − A)⁻¹·B) by one LU
+    /// solve, when every eigenvalue of A is clearly away from 0 (from 1 in discrete time): by
+    /// more than 1e-6·(‖A‖_F + 1), far outside the cluster radius within which the
+    /// whole-model analysis makes an eigenvalue exactly 0 (1) and a gain infinite. `None`
+    /// otherwise (an integrator, or one only nearly cancelled): the analysis then decides
+    /// channel by channel, through each channel's minimal realisation — a cancelled
+    /// integrator leaves a finite gain. Dead times do not change the dc gain.
+    ///
+    /// Errors: those of the eigenvalue computation.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use ltikit::StateSpace;
+    /// // ẋ = −2x + u, y = (3x, x): gains 3/2 and 1/2
+    /// let ss = StateSpace::new(
+    ///     DMatrix::from_element(1, 1, -2.0),
+    ///     DMatrix::from_element(1, 1, 1.0),
+    ///     DMatrix::from_column_slice(2, 1, &[3.0, 1.0]),
+    ///     DMatrix::zeros(2, 1),
+    /// )
+    /// .unwrap();
+    /// let g = ss.dc_gain_direct().unwrap().unwrap();
+    /// assert_eq!((g[(0, 0)], g[(1, 0)]), (1.5, 0.5));
+    /// // an integrator: no direct answer
+    /// let i = StateSpace::new(
+    ///     DMatrix::zeros(1, 1),
+    ///     DMatrix::from_element(1, 1, 1.0),
+    ///     DMatrix::from_element(1, 1, 1.0),
+    ///     DMatrix::zeros(1, 1),
+    /// )
+    /// .unwrap();
+    /// assert!(i.dc_gain_direct().unwrap().is_none());
+    /// ```
+    pub fn dc_gain_direct(&self) -> Result<Option<DMatrix<f64>>> {
+        let n = self.order();
+        let discrete = self.domain.is_discrete();
+        if n > 0 {
+            let scale = self.a.norm() + 1.0;
+            let at = Complex64::new(if discrete { 1.0 } else { 0.0 }, 0.0);
+            if self
+                .eigenvalues()?
+                .iter()
+                .any(|l| (l - at).norm() <= 1e-6 * scale)
+            {
+                return Ok(None);
+            }
+        }
+        let m = if discrete {
+            DMatrix::identity(n, n) - &self.a
+        } else {
+            -&self.a
+        };
+        let Some(x) = m.lu().solve(&self.b) else {
+            return Ok(None);
+        };
+        let g = &self.d + &self.c * x;
+        Ok(g.iter().all(|v| v.is_finite()).then_some(g))
+    }
 }
 
 /// Characteristic polynomial det(sI − M) from the eigenvalues of M.
