@@ -213,3 +213,32 @@ fn bad_input() {
     assert!(e.contains("exceeds"), "{e}");
     assert!(balanced_truncation(&ss, ReducedOrder::Error(f64::NAN)).is_err());
 }
+
+/// A model that is not stable by more than rounding has no Gramian: the error names the
+/// eigenvalue (found on the Lyapunov kernel's own Schur form), continuous and discrete.
+#[test]
+fn gramians_of_unstable_models_name_the_eigenvalue() {
+    // a rigid-body mode (eigenvalue exactly 0) beside a stable one
+    let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 0.0, -1.0]);
+    let b = DMatrix::from_column_slice(2, 1, &[0.0, 1.0]);
+    let c = DMatrix::from_row_slice(1, 2, &[1.0, 0.0]);
+    let ss = StateSpace::new(a, b, c, DMatrix::zeros(1, 1)).unwrap();
+    for kind in [GramianKind::Controllability, GramianKind::Observability] {
+        let e = gramian(&ss, kind).unwrap_err().to_string();
+        assert!(
+            e.contains("a Gramian of this model")
+                && e.contains("s = 0")
+                && e.contains("imaginary axis"),
+            "{e}"
+        );
+    }
+    assert!(hankel_singular_values(&ss).is_err());
+    // discrete: z = 1.5 outside the unit circle
+    let d = StateSpace::new(one(1.5), one(1.0), one(1.0), one(0.0))
+        .unwrap()
+        .with_domain(Domain::Discrete { dt: 0.1 });
+    let e = gramian(&d, GramianKind::Controllability)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("z = 1.5") && e.contains("unit circle"), "{e}");
+}

@@ -8,40 +8,34 @@
 //! L_oᵀ·L_c (= √λᵢ(P·Q)).
 
 use nalgebra::DMatrix;
+use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::{LtiError, Result};
 use crate::fmt::fmt_root;
 use crate::lti::StateSpace;
-use crate::numeric::linalg::{CholeskySolution, dlyap_cholesky, lyap_cholesky, schur_eigenvalues};
+use crate::numeric::linalg::CholeskySolution;
+use crate::numeric::linalg::hammarling::stable_or_eigenvalue;
 
-/// Errors unless every eigenvalue of A is stable by more than rounding: Re λ < −τ
-/// (|λ| < 1 − τ in discrete time), τ = 1000·ε·max(‖A‖_F, 1). An eigenvalue within rounding
-/// of the imaginary axis (a rigid-body mode computed as −1e-17) would give a Gramian of
-/// order 1e15 that is nothing but rounding.
-fn require_stable(ss: &StateSpace) -> Result<()> {
-    if ss.order() == 0 {
-        return Ok(());
-    }
-    let discrete = ss.domain.is_discrete();
-    let unstable = crate::numeric::linalg::checks::unstable_within_rounding(&ss.a, discrete);
-    let bad = schur_eigenvalues(&ss.a)?.into_iter().find(|p| unstable(*p));
-    match bad {
-        None => Ok(()),
-        Some(p) => Err(LtiError::Undefined {
-            what: "a Gramian of this model".into(),
-            reason: format!(
-                "A must be stable, but its eigenvalue {} = {} lies {} (the model is not stable: \
-                 remove the mode, e.g. a rigid-body mode, or shift it)",
-                if discrete { "z" } else { "s" },
-                fmt_root(p, 6),
-                if discrete {
-                    "on or outside the unit circle (within rounding)"
-                } else {
-                    "on the imaginary axis or in the right half plane (within rounding)"
-                }
-            ),
-        }),
+/// The error for an eigenvalue `p` of A that is not stable by more than rounding: Re λ ≥ −τ
+/// (|λ| ≥ 1 − τ in discrete time), τ = 1000·ε·max(‖A‖_F, 1) — the rule of the Lyapunov kernel,
+/// which finds it on the Schur form it computes anyway. An eigenvalue within rounding of the
+/// imaginary axis (a rigid-body mode computed as −1e-17) would give a Gramian of order 1e15
+/// that is nothing but rounding.
+fn unstable(p: Complex64, discrete: bool) -> LtiError {
+    LtiError::Undefined {
+        what: "a Gramian of this model".into(),
+        reason: format!(
+            "A must be stable, but its eigenvalue {} = {} lies {} (the model is not stable: \
+             remove the mode, e.g. a rigid-body mode, or shift it)",
+            if discrete { "z" } else { "s" },
+            fmt_root(p, 6),
+            if discrete {
+                "on or outside the unit circle (within rounding)"
+            } else {
+                "on the imaginary axis or in the right half plane (within rounding)"
+            }
+        ),
     }
 }
 
@@ -90,16 +84,13 @@ impl Gramian {
 /// ```
 pub fn gramian(ss: &StateSpace, kind: GramianKind) -> Result<Gramian> {
     crate::limits::NORM_STATES.check_usize("states", ss.order())?;
-    require_stable(ss)?;
     let (a, b) = match kind {
         GramianKind::Controllability => (ss.a.clone(), ss.b.clone()),
         GramianKind::Observability => (ss.a.transpose(), ss.c.transpose()),
     };
-    let CholeskySolution { l, residual } = if ss.domain.is_discrete() {
-        dlyap_cholesky(&a, &b)?
-    } else {
-        lyap_cholesky(&a, &b)?
-    };
+    let discrete = ss.domain.is_discrete();
+    let CholeskySolution { l, residual } =
+        stable_or_eigenvalue(&a, &b, discrete)?.map_err(|p| unstable(p, discrete))?;
     Ok(Gramian {
         kind,
         factor: l,

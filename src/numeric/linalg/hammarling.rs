@@ -71,6 +71,39 @@ pub fn dlyap_cholesky(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<CholeskySolu
 }
 
 fn hammarling(a: &DMatrix<f64>, b: &DMatrix<f64>, discrete: bool) -> Result<CholeskySolution> {
+    stable_or_eigenvalue(a, b, discrete)?.map_err(|z| {
+        let (what, region) = if discrete {
+            (
+                "the Cholesky factor of the discrete Lyapunov solution",
+                "on or outside the unit circle (within rounding)",
+            )
+        } else {
+            (
+                "the Cholesky factor of the Lyapunov solution",
+                "in the closed right half-plane (within rounding)",
+            )
+        };
+        LtiError::Undefined {
+            what: what.into(),
+            reason: format!(
+                "A must be stable, but its eigenvalue λ = {} lies {region}",
+                complex_number(z.re, z.im)
+            ),
+        }
+    })
+}
+
+/// Hammarling's method, or the first eigenvalue of A that is not stable by more than
+/// rounding (`checks::unstable_within_rounding`), found on the Schur form the method computes
+/// anyway — so that a caller with its own words for an unstable model (the Gramians) needs no
+/// eigenvalue computation of its own.
+///
+/// Errors: the argument errors of [`lyap_cholesky`].
+pub(crate) fn stable_or_eigenvalue(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    discrete: bool,
+) -> Result<std::result::Result<CholeskySolution, C>> {
     let n = check_coefficient(a, "A")?;
     if b.nrows() != n {
         return Err(LtiError::invalid(format!(
@@ -89,27 +122,8 @@ fn hammarling(a: &DMatrix<f64>, b: &DMatrix<f64>, discrete: bool) -> Result<Chol
     let real = real_schur(&a.transpose(), opts)?;
     // Stable by more than rounding (the rule of `checks::unstable_within_rounding`).
     let unstable = super::checks::unstable_within_rounding(a, discrete);
-    for z in real.eigenvalues() {
-        if unstable(z) {
-            let (what, region) = if discrete {
-                (
-                    "the Cholesky factor of the discrete Lyapunov solution",
-                    "on or outside the unit circle (within rounding)",
-                )
-            } else {
-                (
-                    "the Cholesky factor of the Lyapunov solution",
-                    "in the closed right half-plane (within rounding)",
-                )
-            };
-            return Err(LtiError::Undefined {
-                what: what.into(),
-                reason: format!(
-                    "A must be stable, but its eigenvalue λ = {} lies {region}",
-                    complex_number(z.re, z.im)
-                ),
-            });
-        }
+    if let Some(z) = real.eigenvalues().into_iter().find(|&z| unstable(z)) {
+        return Ok(Err(z));
     }
     let cs = complex_schur(&real);
     let u_real = real.q.unwrap_or_else(|| DMatrix::identity(n, n));
@@ -158,7 +172,7 @@ fn hammarling(a: &DMatrix<f64>, b: &DMatrix<f64>, discrete: bool) -> Result<Chol
     } else {
         relative_residual(&[&(a * &x), &(&x * a.transpose()), &bb])
     };
-    Ok(CholeskySolution { l, residual })
+    Ok(Ok(CholeskySolution { l, residual }))
 }
 
 /// Adds the row `y` (entries `start..`) to the upper triangular trailing block
