@@ -39,6 +39,7 @@ pub mod francis;
 pub mod freqresp;
 pub mod hammarling;
 pub mod hessenberg;
+pub(crate) mod hessenberg_zeros;
 pub(crate) mod householder;
 pub(crate) mod lu;
 pub mod lyapunov;
