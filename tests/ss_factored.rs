@@ -224,6 +224,7 @@ fn lattice_channel_256_states() {
 /// 500s + 1280, formed exactly (sympy, integer arithmetic), its roots by mpmath.polyroots at
 /// 40 digits (printed to 30).
 #[test]
+#[allow(clippy::excessive_precision)] // the references as mpmath printed them
 fn hessenberg_zeros_match_a_30_digit_reference() {
     let ss = StateSpace::new(
         DMatrix::from_row_slice(

@@ -206,7 +206,7 @@ fn finer_structure(
     if normwise.r.is_none_or(|rn| r >= rn) {
         return Ok(None);
     }
-    let response = siso_response(&minimal)?;
+    let response = siso_response(minimal)?;
     let Some(zeros) = refined_channel_zeros(&ss.a, &ss.b, &ss.c, r, removed, &response)? else {
         return Ok(None);
     };
