@@ -217,3 +217,95 @@ fn lattice_channel_256_states() {
     assert_eq!(fr.magnitude.len(), 3);
     let _ = m;
 }
+
+/// A dense 5-state channel with integer data and relative degree 1 (C·B = 4): its zeros come
+/// from the staircases' Hessenberg form (the zero dynamics, one Hessenberg eigenproblem), to
+/// near working precision. Reference: the numerator C·adj(sI − A)·B = 4s⁴ + 37s³ + 123s² +
+/// 500s + 1280, formed exactly (sympy, integer arithmetic), its roots by mpmath.polyroots at
+/// 40 digits (printed to 30).
+#[test]
+#[allow(clippy::excessive_precision)] // the references as mpmath printed them
+fn hessenberg_zeros_match_a_30_digit_reference() {
+    let ss = StateSpace::new(
+        DMatrix::from_row_slice(
+            5,
+            5,
+            &[
+                -3.0, 1.0, 0.0, 2.0, -1.0, //
+                2.0, -4.0, 1.0, 0.0, 1.0, //
+                -1.0, 2.0, -5.0, 1.0, 0.0, //
+                0.0, 1.0, -2.0, -2.0, 3.0, //
+                1.0, 0.0, 1.0, -3.0, -6.0,
+            ],
+        ),
+        DMatrix::from_column_slice(5, 1, &[1.0, -2.0, 0.0, 3.0, 1.0]),
+        DMatrix::from_row_slice(1, 5, &[2.0, 1.0, -1.0, 0.0, 4.0]),
+        DMatrix::zeros(1, 1),
+    )
+    .unwrap();
+    let reference = [
+        Complex64::new(-6.199_092_570_058_240_086_463_652_356_69, 0.0),
+        Complex64::new(-3.664_620_455_139_228_924_371_567_031_66, 0.0),
+        Complex64::new(
+            0.306_856_512_598_734_505_417_609_694_179,
+            3.740_589_098_726_605_672_966_592_519_98,
+        ),
+        Complex64::new(
+            0.306_856_512_598_734_505_417_609_694_179,
+            -3.740_589_098_726_605_672_966_592_519_98,
+        ),
+    ];
+    let f = Factored::from_state_space(&ss).unwrap();
+    assert!(
+        f.structure_note()
+            .contains("zero dynamics of the staircases' Hessenberg form"),
+        "{}",
+        f.structure_note()
+    );
+    let zeros: Vec<Complex64> = f
+        .zeros()
+        .iter()
+        .flat_map(|r| std::iter::repeat_n(r.value, r.multiplicity))
+        .collect();
+    assert_eq!(zeros.len(), 4);
+    for z in &reference {
+        let err = zeros
+            .iter()
+            .map(|w| (w - z).norm() / z.norm())
+            .fold(f64::INFINITY, f64::min);
+        assert!(err < 1e-14, "zero {z}: relative error {err:e}");
+    }
+    assert!(
+        (f.gain() - 4.0).abs() < 1e-14 * 4.0,
+        "C·B = 4: {}",
+        f.gain()
+    );
+}
+
+/// C·B tiny against ‖C‖·‖B‖ (2⁻³⁰ against ≈ 3.7): relative degree 1 still, but eliminating
+/// with that pivot would grow the zero dynamics ~10⁹-fold — the system pencil finds the
+/// zeros instead (the bound of `numeric::linalg::hessenberg_zeros`).
+#[test]
+fn a_tiny_markov_parameter_takes_the_pencil() {
+    let ss = StateSpace::new(
+        DMatrix::from_row_slice(
+            4,
+            4,
+            &[
+                -2.0, 1.0, 0.0, 1.0, //
+                1.0, -3.0, 2.0, 0.0, //
+                0.0, 1.0, -4.0, 1.0, //
+                1.0, 0.0, 1.0, -5.0,
+            ],
+        ),
+        DMatrix::from_column_slice(4, 1, &[1.0, 1.0, 0.0, 0.0]),
+        DMatrix::from_row_slice(1, 4, &[1.0, -1.0 + 2f64.powi(-30), 1.0, 2.0]),
+        DMatrix::zeros(1, 1),
+    )
+    .unwrap();
+    let f = Factored::from_state_space(&ss).unwrap();
+    assert_eq!(f.relative_degree(), Some(1));
+    let note = f.structure_note();
+    assert!(note.contains("zeros by the system pencil"), "{note}");
+    assert!(!note.contains("Hessenberg form"), "{note}");
+}

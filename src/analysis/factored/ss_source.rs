@@ -31,6 +31,7 @@ use super::pole_zero::{MAX_FACTORED_ORDER, PoleZero, count, merge};
 use super::ss_modal;
 use crate::error::{LtiError, Result};
 use crate::lti::StateSpace;
+use crate::numeric::linalg::hessenberg_zeros::{HessenbergSiso, is_upper_hessenberg};
 use crate::numeric::linalg::structure::{radius, snap};
 use crate::numeric::linalg::{
     EigenStructure, HessenbergResponse, MinimalRealization, StateMatrix, minimal_realization,
@@ -131,21 +132,31 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             (ev, red.minimal, conjugate_closed(&group(&kept)), removed)
         }
         None => {
-            let st = if n == 0 {
-                None
-            } else {
-                Some(a.eigen_structure()?)
-            };
             let minimal = minimal_realization(&ss.a, &ss.b, &ss.c, &ss.d, None)?;
-            let reduced = roots_of_matrix(&minimal.a)?;
+            if n == 0 {
+                return finish(
+                    Vec::new(),
+                    minimal,
+                    Vec::new(),
+                    Vec::new(),
+                    None,
+                    "no states",
+                );
+            }
             let removed: Vec<Complex64> = minimal
                 .uncontrollable
                 .iter()
                 .chain(&minimal.unobservable)
                 .copied()
                 .collect();
-            let Some(st) = st else {
-                return finish(Vec::new(), minimal, reduced, Vec::new(), None, "no states");
+            // Nothing removed (the generic case): the minimal A is an orthogonal similarity
+            // of the balanced A, so its eigen structure is A's — one eigenproblem, not two,
+            // and on the staircases' Hessenberg form (no second reduction). Else A's
+            // structure and the minimal part's, whose values are mapped to A's below.
+            let (st, reduced) = if minimal.order() == n {
+                (structure_of_similar(&ss.a, &minimal.a)?, None)
+            } else {
+                (a.eigen_structure()?, Some(roots_of_matrix(&minimal.a)?))
             };
             known = finer_structure(ss, &minimal, &removed)?;
             if let Some(k) = &known {
@@ -160,10 +171,13 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             }
             // the reduced poles and the removed modes are eigenvalues of A: its values
             let ev = Eigenvalues::new(st, n);
-            let reduced = reduced
-                .iter()
-                .map(|r| Root::new(ev.nearest(r.value), r.multiplicity))
-                .collect();
+            let reduced = match reduced {
+                None => ev.roots(),
+                Some(reduced) => reduced
+                    .iter()
+                    .map(|r| Root::new(ev.nearest(r.value), r.multiplicity))
+                    .collect(),
+            };
             let removed = removed.iter().map(|&v| ev.nearest(v)).collect();
             (ev, minimal, reduced, removed)
         }
@@ -192,7 +206,7 @@ fn finer_structure(
     if normwise.r.is_none_or(|rn| r >= rn) {
         return Ok(None);
     }
-    let response = HessenbergResponse::new(&minimal.a, &minimal.b, &minimal.c, &minimal.d)?;
+    let response = siso_response(minimal)?;
     let Some(zeros) = refined_channel_zeros(&ss.a, &ss.b, &ss.c, r, removed, &response)? else {
         return Ok(None);
     };
@@ -220,6 +234,7 @@ fn finish(
         None => relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?,
     };
     let zero = rd.r.is_none();
+    let mut by_hessenberg = false;
     // G ≡ 0: the minimal realisation has order 0 and every mode of A is decoupled from the
     // channel — the channel has no poles (issue 24: it listed every eigenvalue of A).
     let poles = if zero { reduced_poles.clone() } else { poles };
@@ -228,11 +243,23 @@ fn finish(
     } else if let Some(k) = &known {
         conjugate_closed(&k.zeros)
     } else {
-        let tz = transmission_zeros(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?;
+        let distinct = match hessenberg_zero_dynamics(&minimal, rd.r) {
+            Some(z) => {
+                by_hessenberg = true;
+                if z.nrows() == 0 {
+                    Vec::new()
+                } else {
+                    let st = StateMatrix::recognise(&z).eigen_structure()?;
+                    st.clusters.iter().map(|c| (c.value, c.algebraic)).collect()
+                }
+            }
+            None => {
+                transmission_zeros(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?.distinct
+            }
+        };
         let scale = crate::numeric::linalg::norms::norm_1_inf(&minimal.a);
         let nm = minimal.order().max(1);
-        let snapped: Vec<(Complex64, usize)> = tz
-            .distinct
+        let snapped: Vec<(Complex64, usize)> = distinct
             .iter()
             .map(|&(z, m)| (snap(z, radius(m, nm, scale)), m))
             .collect();
@@ -252,7 +279,7 @@ fn finish(
         reduced_zeros,
         zeros_at_infinity,
     };
-    let response = HessenbergResponse::new(&minimal.a, &minimal.b, &minimal.c, &minimal.d)?;
+    let response = siso_response(&minimal)?;
     let agreement = match factors_agreement(&pz, rd.gain, &response) {
         Some(e) if e.is_nan() || e > FACTORS_AGREE_REL => format!(
             "; the factors DISAGREE with G(s) by {} (relative, off the axis within the poles' \
@@ -266,6 +293,15 @@ fn finish(
         ),
         None => String::new(),
     };
+    let method = if by_hessenberg {
+        method.replacen(
+            "zeros by the system pencil",
+            "zeros as the eigenvalues of the zero dynamics of the staircases' Hessenberg form",
+            1,
+        )
+    } else {
+        method.to_string()
+    };
     let note = format!("numerical (state space: {method}{agreement})");
     Ok((
         pz,
@@ -276,6 +312,39 @@ fn finish(
             note,
         },
     ))
+}
+
+/// The zero dynamics of the minimal realisation when it is in the staircases' Hessenberg
+/// form and the relative degree (decided by the pencil's normwise rule, or componentwise) is
+/// 0 with D ≠ 0 or 1 with D = 0: an upper Hessenberg matrix whose eigenvalues are the zeros
+/// (see `numeric::linalg::hessenberg_zeros`); `None` otherwise, or when the elimination's
+/// growth is beyond its bound (the pencil reduction then finds the zeros).
+fn hessenberg_zero_dynamics(
+    minimal: &MinimalRealization,
+    r: Option<usize>,
+) -> Option<DMatrix<f64>> {
+    let d = minimal.d.get((0, 0)).copied()?;
+    match r {
+        Some(0) if d != 0.0 => {}
+        Some(1) if d == 0.0 => {}
+        _ => return None,
+    }
+    HessenbergSiso::of(&minimal.a, &minimal.b, &minimal.c, &minimal.d)?.zero_dynamics()
+}
+
+/// G(s) of the minimal realisation by the Hessenberg solve; in the staircases' Hessenberg
+/// form (or its dual, the same G for one channel) the reduction has nothing left to do.
+fn siso_response(minimal: &MinimalRealization) -> Result<HessenbergResponse> {
+    match HessenbergSiso::of(&minimal.a, &minimal.b, &minimal.c, &minimal.d) {
+        Some(form) => {
+            let n = form.h.nrows();
+            let mut b = DMatrix::zeros(n, 1);
+            b[(0, 0)] = form.beta;
+            let c = DMatrix::from_row_slice(1, n, &form.c);
+            HessenbergResponse::new(&form.h, &b, &c, &minimal.d)
+        }
+        None => HessenbergResponse::new(&minimal.a, &minimal.b, &minimal.c, &minimal.d),
+    }
 }
 
 /// The eigenvalues of A: its eigen structure and every cluster's value snapped once.
@@ -346,6 +415,24 @@ fn roots_of_matrix(a: &DMatrix<f64>) -> Result<Vec<Root>> {
         return Ok(Vec::new());
     }
     Ok(Eigenvalues::new(StateMatrix::recognise(a).eigen_structure()?, a.nrows()).roots())
+}
+
+/// The eigen structure of A, from A itself when it is (upper or lower) Hessenberg — a
+/// diagonal or triangular A keeps its eigenvalues exactly — else from `similar`, a matrix
+/// similar to it in the form the staircases leave, when that is Hessenberg, else from A. A
+/// lower Hessenberg matrix is transposed (the same eigenvalues and Jordan structure), so the
+/// Schur form starts from an upper Hessenberg matrix and skips the reduction.
+fn structure_of_similar(a: &DMatrix<f64>, similar: &DMatrix<f64>) -> Result<EigenStructure> {
+    for m in [a, similar] {
+        if is_upper_hessenberg(m) {
+            return StateMatrix::recognise(m).eigen_structure();
+        }
+        let t = m.transpose();
+        if is_upper_hessenberg(&t) {
+            return StateMatrix::recognise(&t).eigen_structure();
+        }
+    }
+    StateMatrix::recognise(a).eigen_structure()
 }
 
 /// Equal values merged (exact equality), with multiplicities.

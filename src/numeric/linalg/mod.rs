@@ -22,6 +22,7 @@
 //! | [`staircase`] | controllability / observability | orthogonal staircase (Van Dooren 1981, Varga) |
 //! | [`minreal`] | minimal realisation | two staircases, removed modes reported |
 //! | [`zeros`] | invariant and transmission zeros | Emami-Naeini & Van Dooren (1982) pencil reduction |
+//! | `hessenberg_zeros.rs` (internal) | a SISO channel's zeros from the staircases' Hessenberg form | the Schur complement of the pencil's pivot: an upper Hessenberg zero dynamics, one Francis run; growth-bounded, else the pencil |
 //! | [`lyapunov`] | Sylvester A·X + X·B = C, Lyapunov A·X + X·Aᵀ + Q = 0 and A·X·Aᵀ − X + Q = 0, with residual and condition estimate | Bartels–Stewart on the unbalanced real Schur form, real quasi-triangular solve (`dtrsyl` scheme, `trsyl.rs`, internal) |
 //! | [`mod@hammarling`] | Cholesky factor L·Lᵀ = X of a Lyapunov solution with Q = B·Bᵀ (Gramians) | Hammarling (1982) on the complex Schur form, Givens updates |
 //! | [`riccati`] | stabilising solutions of the continuous and discrete algebraic Riccati equations with a cross term, gain, closed-loop eigenvalues | care: ordered complex Schur form of the Hamiltonian; dare: structure-preserving doubling; then Newton (Kleinman / Hewer) defect correction |
@@ -39,6 +40,7 @@ pub mod francis;
 pub mod freqresp;
 pub mod hammarling;
 pub mod hessenberg;
+pub(crate) mod hessenberg_zeros;
 pub(crate) mod householder;
 pub(crate) mod lu;
 pub mod lyapunov;

@@ -300,15 +300,23 @@ fn link_clusters(ev: &[Complex64], scale: f64) -> Vec<Vec<usize>> {
         let r = root(&mut parent, k);
         components[r].push(k);
     }
-    let mut work: Vec<Vec<usize>> = components.into_iter().filter(|g| !g.is_empty()).collect();
+    // Each component's minimum spanning tree once; a split at a tree's longest link leaves
+    // two subtrees that are the minimum spanning trees of their members (the cut property),
+    // so every later split is read off the same tree: O(m) per split instead of a new O(m²)
+    // tree (a random matrix's spectrum is one component, peeled a member at a time).
+    let mut work: Vec<(Vec<usize>, Vec<Link>)> = components
+        .into_iter()
+        .filter(|g| !g.is_empty())
+        .map(|g| {
+            let tree = spanning_tree(&g, ev);
+            (g, tree)
+        })
+        .collect();
     let mut out = Vec::new();
-    while let Some(g) = work.pop() {
-        let diameter = g
-            .iter()
-            .flat_map(|&x| g.iter().map(move |&y| dist(ev[x], ev[y])))
-            .fold(0.0, f64::max);
-        if g.len() > 1 && diameter > 2.0 * radius(g.len(), n, scale) {
-            let (left, right) = split_longest_link(&g, ev);
+    let mut owner = vec![usize::MAX; n];
+    while let Some((g, tree)) = work.pop() {
+        if g.len() > 1 && diameter_exceeds(&g, ev, 2.0 * radius(g.len(), n, scale)) {
+            let [left, right] = cut_longest_link(g, tree, &mut owner);
             work.push(left);
             work.push(right);
         } else {
@@ -320,6 +328,114 @@ fn link_clusters(ev: &[Complex64], scale: f64) -> Vec<Vec<usize>> {
     }
     out.sort_unstable_by_key(|g| g.first().copied().unwrap_or(0));
     out
+}
+
+/// A link of a spanning tree: its two members (indices into the eigenvalues) and length.
+type Link = (usize, usize, f64);
+
+/// The minimum spanning tree of the members `g` (Prim's algorithm from `g[0]`, as
+/// [`split_longest_link`] builds it): `g.len() − 1` links, member i's link to its parent in
+/// the order of `g`.
+fn spanning_tree(g: &[usize], ev: &[Complex64]) -> Vec<Link> {
+    let m = g.len();
+    let mut in_tree = vec![false; m];
+    let mut best = vec![f64::INFINITY; m];
+    let mut parent = vec![0usize; m];
+    best[0] = 0.0;
+    for _ in 0..m {
+        let next = (0..m)
+            .filter(|&i| !in_tree[i])
+            .min_by(|&x, &y| best[x].total_cmp(&best[y]))
+            .unwrap_or(0);
+        in_tree[next] = true;
+        for i in 0..m {
+            if !in_tree[i] {
+                let d = dist(ev[g[i]], ev[g[next]]);
+                if d < best[i] {
+                    best[i] = d;
+                    parent[i] = next;
+                }
+            }
+        }
+    }
+    (1..m).map(|i| (g[i], g[parent[i]], best[i])).collect()
+}
+
+/// Whether the largest distance between members of `g` exceeds `limit`: decided by the
+/// bounding box when it can be (a side longer than `limit`, or a diagonal within it), by
+/// all pairs otherwise.
+fn diameter_exceeds(g: &[usize], ev: &[Complex64], limit: f64) -> bool {
+    let (mut re0, mut re1, mut im0, mut im1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &k in g {
+        re0 = re0.min(ev[k].re);
+        re1 = re1.max(ev[k].re);
+        im0 = im0.min(ev[k].im);
+        im1 = im1.max(ev[k].im);
+    }
+    let (w, h) = (re1 - re0, im1 - im0);
+    if w > limit || h > limit {
+        return true;
+    }
+    if w.hypot(h) <= limit {
+        return false;
+    }
+    g.iter()
+        .enumerate()
+        .any(|(i, &x)| g[i + 1..].iter().any(|&y| dist(ev[x], ev[y]) > limit))
+}
+
+/// The members and spanning tree split at the tree's longest link (the last of equal ones,
+/// as [`split_longest_link`] cuts): the two subtrees with their members, in the order of `g`.
+/// `owner` is scratch space indexed by eigenvalue (any contents).
+fn cut_longest_link(
+    g: Vec<usize>,
+    mut tree: Vec<Link>,
+    owner: &mut [usize],
+) -> [(Vec<usize>, Vec<Link>); 2] {
+    let cut = (0..tree.len())
+        .max_by(|&x, &y| tree[x].2.total_cmp(&tree[y].2))
+        .unwrap_or(0);
+    let (a, _, _) = tree.swap_remove(cut);
+    // union-find over the remaining links
+    for &k in &g {
+        owner[k] = k;
+    }
+    fn root(owner: &mut [usize], mut k: usize) -> usize {
+        while owner[k] != k {
+            owner[k] = owner[owner[k]];
+            k = owner[k];
+        }
+        k
+    }
+    for &(x, y, _) in &tree {
+        let (rx, ry) = (root(owner, x), root(owner, y));
+        if rx != ry {
+            owner[ry] = rx;
+        }
+    }
+    let ra = root(owner, a);
+    let (mut below, mut rest) = (Vec::new(), Vec::new());
+    for &k in &g {
+        if root(owner, k) == ra {
+            below.push(k);
+        } else {
+            rest.push(k);
+        }
+    }
+    let (mut tb, mut tr) = (Vec::new(), Vec::new());
+    for l in tree {
+        if root(owner, l.0) == ra {
+            tb.push(l);
+        } else {
+            tr.push(l);
+        }
+    }
+    [(rest, tr), (below, tb)]
 }
 
 /// |a − b| without libm's `hypot` where the squares cannot overflow or underflow (the
@@ -352,26 +468,33 @@ fn member_condition(s: &DMatrix<Complex64>, k: usize, scale: f64) -> f64 {
     let smin = (f64::EPSILON * scale).max(f64::MIN_POSITIVE * 1e10);
     let pivot = |j: usize| {
         let d = s[(j, j)] - lambda;
-        if d.norm() < smin {
+        if d.re.abs().max(d.im.abs()) < smin && d.norm() < smin {
             Complex64::new(smin, 0.0)
         } else {
             d
         }
     };
     const BIG: f64 = 1e150;
-    // right: (S − λI)x = 0 on rows 0..k
-    let mut x = vec![Complex64::new(0.0, 0.0); k + 1];
-    x[k] = Complex64::new(1.0, 0.0);
+    // |z| > BIG, with `hypot` only when the larger part does not decide it
+    let too_big = |z: Complex64| {
+        let m = z.re.abs().max(z.im.abs());
+        m > BIG || (m > 0.5 * BIG && z.norm() > BIG)
+    };
+    // right: (S − λI)x = 0 on rows 0..k, by columns (contiguous): rhs = −S[0..k, k], then
+    // x_j = rhs_j/pivot and rhs[0..j] −= S[0..j, j]·x_j
+    let mut x: Vec<Complex64> = (0..k).map(|i| -s[(i, k)]).collect();
     for j in (0..k).rev() {
-        let mut acc = Complex64::new(0.0, 0.0);
-        for l in j + 1..=k {
-            acc -= s[(j, l)] * x[l];
-        }
-        x[j] = acc / pivot(j);
-        if x[j].norm() > BIG {
+        let xj = x[j] / pivot(j);
+        x[j] = xj;
+        if too_big(xj) {
             return f64::INFINITY;
         }
+        let col = &s.as_slice()[j * n..j * n + j];
+        for (t, sij) in x[..j].iter_mut().zip(col) {
+            *t -= sij * xj;
+        }
     }
+    x.push(Complex64::new(1.0, 0.0));
     // left: yᴴ(S − λI) = 0 on columns k..n (y stored conjugated: w = yᴴ)
     let mut w = vec![Complex64::new(0.0, 0.0); n - k];
     w[0] = Complex64::new(1.0, 0.0);
@@ -381,7 +504,7 @@ fn member_condition(s: &DMatrix<Complex64>, k: usize, scale: f64) -> f64 {
             acc -= w[l - k] * s[(l, j)];
         }
         w[j - k] = acc / pivot(j);
-        if w[j - k].norm() > BIG {
+        if too_big(w[j - k]) {
             return f64::INFINITY;
         }
     }
