@@ -7,9 +7,9 @@ ill-conditioned; ltikit's coefficients are measured against these).
 
 Each plant's coefficients are float64 values (written with repr: exact round trip) and ARE
 the model: the order-8 plant of benches/compare/inputs.toml (den = prod(s^2 + 2 zeta wn s +
-wn^2), num = 100 (s + 3)(s + 0.5), multiplied out in float64 by numpy) and small plants with a
-triple and a quadruple pole, a pole at 0, a direct feed-through and widely spread poles. With mpmath at 50
-digits: the controllable canonical realisation (A, B, C, D) of the float coefficients, the
+wn^2), num = 100 (s + 3)(s + 0.5), multiplied out in float64 by numpy) and small plants with
+a triple and a quadruple pole, a pole at 0, a direct feed-through and widely spread poles.
+With mpmath at 50 digits: the controllable canonical realisation (A, B, C, D) of the float coefficients, the
 exponential of the augmented matrix [[A T, B T], [0, 0]] = [[Phi, Gamma], [0, 1]]
 (mpmath.expm), the denominator det(zI - Phi) and the numerator
 det(zI - Phi + Gamma C) + (D - 1) det(zI - Phi) by Faddeev-LeVerrier, both monic-normalised

@@ -547,13 +547,17 @@ fn zoh_tf(g: &TransferFunction, dt: f64) -> Result<TransferFunction> {
     aug.view_mut((0, n), (n, 1)).copy_from(&(&ss.b * dt));
     let e = crate::numeric::expm(&aug)?;
     let phi = e.view((0, 0), (n, n));
+    let c = ss.c.row(0);
+    // Φ^(k−1)·Γ by repeated products into two buffers
     let mut v = e.view((0, n), (n, 1)).into_owned();
+    let mut next = v.clone();
     let mut markov = Vec::with_capacity(n + 1);
     markov.push(ss.d[(0, 0)]);
     for k in 1..=n {
-        markov.push((&ss.c * &v)[(0, 0)]);
+        markov.push(c.iter().zip(v.iter()).map(|(x, y)| x * y).sum());
         if k < n {
-            v = phi * v;
+            next.gemm(1.0, &phi, &v, 0.0);
+            std::mem::swap(&mut v, &mut next);
         }
     }
     let a = den.coeffs();

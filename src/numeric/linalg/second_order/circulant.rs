@@ -143,6 +143,7 @@ pub(super) fn fill(col: &[f64], out: &mut DMatrixViewMut<'_, f64>) {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::float_cmp)] // exact values at the quarter turns and the zero mode
     use super::*;
 
     fn circulant(c: &[f64]) -> DMatrix<f64> {
