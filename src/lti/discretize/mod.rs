@@ -454,6 +454,7 @@ impl TransferFunction {
                 let num = Poly::from_root_list(&zd)?.scale(kd);
                 TransferFunction::new(num, Poly::from_root_list(&pd)?)?
             }
+            Discretization::Zoh if self.order() > 0 => zoh_tf(self, dt)?,
             _ => {
                 let ss = StateSpace::from_tf(self)?.c2d(dt, method)?;
                 let g = ss.to_tf()?;
@@ -515,6 +516,62 @@ impl TransferFunction {
         };
         Ok(out.with_domain(Domain::Continuous))
     }
+}
+
+/// The ZOH equivalent of a proper G(s) of order n ≥ 1 with one eigenproblem, the roots of its
+/// denominator: the poles e^(pT) (multiplicities kept, conjugates exact), the denominator
+/// a(z) = Π(z − e^(pT)) expanded (monic), and the numerator from the Markov parameters of the
+/// discretised controllable canonical realisation (balanced), g₀ = D, g_k = C·Φ^(k−1)·Γ (k = 1 … n):
+/// G(z) = Σ g_k z^(−k), so N(z) = a(z)·Σ g_k z^(−k) truncated to its polynomial part,
+/// N_i = Σ_(k ≤ i) a_(i−k)·g_k (descending coefficients, a₀ = 1).
+fn zoh_tf(g: &TransferFunction, dt: f64) -> Result<TransferFunction> {
+    let n = g.order();
+    // the continuous poles: the eigenvalues of the balanced companion matrix (the root
+    // finder's candidates; a multiple pole scatters by ~ε^(1/m), but the coefficients of
+    // Π(z − e^(pT)) are symmetric functions of the poles, smooth in the coefficients of
+    // G's denominator: the scatter cancels in them); the whole root finder when the
+    // companion iteration fails or the coefficients span too wide a range
+    let mapped = |poles: Vec<Complex64>| -> Result<Poly> {
+        Poly::from_roots(&poles.iter().map(|&p| zoh_root(p, dt)).collect::<Vec<_>>())
+    };
+    let den = match crate::poly::roots::candidates(g.den()).and_then(mapped) {
+        Ok(den) => den,
+        Err(_) => mapped(crate::poly::roots::flatten(&g.den().roots()?))?,
+    };
+    // balanced (an exact diagonal similarity: the Markov parameters are unchanged): the
+    // companion matrix's norm drops by orders of magnitude, and with it the exponential's
+    // squarings and Padé degree
+    let ss = StateSpace::from_tf(g)?.balanced();
+    let mut aug = DMatrix::<f64>::zeros(n + 1, n + 1);
+    aug.view_mut((0, 0), (n, n)).copy_from(&(&ss.a * dt));
+    aug.view_mut((0, n), (n, 1)).copy_from(&(&ss.b * dt));
+    let e = crate::numeric::expm(&aug)?;
+    let phi = e.view((0, 0), (n, n));
+    let c = ss.c.row(0);
+    // Φ^(k−1)·Γ by repeated products into two buffers
+    let mut v = e.view((0, n), (n, 1)).into_owned();
+    let mut next = v.clone();
+    let mut markov = Vec::with_capacity(n + 1);
+    markov.push(ss.d[(0, 0)]);
+    for k in 1..=n {
+        markov.push(c.iter().zip(v.iter()).map(|(x, y)| x * y).sum());
+        if k < n {
+            next.gemm(1.0, &phi, &v, 0.0);
+            std::mem::swap(&mut v, &mut next);
+        }
+    }
+    let a = den.coeffs();
+    let num: Vec<f64> = (0..=n)
+        .map(|i| (0..=i).map(|k| a[i - k] * markov[k]).sum())
+        .collect();
+    let out = TransferFunction::new(Poly::trimmed(num), den).map_err(|e| match e {
+        LtiError::NonFinite { value, .. } => LtiError::Overflow {
+            what: format!("the zoh discretisation at dt = {}", fmt_num(dt)),
+            reason: format!(" (an entry became {value})"),
+        },
+        other => other,
+    })?;
+    Ok(out)
 }
 
 /// Σ p_k s^k with s^k → h^(n−k)·a(z)^k·b(z)^(n−k), a and b linear (descending pairs).

@@ -16,10 +16,14 @@
 //!    S = Δ·G·Δ⁻¹ (Δ = diag(δ), δ > 0: the square roots of the masses when G = M⁻¹K with M
 //!    diagonal), found along a spanning forest of the coupling graph (δⱼ² = δᵢ²·gᵢⱼ/gⱼᵢ) and
 //!    then checked on every entry: |sᵢⱼ − sⱼᵢ| ≤ [`SYM_REL`]·max(|sᵢⱼ|, |sⱼᵢ|).
-//! 3. S_G = V·Λ·Vᵀ (nalgebra's `SymmetricEigen`, capped). Within each group of equal λ
-//!    (single linkage at [`snap_tol`]) the damping VᵀS_E·V is diagonalised as well; the model is
-//!    accepted when what is left off the diagonal of VᵀS_E·V is at most the same tolerance
-//!    (the damping does not couple the modes) and the residual ‖S_G·V − V·Λ‖ is too.
+//! 3. S_G = V·Λ·Vᵀ: when S_G and S_E are symmetric circulants (Δ = I: a periodic ring of
+//!    identical cells, the seed's lattice) from the real Fourier basis and the transform of
+//!    the first column (`circulant.rs`), else by nalgebra's `SymmetricEigen` (capped). Within
+//!    each group of equal λ (single linkage at [`snap_tol`]) the damping VᵀS_E·V is
+//!    diagonalised as well; the model is accepted when what is left off the diagonal of
+//!    VᵀS_E·V is at most the same tolerance (the damping does not couple the modes) and the
+//!    residual ‖S_G·V − V·Λ‖ is too (for the Fourier modes: the residuals ‖S_G·V − V·Λ‖ and
+//!    ‖S_E·V − V·Γ‖, each within the tolerance of its matrix).
 //!
 //! # The modes
 //! Mode k has stiffness λₖ and damping γₖ; both are snapped within [`snap_tol`] — to 0, and
@@ -43,11 +47,13 @@
 //! ([`super::structure`], [`super::eigvec`], [`super::modal`]) know nothing of this module; it
 //! builds on their types.
 //!
-//! Files: `recognise.rs` (the recognition and the modes), `eigen.rs` (eigenvalues and
+//! Files: `recognise.rs` (the recognition and the modes), `circulant.rs` (the Fourier modes
+//! of a periodic ring and its circulant blocks), `eigen.rs` (eigenvalues and
 //! eigenvectors from the modes), `modal.rs` (the modal form from the modes), `zoh.rs` (the
 //! zero-order-hold discretisation from the modes: [`SecondOrder::zoh`]), `sparse.rs` (G and E
 //! by columns when sparse, for the residual of step 3 and the lower blocks of the ZOH).
 
+mod circulant;
 mod eigen;
 mod modal;
 mod recognise;

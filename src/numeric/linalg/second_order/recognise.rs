@@ -4,6 +4,7 @@
 use nalgebra::{DMatrix, SymmetricEigen};
 use num_complex::Complex64;
 
+use super::circulant;
 use super::sparse::ColumnSparse;
 
 /// Relative asymmetry accepted in the symmetrised stiffness and damping (rounding of the
@@ -45,6 +46,9 @@ pub struct SecondOrder {
     pub(super) delta: Vec<f64>,
     /// G = −A₂₁ and E = −A₂₂ by columns, when both are sparse (see [`SPARSE_PER_COLUMN`]).
     pub(super) coupling: Option<(ColumnSparse, ColumnSparse)>,
+    /// G and E are symmetric circulants (Δ = I) and the shapes their Fourier modes: every
+    /// block of a function of A is circulant (see `circulant.rs`).
+    pub(super) circulant: bool,
 }
 
 /// G and E are kept sparse (products in O(nnz·d)) when each has at most this many non-zero
@@ -230,6 +234,12 @@ impl SecondOrder {
     /// assert!(SecondOrder::detect(&DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 0.0])).is_none());
     /// ```
     pub fn detect(a: &DMatrix<f64>) -> Option<SecondOrder> {
+        SecondOrder::detect_with(a, true)
+    }
+
+    /// [`SecondOrder::detect`], with the Fourier modes of a circulant G and E (`fourier`) or
+    /// always the general symmetric eigen solver (to check the one against the other).
+    pub(super) fn detect_with(a: &DMatrix<f64>, fourier: bool) -> Option<SecondOrder> {
         let n = a.nrows();
         if n < 2 || n % 2 != 0 || !a.is_square() {
             return None;
@@ -262,27 +272,43 @@ impl SecondOrder {
             return None;
         }
         let (tol_g, tol_e) = (snap_tol(d, norm_g), snap_tol(d, norm_e));
-        let (mut lam, mut v) = sym_eig(sg.clone())?;
+        // a periodic ring of identical cells (symmetric circulant G and E, no mass scaling):
+        // the Fourier modes, no eigen solver (see `circulant`)
+        #[allow(clippy::float_cmp)] // exactly 1: no mass scaling
+        let circulant = fourier
+            && delta.iter().all(|&x| x == 1.0)
+            && circulant::is_circulant(&sg)
+            && circulant::is_circulant(&se);
+        let (mut lam, fourier_gam, mut v) = if circulant {
+            let (lam, gam, v) = circulant::fourier_modes(&sg, &se);
+            (lam, Some(gam), v)
+        } else {
+            let (lam, v) = sym_eig(sg.clone())?;
+            (lam, None, v)
+        };
         if lam.iter().chain(v.iter()).any(|x| !x.is_finite()) {
             return None;
         }
-        // residual of the stiffness decomposition (S_G has G's pattern: sparse with it)
-        let sv = match &coupling {
-            Some(_) => ColumnSparse::build(d, max_nnz, |i, j| sg[(i, j)])
-                .map_or_else(|| &sg * &v, |s| s.mul(&v)),
-            None => &sg * &v,
-        };
-        let (mut r, mut nan) = (0.0f64, false);
-        for (j, (col, vj)) in sv.column_iter().zip(v.column_iter()).enumerate() {
-            for (x, y) in col.iter().zip(vj.iter()) {
-                let t = (x - y * lam[j]).abs();
-                nan |= t.is_nan();
-                r = r.max(t);
+        // residuals ‖S·V − V·diag(values)‖ (S_G, S_E have G's and E's pattern: sparse with it)
+        let residual = |s: &DMatrix<f64>, values: &[f64], v: &DMatrix<f64>| -> f64 {
+            let sv = match &coupling {
+                Some(_) => ColumnSparse::build(d, max_nnz, |i, j| s[(i, j)])
+                    .map_or_else(|| s * v, |c| c.mul(v)),
+                None => s * v,
+            };
+            let mut r = 0.0f64;
+            for (j, (col, vj)) in sv.column_iter().zip(v.column_iter()).enumerate() {
+                for (x, y) in col.iter().zip(vj.iter()) {
+                    let t = (x - y * values[j]).abs();
+                    if t.is_nan() {
+                        return f64::NAN;
+                    }
+                    r = r.max(t);
+                }
             }
-        }
-        if nan {
-            return None;
-        }
+            r
+        };
+        let r = residual(&sg, &lam, &v);
         if r.is_nan() || r > tol_g.max(f64::MIN_POSITIVE) {
             return None;
         }
@@ -290,7 +316,14 @@ impl SecondOrder {
         snap(&mut lam, &groups, tol_g);
         // the damping in the stiffness modes, diagonalised within each group of equal λ
         let mut gam = vec![0.0; d];
-        if norm_e > 0.0 {
+        if let Some(fg) = fourier_gam.filter(|_| norm_e > 0.0) {
+            // the Fourier modes diagonalise every circulant: checked by the residual
+            let r = residual(&se, &fg, &v);
+            if r.is_nan() || r > tol_e {
+                return None;
+            }
+            gam = fg;
+        } else if norm_e > 0.0 {
             let mut ev = v.transpose() * &se * &v;
             for &(i0, i1) in &groups {
                 let k = i1 - i0;
@@ -318,6 +351,8 @@ impl SecondOrder {
             if off.is_nan() || off > tol_e {
                 return None;
             }
+        }
+        if norm_e > 0.0 {
             // one damping for every mode when they all agree (E = γI rounds differently in
             // each mode), else equal damping within a stiffness group (sorted for the runs)
             let (lo, hi) = gam
@@ -362,6 +397,7 @@ impl SecondOrder {
             scale,
             delta,
             coupling,
+            circulant,
         })
     }
 

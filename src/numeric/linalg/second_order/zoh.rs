@@ -2,11 +2,12 @@
 //! ([`SecondOrder::zoh`]): one 4×4 exponential per mode, two half products of half the order
 //! for the upper block row of Φ, and the lower block row from it (sparse products with the
 //! stiffness and damping when they are sparse, two more half products when not), instead of
-//! the exponential of the whole (n + m)-square augmented matrix.
+//! the exponential of the whole (n + m)-square augmented matrix; for a periodic ring (circulant
+//! G and E) each block from one column.
 
 use nalgebra::{DMatrix, DMatrixViewMut};
 
-use super::SecondOrder;
+use super::{SecondOrder, circulant};
 use crate::error::Result;
 
 impl SecondOrder {
@@ -17,7 +18,11 @@ impl SecondOrder {
     /// and the blocks of Φ are X_q·diag(φᵢⱼ)·X_q⁻¹ = Δ⁻¹·V·diag(φᵢⱼ)·Vᵀ·Δ (symmetric but
     /// for Δ: half of each by products), Γ = diag(X_q, X_q)·ψ·diag(X_q⁻¹, X_q⁻¹)·B. When G
     /// and E are sparse (a chain, a ring) the lower block row comes from the upper one:
-    /// e^(AT) commutes with A, so Φ₂₁ = −Φ₁₂·G and Φ₂₂ = Φ₁₁ − Φ₁₂·E.
+    /// e^(AT) commutes with A, so Φ₂₁ = −Φ₁₂·G and Φ₂₂ = Φ₁₁ − Φ₁₂·E. When G and E are
+    /// symmetric circulants (a periodic ring, the shapes its Fourier modes) every block
+    /// V·diag(φᵢⱼ)·Vᵀ is circulant: its first column V·(φᵢⱼ ∘ V(0, :)ᵀ) determines it, O(d²)
+    /// per block. A mode with the same stiffness and damping as the one before it (the
+    /// degenerate pairs of a ring) reuses its 4×4 exponential.
     ///
     /// The modes' stiffness and damping were snapped within [`super::snap_tol`] when
     /// recognised: Φ and Γ are those of a matrix within that distance of A.
@@ -47,14 +52,23 @@ impl SecondOrder {
         let mut gq = DMatrix::<f64>::zeros(d, m);
         let mut gv = DMatrix::<f64>::zeros(d, m);
         let mut aug = DMatrix::<f64>::zeros(4, 4);
+        // the 4×4 exponential of the previous mode, reused by a mode with the same stiffness
+        // and damping (degenerate modes were snapped to equal values when recognised)
+        let mut last: Option<(f64, f64, DMatrix<f64>)> = None;
         for (k, mode) in self.modes.iter().enumerate() {
-            aug.fill(0.0);
-            aug[(0, 1)] = dt;
-            aug[(1, 0)] = -mode.stiffness * dt;
-            aug[(1, 1)] = -mode.damping * dt;
-            aug[(0, 2)] = dt;
-            aug[(1, 3)] = dt;
-            let e = crate::numeric::expm(&aug)?;
+            let e = match last.take() {
+                #[allow(clippy::float_cmp)] // bitwise the same mode
+                Some(prev) if prev.0 == mode.stiffness && prev.1 == mode.damping => prev.2,
+                _ => {
+                    aug.fill(0.0);
+                    aug[(0, 1)] = dt;
+                    aug[(1, 0)] = -mode.stiffness * dt;
+                    aug[(1, 1)] = -mode.damping * dt;
+                    aug[(0, 2)] = dt;
+                    aug[(1, 3)] = dt;
+                    crate::numeric::expm(&aug)?
+                }
+            };
             phi[0][k] = e[(0, 0)];
             phi[1][k] = e[(0, 1)];
             phi[2][k] = e[(1, 0)];
@@ -65,9 +79,20 @@ impl SecondOrder {
                 gq[(k, j)] = p11 * bq + p12 * bv;
                 gv[(k, j)] = p21 * bq + p22 * bv;
             }
+            last = Some((mode.stiffness, mode.damping, e));
         }
         let n = 2 * d;
         let mut big_phi = DMatrix::<f64>::zeros(n, n);
+        if self.circulant {
+            // a ring: each block V·diag(φ)·Vᵀ is circulant, its first column V·(φ ∘ V(0, :)ᵀ)
+            let top = self.shapes.row(0);
+            for (f, (r, c)) in phi.iter().zip([(0, 0), (0, d), (d, 0), (d, d)]) {
+                let w = nalgebra::DVector::from_fn(d, |m, _| f[m] * top[m]);
+                let col = &self.shapes * w;
+                circulant::fill(col.as_slice(), &mut big_phi.view_mut((r, c), (d, d)));
+            }
+            return Ok((big_phi, self.gamma(&gq, &gv, m)));
+        }
         // Φ₁₁ and Φ₁₂: X_q·diag(φ)·X_q⁻¹ = Δ⁻¹·(V·diag(φ)·Vᵀ)·Δ, its lower half by products
         let mut w = self.shapes.clone();
         self.similar(&phi[0], &mut w, &mut big_phi, 0, 0);
@@ -86,14 +111,20 @@ impl SecondOrder {
                 self.similar(&phi[3], &mut w, &mut big_phi, d, d);
             }
         }
-        let mut gamma = DMatrix::<f64>::zeros(n, m);
+        Ok((big_phi, self.gamma(&gq, &gv, m)))
+    }
+
+    /// Γ = diag(X_q, X_q)·\[γ_q; γ_v\] from the modal input columns.
+    fn gamma(&self, gq: &DMatrix<f64>, gv: &DMatrix<f64>, m: usize) -> DMatrix<f64> {
+        let d = self.dof;
+        let mut gamma = DMatrix::<f64>::zeros(2 * d, m);
         gamma
             .view_mut((0, 0), (d, m))
-            .copy_from(&(&self.shapes * &gq));
+            .copy_from(&(&self.shapes * gq));
         gamma
             .view_mut((d, 0), (d, m))
-            .copy_from(&(&self.shapes * &gv));
-        Ok((big_phi, gamma))
+            .copy_from(&(&self.shapes * gv));
+        gamma
     }
 
     /// X_q·diag(f)·X_q⁻¹ into the d×d block of `out` at (r, c) (`w`: d×d workspace). It is
@@ -235,6 +266,93 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A ring of `d` unit masses joined by springs k = 1 (the seed's N-periodic lattice),
+    /// each also tied to the ground by a spring `ground` (0: the free ring, whose translation
+    /// is a zero mode), damping E = α·I + β·G: A = [[0, I], [−G, −E]].
+    fn ring(d: usize, ground: f64, alpha: f64, beta: f64) -> DMatrix<f64> {
+        let mut a = DMatrix::<f64>::zeros(2 * d, 2 * d);
+        for i in 0..d {
+            a[(i, d + i)] = 1.0;
+            let mut g = vec![0.0; d];
+            g[i] += 2.0 + ground;
+            g[(i + 1) % d] -= 1.0;
+            g[(i + d - 1) % d] -= 1.0;
+            for j in 0..d {
+                a[(d + i, j)] = -g[j];
+                let identity = if i == j { 1.0 } else { 0.0 };
+                a[(d + i, d + j)] = -(alpha * identity + beta * g[j]);
+            }
+        }
+        a
+    }
+
+    #[test]
+    fn rings_take_the_fourier_modes_and_agree_with_the_general_path() {
+        // odd and even N (the Nyquist mode), free (λ = 0: the rigid-body limits
+        // sin(ωT)/ω → T, (1 − cos ωT)/ω² → T²/2) and grounded, undamped and damped
+        for (d, ground, alpha, beta) in [
+            (3, 0.0, 0.0, 0.0),
+            (4, 0.0, 0.0, 0.0),
+            (7, 0.0, 0.0, 0.0),
+            (8, 0.5, 0.0, 0.0),
+            (9, 0.3, 0.05, 0.01),
+            (16, 0.0, 0.0, 0.02),
+            (33, 0.0, 0.0, 0.0),
+            (64, 0.0, 0.0, 0.0),
+            (65, 0.2, 0.1, 0.0),
+        ] {
+            let a = ring(d, ground, alpha, beta);
+            let mut b = DMatrix::<f64>::zeros(2 * d, 2);
+            b[(d, 0)] = 1.0;
+            b[(d + 2, 1)] = 0.5;
+            b[(1, 1)] = 0.25; // an input on a position derivative too
+            let so = SecondOrder::detect(&a).expect("a ring is second order");
+            assert!(so.circulant, "N={d}: a ring is circulant");
+            let general = SecondOrder::detect_with(&a, false).unwrap();
+            assert!(!general.circulant);
+            let mut worst = [0.0f64; 2];
+            for dt in [0.01, 0.1, 1.0] {
+                let (phi, gamma) = so.zoh(&b, dt).unwrap();
+                let (pd, gd) = dense(&a, &b, dt);
+                let ep = (&phi - &pd).norm() / pd.norm();
+                let eg = (&gamma - &gd).norm() / gd.norm();
+                let (pg, gg) = general.zoh(&b, dt).unwrap();
+                let fp = (&phi - &pg).norm() / pg.norm();
+                let fg = (&gamma - &gg).norm() / gg.norm();
+                worst[0] = worst[0].max(ep.max(eg));
+                worst[1] = worst[1].max(fp.max(fg));
+                assert!(
+                    ep < 1e-13 && eg < 1e-13 && fp < 1e-13 && fg < 1e-13,
+                    "N={d} κ={ground} α={alpha} β={beta} T={dt}: dense {ep:.1e} {eg:.1e}, \
+                     general {fp:.1e} {fg:.1e}"
+                );
+            }
+            println!(
+                "ring N={d} κ={ground} α={alpha} β={beta}: against the dense exponential {:.1e}, \
+                 against SymmetricEigen's modes {:.1e}",
+                worst[0], worst[1]
+            );
+        }
+    }
+
+    #[test]
+    fn a_perturbed_ring_is_not_circulant() {
+        // one mass 1 % heavier: G = M⁻¹K is no longer circulant (nor symmetric): the general
+        // path, still exact against the dense exponential
+        let d = 10;
+        let mut a = ring(d, 0.0, 0.0, 0.0);
+        for j in 0..d {
+            a[(d + 3, j)] /= 1.01;
+        }
+        let so = SecondOrder::detect(&a).expect("still second order");
+        assert!(!so.circulant);
+        let b = DMatrix::from_fn(2 * d, 1, |i, _| if i == d { 1.0 } else { 0.0 });
+        let (phi, gamma) = so.zoh(&b, 0.1).unwrap();
+        let (pd, gd) = dense(&a, &b, 0.1);
+        assert!((&phi - &pd).norm() / pd.norm() < 1e-13);
+        assert!((&gamma - &gd).norm() / gd.norm() < 1e-13);
     }
 
     #[test]
