@@ -20,7 +20,7 @@ use std::rc::Rc;
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::{LtiError, Result};
-use crate::numeric::linalg::matvec::mat_vec;
+use crate::numeric::linalg::matvec::{mat_vec, vec_mat};
 
 /// Smallest order for which blocks are considered (below it a sample costs a few dozen
 /// flops and the plain march is as fast).
@@ -96,10 +96,22 @@ impl BlockMap {
         let mut m = 1;
         let mut scratch = DMatrix::zeros(n, n);
         let mut step = DVector::zeros(n);
+        let mut row_out = vec![0.0; n];
         while m < len {
             // W[m..2m] = W[0..m]·Φ^m, s_2m = s_m + Φ^m·s_m, then Φ^2m
-            let (top, mut bottom) = w.rows_range_pair_mut(0..m * p, m * p..2 * m * p);
-            bottom.gemm(1.0, &top, &power, 0.0);
+            if m * p >= 8 {
+                let (top, mut bottom) = w.rows_range_pair_mut(0..m * p, m * p..2 * m * p);
+                bottom.gemm(1.0, &top, &power, 0.0);
+            } else {
+                // a few rows: nalgebra's gemm would take its strided kernel
+                for k in 0..m * p {
+                    let row: Vec<f64> = w.row(k).iter().copied().collect();
+                    vec_mat(&row, &power, &mut row_out);
+                    for (j, v) in row_out.iter().enumerate() {
+                        w[(m * p + k, j)] = *v;
+                    }
+                }
+            }
             mat_vec(&power, s.as_slice(), step.as_mut_slice());
             s += &step;
             scratch.gemm(1.0, &power, &power, 0.0);

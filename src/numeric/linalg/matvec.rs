@@ -61,6 +61,39 @@ fn mat_vec_portable(m: &DMatrix<f64>, x: &[f64], y: &mut [f64]) {
     }
 }
 
+/// y ← Mᵀ·x (the row vector xᵀM): one contiguous dot product per column of M, with four
+/// partial sums (for the few rows that nalgebra's `gemm` would send through its strided
+/// kernel: it takes matrixmultiply only above five rows).
+pub(crate) fn vec_mat(x: &[f64], m: &DMatrix<f64>, y: &mut [f64]) {
+    debug_assert_eq!((m.nrows(), m.ncols()), (x.len(), y.len()));
+    let r = x.len();
+    if r == 0 {
+        y.fill(0.0);
+        return;
+    }
+    for (yj, col) in y.iter_mut().zip(m.as_slice().chunks_exact(r)) {
+        *yj = dot(col, x);
+    }
+}
+
+/// Σ aᵢbᵢ with four partial sums.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ac
+        .remainder()
+        .iter()
+        .zip(bc.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ac.zip(bc) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,6 +108,14 @@ mod tests {
             mat_vec(&m, x.as_slice(), &mut y);
             let want = &m * &x;
             assert_eq!(y.as_slice(), want.as_slice(), "{r}×{c}");
+            // xᵀM against nalgebra to rounding
+            let v = nalgebra::DVector::from_fn(r, |i, _| (i as f64 * 0.61).cos());
+            let mut z = vec![f64::NAN; c];
+            vec_mat(v.as_slice(), &m, &mut z);
+            let want = m.tr_mul(&v);
+            for (zj, wj) in z.iter().zip(want.iter()) {
+                assert!((zj - wj).abs() <= 1e-13 * (1.0 + wj.abs()), "{r}×{c}");
+            }
         }
     }
 }
