@@ -4,8 +4,12 @@
 //! Al-Mohy & Higham's 2009 algorithm ("A new scaling and squaring algorithm for the matrix
 //! exponential", SIAM J. Matrix Anal. Appl. 31(3), Algorithm 5.1, without balancing): the Padé
 //! degree m ∈ {3, 5, 7, 9, 13} and the number of squarings s are chosen from
-//! dₖ = ‖Aᵏ‖₁^(1/k) (exact norms of the powers the approximant needs anyway) and the
-//! backward-error correction ℓ(A, m) from ‖|A|^(2m+1)‖₁, then e^A = r₁₃(A/2ˢ)^(2ˢ).
+//! dₖ = ‖Aᵏ‖₁^(1/k) (exact norms of the powers; a test dₖ ≤ θ is first tried on the bound
+//! from the norms at hand, ‖A⁶‖ ≤ ‖A⁴‖·‖A²‖ and the like, and the power is formed only when
+//! the bound does not settle it — the same decisions as with the exact norms) and the
+//! backward-error correction ℓ(A, m) from ‖|A|^(2m+1)‖₁, then e^A = r₁₃(A/2ˢ)^(2ˢ). In the
+//! degree-13 branch with s > 0 the powers of A/2ˢ are those of A scaled by 2^(−ks), not new
+//! products.
 //!
 //! What is added to the published algorithm, and why (nalgebra 0.35's `exp()`, which follows
 //! the same paper, turns an overflowing ‖A⁸‖ into s = 2⁶⁴ squarings and panics on a singular

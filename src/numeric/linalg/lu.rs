@@ -6,6 +6,14 @@
 //! is several times faster than nalgebra's unblocked `lu().solve()` (measured in
 //! `examples/bench_ss_json.rs` through the matrix exponential, whose Padé denominator it
 //! solves). The same pivots as the unblocked algorithm, so the same backward stability.
+//!
+//! A diagonal block of a triangular solve (and L₁₁⁻¹·A₁₂ in the factorisation) is solved on a
+//! row-major copy of its rows: [`SUB`] rows at a time by substitution, each elimination one
+//! contiguous axpy across all the right-hand sides, the block's remaining rows updated by a
+//! product. Column by column, with a short axpy per column and block, this part cost as
+//! much as the products (the compiled code is SSE2 only; matrixmultiply picks AVX-512 at run
+//! time). The panel's row interchanges are applied to the other columns after the panel,
+//! column by column (LAPACK `dlaswp`), instead of as strided row swaps.
 
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut};
 
@@ -137,10 +145,10 @@ enum Triangle {
 
 /// Rows k0..end of every column of `b` (column-major, n rows) ← T⁻¹·(those rows), T the
 /// triangle of the diagonal block k0..end of the column-major factor `lu` (n rows; columns up
-/// to `end` present). Row-oriented on a row-major copy of the rows (`rows`, reused): each
-/// elimination is then one long contiguous axpy across all the columns instead of a short one
-/// per column. The same operations per entry as column-oriented substitution, in the same
-/// order. `None` on a zero diagonal entry of U.
+/// to `end` present). Row-oriented on a row-major copy of the rows (`rows`, reused): [`SUB`]
+/// rows by substitution, each elimination one long contiguous axpy across all the columns,
+/// then the rest of the block updated by one product with those rows. `None` on a zero
+/// diagonal entry of U.
 fn diagonal_block_solve(
     lu: &[f64],
     n: usize,
