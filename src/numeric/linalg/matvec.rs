@@ -3,10 +3,10 @@
 //! nalgebra's product with a vector goes through a strided kernel that the compiler cannot
 //! vectorise (the strides are run-time values: one entry per cycle at best). Here the columns
 //! are contiguous slices, taken four at a time so that y is loaded and stored once per four
-//! columns; each entry is still summed column by column in order, y = (((M₀x₀ + M₁x₁) + M₂x₂)
-//! + …), the order of nalgebra's loop, so the results are the same to the bit. On x86-64 the
-//! same loop is also compiled for AVX2 and picked at run time (no fused multiply–add: the
-//! same roundings).
+//! columns; each entry is still summed column by column in order (M₀x₀ + M₁x₁, then plus
+//! M₂x₂, and so on: the order of nalgebra's loop), so the results are the same to the bit.
+//! On x86-64 the same loop is also compiled for AVX2 and picked at run time (no fused
+//! multiply–add: the same roundings).
 
 use nalgebra::DMatrix;
 
