@@ -476,16 +476,21 @@ fn exact_triangle_entries(x: &mut DMatrix<f64>, a: &DMatrix<f64>, e: i32) {
     }
 }
 
-/// Σ cₖ·Mₖ + c₀·I in one pass (no temporaries).
-fn combination(n: usize, identity: f64, terms: &[(&DMatrix<f64>, f64)]) -> DMatrix<f64> {
-    let mut out = DMatrix::zeros(n, n);
+/// out ← (((out + c₁·M₁) + c₂·M₂) + …) + c₀·I, one pass per term and no temporaries (the
+/// order of the sums written out term by term: the same roundings).
+fn add_terms(mut out: DMatrix<f64>, terms: &[(&DMatrix<f64>, f64)], identity: f64) -> DMatrix<f64> {
     for (m, c) in terms {
-        out.zip_apply(*m, |o, x| *o += c * x);
+        out.zip_apply(*m, |o, x| *o += x * c);
     }
-    for i in 0..n {
+    for i in 0..out.nrows() {
         out[(i, i)] += identity;
     }
     out
+}
+
+/// c·I.
+fn scaled_identity(n: usize, c: f64) -> DMatrix<f64> {
+    DMatrix::from_diagonal_element(n, n, c)
 }
 
 /// (U, V) of the degree-m Padé approximant for m ≤ 9: U = A·Σ b_{2k+1} A^{2k},
@@ -510,8 +515,8 @@ fn pade_low(pw: &mut Powers, b: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) {
         .enumerate()
         .map(|(k, m)| (*m, b[2 * k + 2]))
         .collect();
-    let u = combination(n, b[1], &odd);
-    let v = combination(n, b[0], &even);
+    let u = add_terms(scaled_identity(n, b[1]), &odd, 0.0);
+    let v = add_terms(scaled_identity(n, b[0]), &even, 0.0);
     (&pw.a * u, v)
 }
 
@@ -521,13 +526,12 @@ fn pade13(pw: &mut Powers) -> (DMatrix<f64>, DMatrix<f64>) {
     let b = &B13;
     let a6 = pw.take_a6();
     let (a2, a4, a6) = (&pw.a2, &pw.a4, &a6);
-    let inner_u = combination(n, 0.0, &[(a6, b[13]), (a4, b[11]), (a2, b[9])]);
-    let mut outer_u = combination(n, b[1], &[(a6, b[7]), (a4, b[5]), (a2, b[3])]);
-    outer_u.gemm(1.0, a6, &inner_u, 1.0);
+    let zero = || DMatrix::zeros(n, n);
+    let inner_u = add_terms(zero(), &[(a6, b[13]), (a4, b[11]), (a2, b[9])], 0.0);
+    let outer_u = add_terms(a6 * inner_u, &[(a6, b[7]), (a4, b[5]), (a2, b[3])], b[1]);
     let u = &pw.a * outer_u;
-    let inner_v = combination(n, 0.0, &[(a6, b[12]), (a4, b[10]), (a2, b[8])]);
-    let mut v = combination(n, b[0], &[(a6, b[6]), (a4, b[4]), (a2, b[2])]);
-    v.gemm(1.0, a6, &inner_v, 1.0);
+    let inner_v = add_terms(zero(), &[(a6, b[12]), (a4, b[10]), (a2, b[8])], 0.0);
+    let v = add_terms(a6 * inner_v, &[(a6, b[6]), (a4, b[4]), (a2, b[2])], b[0]);
     (u, v)
 }
 
