@@ -596,6 +596,57 @@ mod tests {
         assert!(expm(&a).is_err());
     }
 
+    /// A non-normal 12×12 test matrix: a decaying diagonal and a large, structured strictly
+    /// upper part (‖A⁶‖ far below ‖A⁴‖·‖A²‖), scaled by `c`.
+    fn non_normal(c: f64) -> DMatrix<f64> {
+        DMatrix::from_fn(12, 12, |i, j| {
+            let v = if i == j {
+                -0.1 * (i as f64 + 1.0)
+            } else if j > i {
+                (((i * 7 + j * 3) % 5) as f64 - 2.0) * 0.8
+            } else {
+                0.0
+            };
+            c * v
+        })
+    }
+
+    #[test]
+    fn norm_bounds_decide_as_the_exact_norms() {
+        // every dₖ test, for thresholds around the exact value, gives the exact answer
+        for &c in &[0.01, 0.05, 0.2, 1.0] {
+            let mut exact = Powers::new(non_normal(c));
+            for k in [6, 8, 10] {
+                let d = exact.d(k);
+                for theta in [THETA_3, THETA_5, THETA_7, THETA_9, THETA_13, d, 0.999 * d] {
+                    let mut pw = Powers::new(non_normal(c));
+                    assert_eq!(
+                        pw.d_at_most(k, theta),
+                        d <= theta,
+                        "c = {c}, k = {k}, θ = {theta}"
+                    );
+                }
+                // and the bound is a bound
+                let pw = Powers::new(non_normal(c));
+                assert!(pw.norm_bound(k) >= exact.norm(k), "c = {c}, k = {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn scaled_powers_are_the_powers_of_the_scaled_matrix() {
+        // scaling by 2^(−ks) is exact away from underflow: the same bits as new products
+        let a = non_normal(3.0);
+        let mut pw = Powers::new(a.clone());
+        pw.a6();
+        let scaled = pw.scaled(3);
+        let mut direct = Powers::new(a.map(|x| x / 8.0));
+        assert_eq!(scaled.a, direct.a);
+        assert_eq!(scaled.a2, direct.a2);
+        assert_eq!(scaled.a4, direct.a4);
+        assert_eq!(scaled.a6.as_ref(), Some(direct.a6()));
+    }
+
     #[test]
     fn zero_and_rejections() {
         let z = DMatrix::<f64>::zeros(3, 3);
