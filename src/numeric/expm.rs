@@ -4,8 +4,12 @@
 //! Al-Mohy & Higham's 2009 algorithm ("A new scaling and squaring algorithm for the matrix
 //! exponential", SIAM J. Matrix Anal. Appl. 31(3), Algorithm 5.1, without balancing): the Padé
 //! degree m ∈ {3, 5, 7, 9, 13} and the number of squarings s are chosen from
-//! dₖ = ‖Aᵏ‖₁^(1/k) (exact norms of the powers the approximant needs anyway) and the
-//! backward-error correction ℓ(A, m) from ‖|A|^(2m+1)‖₁, then e^A = r₁₃(A/2ˢ)^(2ˢ).
+//! dₖ = ‖Aᵏ‖₁^(1/k) (exact norms of the powers; a test dₖ ≤ θ is first tried on the bound
+//! from the norms at hand, ‖A⁶‖ ≤ ‖A⁴‖·‖A²‖ and the like, and the power is formed only when
+//! the bound does not settle it — the same decisions as with the exact norms) and the
+//! backward-error correction ℓ(A, m) from ‖|A|^(2m+1)‖₁, then e^A = r₁₃(A/2ˢ)^(2ˢ). In the
+//! degree-13 branch with s > 0 the powers of A/2ˢ are those of A scaled by 2^(−ks), not new
+//! products.
 //!
 //! What is added to the published algorithm, and why (nalgebra 0.35's `exp()`, which follows
 //! the same paper, turns an overflowing ‖A⁸‖ into s = 2⁶⁴ squarings and panics on a singular
@@ -122,7 +126,7 @@ pub fn expm(m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
         0 => return Ok(m.clone()),
         1 => m.map(f64::exp),
         // e^A = (e^{Aᵀ})ᵀ: a lower triangular A gets the exact-diagonal treatment too.
-        _ if is_upper_triangular(&m.transpose()) && !is_upper_triangular(m) => {
+        _ if is_lower_triangular(m) && !is_upper_triangular(m) => {
             scaling_and_squaring(&m.transpose())?.transpose()
         }
         _ => scaling_and_squaring(m)?,
@@ -164,14 +168,18 @@ fn ell(a: &DMatrix<f64>, m: usize) -> u32 {
         return 0;
     }
     let n = a.nrows();
-    let abs = a.abs();
-    // Row vector 1ᵀ|A|ᵏ, rescaled by powers of two as it grows (exact).
-    let mut v = nalgebra::RowDVector::from_element(n, 1.0);
+    // Row vector 1ᵀ|A|ᵏ, rescaled by powers of two as it grows (exact): entry j is the dot
+    // product of the previous vector with |column j|.
+    let mut v = vec![1.0; n];
+    let mut next = vec![0.0; n];
     let mut log2_scale = 0i32;
     for _ in 0..2 * m + 1 {
-        v = &v * &abs;
+        for (nj, col) in next.iter_mut().zip(a.column_iter()) {
+            *nj = abs_dot(col.as_slice(), &v);
+        }
+        std::mem::swap(&mut v, &mut next);
         if let Some((_, hi)) = exponent_range(v.iter().copied()) {
-            v.apply(|x| *x = ldexp(*x, -hi));
+            v.iter_mut().for_each(|x| *x = ldexp(*x, -hi));
             log2_scale += hi;
         }
     }
@@ -191,50 +199,153 @@ fn ell(a: &DMatrix<f64>, m: usize) -> u32 {
     }
 }
 
-/// A and its powers A², A⁴, A⁶ (every approximant and every dₖ test needs them), with the
-/// norms ‖A⁸‖₁, ‖A¹⁰‖₁ computed on demand.
+/// Σ |xᵢ|·vᵢ with four partial sums (vectorised; the order of a sum of non-negative terms
+/// only moves its last bits).
+fn abs_dot(x: &[f64], v: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (xc, vc) = (x.chunks_exact(4), v.chunks_exact(4));
+    let tail: f64 = xc
+        .remainder()
+        .iter()
+        .zip(vc.remainder())
+        .map(|(a, b)| a.abs() * b)
+        .sum();
+    for (a, b) in xc.zip(vc) {
+        for k in 0..4 {
+            acc[k] += a[k].abs() * b[k];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// A and its powers A², A⁴ (every approximant and every dₖ test needs them), A⁶ when an
+/// approximant or a test needs it, and the norms ‖A⁸‖₁, ‖A¹⁰‖₁ computed on demand. A dₖ test
+/// dₖ ≤ θ first tries the bound from the norms at hand (‖A⁶‖ ≤ ‖A⁴‖·‖A²‖, ‖A⁸‖ ≤ ‖A⁴‖²,
+/// ‖A¹⁰‖ ≤ ‖A⁴‖·‖A⁶‖): when the bound passes the exact norm passes too, so the decisions are
+/// those of the exact norms, and the product behind an exact norm is formed only when the
+/// bound does not settle the test.
 struct Powers {
     a: DMatrix<f64>,
     a2: DMatrix<f64>,
     a4: DMatrix<f64>,
-    a6: DMatrix<f64>,
-    d8: Option<f64>,
-    d10: Option<f64>,
+    a6: Option<DMatrix<f64>>,
+    /// ‖A²‖₁, ‖A⁴‖₁.
+    n2: f64,
+    n4: f64,
+    n6: Option<f64>,
+    n8: Option<f64>,
+    n10: Option<f64>,
 }
 
 impl Powers {
     fn new(a: DMatrix<f64>) -> Self {
         let a2 = &a * &a;
         let a4 = &a2 * &a2;
-        let a6 = &a4 * &a2;
         Powers {
+            n2: one_norm(&a2),
+            n4: one_norm(&a4),
             a,
             a2,
             a4,
-            a6,
-            d8: None,
-            d10: None,
+            a6: None,
+            n6: None,
+            n8: None,
+            n10: None,
         }
     }
-    /// dₖ = ‖Aᵏ‖₁^(1/k), k ∈ {4, 6, 8, 10}, from exact products.
-    fn d(&mut self, k: u32) -> f64 {
-        let norm = match k {
-            4 => one_norm(&self.a4),
-            6 => one_norm(&self.a6),
+
+    /// The powers of A/2ˢ from those of A: exact scalings by 2^(−ks) (the same products up
+    /// to underflow), instead of three new products.
+    fn scaled(self, s: u32) -> Self {
+        let e = -(s as i32);
+        let scale = |m: DMatrix<f64>, k: i32| m.map(|x| ldexp(x, k * e));
+        let a6 = self.a6.map(|m| scale(m, 6));
+        let a4 = scale(self.a4, 4);
+        let a2 = scale(self.a2, 2);
+        Powers {
+            n2: one_norm(&a2),
+            n4: one_norm(&a4),
+            n6: a6.as_ref().map(one_norm),
+            a: scale(self.a, 1),
+            a2,
+            a4,
+            a6,
+            n8: None,
+            n10: None,
+        }
+    }
+
+    /// A⁶, formed on first use.
+    fn a6(&mut self) -> &DMatrix<f64> {
+        let (a4, a2) = (&self.a4, &self.a2);
+        self.a6.get_or_insert_with(|| a4 * a2)
+    }
+
+    /// A⁶ moved out (formed if needed), for an approximant.
+    fn take_a6(&mut self) -> DMatrix<f64> {
+        self.a6.take().unwrap_or_else(|| &self.a4 * &self.a2)
+    }
+
+    /// ‖Aᵏ‖₁, k ∈ {4, 6, 8, 10}, exact (the products formed on first use).
+    fn norm(&mut self, k: u32) -> f64 {
+        match k {
+            4 => self.n4,
+            6 => match self.n6 {
+                Some(v) => v,
+                None => {
+                    let v = one_norm(self.a6());
+                    self.n6 = Some(v);
+                    v
+                }
+            },
             8 => *self
-                .d8
+                .n8
                 .get_or_insert_with(|| one_norm(&(&self.a4 * &self.a4))),
-            _ => *self
-                .d10
-                .get_or_insert_with(|| one_norm(&(&self.a4 * &self.a6))),
-        };
-        norm.powf(1.0 / f64::from(k))
+            _ => match self.n10 {
+                Some(v) => v,
+                None => {
+                    let a6 = self.take_a6();
+                    let v = one_norm(&(&self.a4 * &a6));
+                    self.a6 = Some(a6);
+                    self.n10 = Some(v);
+                    v
+                }
+            },
+        }
+    }
+
+    /// An upper bound of ‖Aᵏ‖₁ from the norms already at hand (the exact norm when known).
+    fn norm_bound(&self, k: u32) -> f64 {
+        match k {
+            4 => self.n4,
+            6 => self.n6.unwrap_or(self.n4 * self.n2),
+            8 => self.n8.unwrap_or(self.n4 * self.n4),
+            _ => self
+                .n10
+                .unwrap_or(self.n4 * self.n6.unwrap_or(self.n4 * self.n2)),
+        }
+    }
+
+    /// dₖ = ‖Aᵏ‖₁^(1/k), exact.
+    fn d(&mut self, k: u32) -> f64 {
+        self.norm(k).powf(1.0 / f64::from(k))
+    }
+
+    /// dₖ ≤ θ, decided by the bound when it passes, else by the exact norm.
+    fn d_at_most(&mut self, k: u32, theta: f64) -> bool {
+        let root = |v: f64| v.powf(1.0 / f64::from(k));
+        root(self.norm_bound(k)) <= theta || root(self.norm(k)) <= theta
     }
 }
 
 /// True when every entry below the diagonal is zero.
 fn is_upper_triangular(m: &DMatrix<f64>) -> bool {
     (0..m.ncols()).all(|j| m.column(j).iter().skip(j + 1).all(|x| *x == 0.0))
+}
+
+/// True when every entry above the diagonal is zero.
+fn is_lower_triangular(m: &DMatrix<f64>) -> bool {
+    (0..m.ncols()).all(|j| m.column(j).iter().take(j).all(|x| *x == 0.0))
 }
 
 /// The scaling-and-squaring core for n ≥ 2 (finite input).
@@ -260,25 +371,36 @@ fn approximant(m: &DMatrix<f64>) -> Result<(DMatrix<f64>, u32)> {
     };
     let mut pw = Powers::new(b);
     if s0 == 0 {
-        let eta1 = pw.d(4).max(pw.d(6));
-        if eta1 <= THETA_3 && ell(&pw.a, 3) == 0 {
-            return Ok((pade_solve(&pade_low(&pw, &B3))?, 0));
+        // η₁ = max(d₄, d₆) ≤ θ and η₃ = max(d₆, d₈) ≤ θ, as conjunctions
+        let eta1_at_most = |pw: &mut Powers, theta| pw.d(4) <= theta && pw.d_at_most(6, theta);
+        if eta1_at_most(&mut pw, THETA_3) && ell(&pw.a, 3) == 0 {
+            return Ok((pade_solve(&pade_low(&mut pw, &B3))?, 0));
         }
-        if eta1 <= THETA_5 && ell(&pw.a, 5) == 0 {
-            return Ok((pade_solve(&pade_low(&pw, &B5))?, 0));
+        if eta1_at_most(&mut pw, THETA_5) && ell(&pw.a, 5) == 0 {
+            return Ok((pade_solve(&pade_low(&mut pw, &B5))?, 0));
         }
-        let eta3 = pw.d(6).max(pw.d(8));
-        if eta3 <= THETA_7 && ell(&pw.a, 7) == 0 {
-            return Ok((pade_solve(&pade_low(&pw, &B7))?, 0));
+        let eta3_at_most =
+            |pw: &mut Powers, theta| pw.d_at_most(6, theta) && pw.d_at_most(8, theta);
+        if eta3_at_most(&mut pw, THETA_7) && ell(&pw.a, 7) == 0 {
+            return Ok((pade_solve(&pade_low(&mut pw, &B7))?, 0));
         }
-        if eta3 <= THETA_9 && ell(&pw.a, 9) == 0 {
-            return Ok((pade_solve(&pade_low(&pw, &B9))?, 0));
+        if eta3_at_most(&mut pw, THETA_9) && ell(&pw.a, 9) == 0 {
+            return Ok((pade_solve(&pade_low(&mut pw, &B9))?, 0));
         }
     }
-    let eta3 = pw.d(6).max(pw.d(8));
-    let eta4 = pw.d(8).max(pw.d(10));
-    let eta5 = eta3.min(eta4);
-    let s1 = if eta5 == 0.0 {
+    // s₁ = ⌈log₂(η₅/θ₁₃)⌉⁺, η₅ = min(η₃, η₄): zero when the bounds already say η₅ ≤ θ₁₃
+    let bounded = |pw: &Powers, k: u32| pw.norm_bound(k).powf(1.0 / f64::from(k));
+    let eta5_bound = bounded(&pw, 6)
+        .max(bounded(&pw, 8))
+        .min(bounded(&pw, 8).max(bounded(&pw, 10)));
+    let eta5 = if eta5_bound <= THETA_13 {
+        eta5_bound
+    } else {
+        let eta3 = pw.d(6).max(pw.d(8));
+        let eta4 = pw.d(8).max(pw.d(10));
+        eta3.min(eta4)
+    };
+    let s1 = if eta5 <= THETA_13 {
         0
     } else {
         (eta5 / THETA_13).log2().ceil().max(0.0) as u32
@@ -292,12 +414,8 @@ fn approximant(m: &DMatrix<f64>) -> Result<(DMatrix<f64>, u32)> {
             iterations: total as usize,
         });
     }
-    let a = if s == 0 {
-        pw
-    } else {
-        Powers::new(pw.a.map(|x| ldexp(x, -(s as i32))))
-    };
-    Ok((pade_solve(&pade13(a))?, total))
+    let mut a = if s == 0 { pw } else { pw.scaled(s) };
+    Ok((pade_solve(&pade13(&mut a))?, total))
 }
 
 /// Squares `x` = r(A/2ˢ) s times. For an upper triangular A the diagonal and the first
@@ -358,41 +476,62 @@ fn exact_triangle_entries(x: &mut DMatrix<f64>, a: &DMatrix<f64>, e: i32) {
     }
 }
 
+/// out ← (((out + c₁·M₁) + c₂·M₂) + …) + c₀·I, one pass per term and no temporaries (the
+/// order of the sums written out term by term: the same roundings).
+fn add_terms(mut out: DMatrix<f64>, terms: &[(&DMatrix<f64>, f64)], identity: f64) -> DMatrix<f64> {
+    for (m, c) in terms {
+        out.zip_apply(*m, |o, x| *o += x * c);
+    }
+    for i in 0..out.nrows() {
+        out[(i, i)] += identity;
+    }
+    out
+}
+
+/// c·I.
+fn scaled_identity(n: usize, c: f64) -> DMatrix<f64> {
+    DMatrix::from_diagonal_element(n, n, c)
+}
+
 /// (U, V) of the degree-m Padé approximant for m ≤ 9: U = A·Σ b_{2k+1} A^{2k},
 /// V = Σ b_{2k} A^{2k}.
-fn pade_low(pw: &Powers, b: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) {
+fn pade_low(pw: &mut Powers, b: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) {
     let n = pw.a.nrows();
-    let id = DMatrix::<f64>::identity(n, n);
-    let mut u = &id * b[1];
-    let mut v = &id * b[0];
-    // Even powers A^{2k} for 2k ≤ m − 1, built on the cached A², A⁴, A⁶.
-    for k in 1..b.len() / 2 {
-        let a8;
-        let even = match k {
-            1 => &pw.a2,
-            2 => &pw.a4,
-            3 => &pw.a6,
-            _ => {
-                a8 = &pw.a6 * &pw.a2;
-                &a8
-            }
-        };
-        u += even * b[2 * k + 1];
-        v += even * b[2 * k];
-    }
+    let high = b.len() / 2; // even powers A^{2k}, 1 ≤ k < high
+    let a6 = (high > 3).then(|| pw.take_a6());
+    let a8 = (high > 4).then(|| &pw.a4 * &pw.a4);
+    let evens: Vec<&DMatrix<f64>> = [Some(&pw.a2), Some(&pw.a4), a6.as_ref(), a8.as_ref()]
+        .into_iter()
+        .flatten()
+        .take(high - 1)
+        .collect();
+    let odd: Vec<_> = evens
+        .iter()
+        .enumerate()
+        .map(|(k, m)| (*m, b[2 * k + 3]))
+        .collect();
+    let even: Vec<_> = evens
+        .iter()
+        .enumerate()
+        .map(|(k, m)| (*m, b[2 * k + 2]))
+        .collect();
+    let u = add_terms(scaled_identity(n, b[1]), &odd, 0.0);
+    let v = add_terms(scaled_identity(n, b[0]), &even, 0.0);
     (&pw.a * u, v)
 }
 
 /// (U, V) of the degree-13 approximant with six matrix products (Higham 2005, eq. 2.6).
-fn pade13(pw: Powers) -> (DMatrix<f64>, DMatrix<f64>) {
+fn pade13(pw: &mut Powers) -> (DMatrix<f64>, DMatrix<f64>) {
     let n = pw.a.nrows();
-    let id = DMatrix::<f64>::identity(n, n);
     let b = &B13;
-    let (a2, a4, a6) = (&pw.a2, &pw.a4, &pw.a6);
-    let inner_u = a6 * b[13] + a4 * b[11] + a2 * b[9];
-    let u = &pw.a * (a6 * inner_u + a6 * b[7] + a4 * b[5] + a2 * b[3] + &id * b[1]);
-    let inner_v = a6 * b[12] + a4 * b[10] + a2 * b[8];
-    let v = a6 * inner_v + a6 * b[6] + a4 * b[4] + a2 * b[2] + &id * b[0];
+    let a6 = pw.take_a6();
+    let (a2, a4, a6) = (&pw.a2, &pw.a4, &a6);
+    let zero = || DMatrix::zeros(n, n);
+    let inner_u = add_terms(zero(), &[(a6, b[13]), (a4, b[11]), (a2, b[9])], 0.0);
+    let outer_u = add_terms(a6 * inner_u, &[(a6, b[7]), (a4, b[5]), (a2, b[3])], b[1]);
+    let u = &pw.a * outer_u;
+    let inner_v = add_terms(zero(), &[(a6, b[12]), (a4, b[10]), (a2, b[8])], 0.0);
+    let v = add_terms(a6 * inner_v, &[(a6, b[6]), (a4, b[4]), (a2, b[2])], b[0]);
     (u, v)
 }
 
@@ -455,6 +594,57 @@ mod tests {
         assert!(matches!(expm(&a), Err(LtiError::Overflow { .. })));
         let a = DMatrix::from_element(3, 3, f64::MAX);
         assert!(expm(&a).is_err());
+    }
+
+    /// A non-normal 12×12 test matrix: a decaying diagonal and a large, structured strictly
+    /// upper part (‖A⁶‖ far below ‖A⁴‖·‖A²‖), scaled by `c`.
+    fn non_normal(c: f64) -> DMatrix<f64> {
+        DMatrix::from_fn(12, 12, |i, j| {
+            let v = if i == j {
+                -0.1 * (i as f64 + 1.0)
+            } else if j > i {
+                (((i * 7 + j * 3) % 5) as f64 - 2.0) * 0.8
+            } else {
+                0.0
+            };
+            c * v
+        })
+    }
+
+    #[test]
+    fn norm_bounds_decide_as_the_exact_norms() {
+        // every dₖ test, for thresholds around the exact value, gives the exact answer
+        for &c in &[0.01, 0.05, 0.2, 1.0] {
+            let mut exact = Powers::new(non_normal(c));
+            for k in [6, 8, 10] {
+                let d = exact.d(k);
+                for theta in [THETA_3, THETA_5, THETA_7, THETA_9, THETA_13, d, 0.999 * d] {
+                    let mut pw = Powers::new(non_normal(c));
+                    assert_eq!(
+                        pw.d_at_most(k, theta),
+                        d <= theta,
+                        "c = {c}, k = {k}, θ = {theta}"
+                    );
+                }
+                // and the bound is a bound
+                let pw = Powers::new(non_normal(c));
+                assert!(pw.norm_bound(k) >= exact.norm(k), "c = {c}, k = {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn scaled_powers_are_the_powers_of_the_scaled_matrix() {
+        // scaling by 2^(−ks) is exact away from underflow: the same bits as new products
+        let a = non_normal(3.0);
+        let mut pw = Powers::new(a.clone());
+        pw.a6();
+        let scaled = pw.scaled(3);
+        let mut direct = Powers::new(a.map(|x| x / 8.0));
+        assert_eq!(scaled.a, direct.a);
+        assert_eq!(scaled.a2, direct.a2);
+        assert_eq!(scaled.a4, direct.a4);
+        assert_eq!(scaled.a6.as_ref(), Some(direct.a6()));
     }
 
     #[test]

@@ -20,6 +20,7 @@ use std::rc::Rc;
 use nalgebra::{DMatrix, DVector};
 
 use crate::error::{LtiError, Result};
+use crate::numeric::linalg::matvec::{mat_vec, vec_mat};
 
 /// Smallest order for which blocks are considered (below it a sample costs a few dozen
 /// flops and the plain march is as fast).
@@ -94,12 +95,25 @@ impl BlockMap {
         let mut s = g.clone(); // s_m
         let mut m = 1;
         let mut scratch = DMatrix::zeros(n, n);
+        let mut step = DVector::zeros(n);
+        let mut row_out = vec![0.0; n];
         while m < len {
             // W[m..2m] = W[0..m]·Φ^m, s_2m = s_m + Φ^m·s_m, then Φ^2m
-            let (top, mut bottom) = w.rows_range_pair_mut(0..m * p, m * p..2 * m * p);
-            bottom.gemm(1.0, &top, &power, 0.0);
-            let step = &power * &s;
-            s += step;
+            if m * p >= 8 {
+                let (top, mut bottom) = w.rows_range_pair_mut(0..m * p, m * p..2 * m * p);
+                bottom.gemm(1.0, &top, &power, 0.0);
+            } else {
+                // a few rows: nalgebra's gemm would take its strided kernel
+                for k in 0..m * p {
+                    let row: Vec<f64> = w.row(k).iter().copied().collect();
+                    vec_mat(&row, &power, &mut row_out);
+                    for (j, v) in row_out.iter().enumerate() {
+                        w[(m * p + k, j)] = *v;
+                    }
+                }
+            }
+            mat_vec(&power, s.as_slice(), step.as_mut_slice());
+            s += &step;
             scratch.gemm(1.0, &power, &power, 0.0);
             std::mem::swap(&mut power, &mut scratch);
             m *= 2;
@@ -111,7 +125,8 @@ impl BlockMap {
             }
         }
         // fⱼ = Σ_(i<j) CΦⁱg: prefix sums of W·g
-        let wg = &w * g;
+        let mut wg = DVector::zeros(len * p);
+        mat_vec(&w, g.as_slice(), wg.as_mut_slice());
         let mut f = DVector::zeros(len * p);
         for j in 1..len {
             for o in 0..p {
@@ -142,6 +157,8 @@ impl BlockMap {
 pub(crate) struct BlockState {
     x: DVector<f64>,
     block: Option<Block>,
+    /// Room for the next state.
+    next: DVector<f64>,
 }
 
 #[derive(Debug)]
@@ -154,14 +171,21 @@ struct Block {
 impl BlockState {
     /// The state x₀, outside any block.
     pub(crate) fn new(x: DVector<f64>) -> BlockState {
-        BlockState { x, block: None }
+        let next = DVector::zeros(x.len());
+        BlockState {
+            x,
+            block: None,
+            next,
+        }
     }
 
     /// Ends a block in progress: x = Φʲ·x_b + sⱼ by j plain steps (j < J).
     pub(crate) fn settle(&mut self) -> &mut DVector<f64> {
         if let Some(b) = self.block.take() {
             for _ in 0..b.steps {
-                self.x = &b.map.phi * &self.x + &b.map.g;
+                mat_vec(&b.map.phi, self.x.as_slice(), self.next.as_mut_slice());
+                self.next += &b.map.g;
+                std::mem::swap(&mut self.x, &mut self.next);
             }
         }
         &mut self.x
@@ -173,7 +197,9 @@ impl BlockState {
         let same = self.block.as_ref().is_some_and(|b| Rc::ptr_eq(&b.map, map));
         if !same {
             self.settle();
-            let y = &map.w * &self.x + &map.f;
+            let mut y = DVector::zeros(map.f.len());
+            mat_vec(&map.w, self.x.as_slice(), y.as_mut_slice());
+            y += &map.f;
             self.block = Some(Block {
                 map: Rc::clone(map),
                 steps: 0,
@@ -183,8 +209,11 @@ impl BlockState {
         if let Some(b) = self.block.as_mut() {
             b.steps += 1;
             if b.steps == b.map.len {
-                self.x = &b.map.phi_len * &self.x + &b.map.s_len;
-                b.y = &b.map.w * &self.x + &b.map.f;
+                mat_vec(&b.map.phi_len, self.x.as_slice(), self.next.as_mut_slice());
+                self.next += &b.map.s_len;
+                std::mem::swap(&mut self.x, &mut self.next);
+                mat_vec(&b.map.w, self.x.as_slice(), b.y.as_mut_slice());
+                b.y += &b.map.f;
                 b.steps = 0;
             }
         }

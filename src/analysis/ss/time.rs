@@ -217,12 +217,13 @@ impl March<'_> {
                 Ok(())
             },
             |i, ti, st| {
-                let blocked = st.outputs();
-                let yi = match blocked {
-                    Some(v) => DVector::from_column_slice(v),
+                let computed;
+                let yi = match st.outputs() {
+                    Some(v) => v,
                     None => {
                         let (u_now, _) = input(ti, ti);
-                        &ss.c * st.anchor() + &ss.d * &u_now
+                        computed = &ss.c * st.anchor() + &ss.d * &u_now;
+                        computed.as_slice()
                     }
                 };
                 for j in 0..p {

@@ -45,6 +45,7 @@ pub(crate) mod householder;
 pub(crate) mod lu;
 pub mod lyapunov;
 pub mod markov;
+pub(crate) mod matvec;
 pub mod minreal;
 pub mod modal;
 pub mod riccati;
