@@ -534,14 +534,22 @@ fn zoh_tf(g: &TransferFunction, dt: f64) -> Result<TransferFunction> {
     let mapped = |poles: Vec<Complex64>| -> Result<Poly> {
         Poly::from_roots(&poles.iter().map(|&p| zoh_root(p, dt)).collect::<Vec<_>>())
     };
-    let den = match crate::poly::roots::candidates(g.den()).and_then(mapped) {
+    // balanced (an exact diagonal similarity: the Markov parameters are unchanged): the
+    // companion matrix's norm drops by orders of magnitude, and with it the exponential's
+    // squarings and Padé degree. From order 3 the root finder's own balanced companion
+    // serves both: its eigenvalues are the poles, and it is the realisation's A (the same
+    // matrix: `StateSpace::from_tf` is the companion of the monic denominator).
+    let (poles, ss) = match shared_companion(g)? {
+        Some((poles, ss)) => (poles, ss),
+        None => (
+            crate::poly::roots::candidates(g.den()),
+            StateSpace::from_tf(g)?.balanced(),
+        ),
+    };
+    let den = match poles.and_then(mapped) {
         Ok(den) => den,
         Err(_) => mapped(crate::poly::roots::flatten(&g.den().roots()?))?,
     };
-    // balanced (an exact diagonal similarity: the Markov parameters are unchanged): the
-    // companion matrix's norm drops by orders of magnitude, and with it the exponential's
-    // squarings and Padé degree
-    let ss = StateSpace::from_tf(g)?.balanced();
     let mut aug = DMatrix::<f64>::zeros(n + 1, n + 1);
     aug.view_mut((0, 0), (n, n)).copy_from(&(&ss.a * dt));
     aug.view_mut((0, n), (n, 1)).copy_from(&(&ss.b * dt));
@@ -572,6 +580,36 @@ fn zoh_tf(g: &TransferFunction, dt: f64) -> Result<TransferFunction> {
         other => other,
     })?;
     Ok(out)
+}
+
+/// The poles (`Err` when the companion iteration did not converge) and the balanced
+/// controllable realisation of `g` from one balancing of its companion matrix
+/// ([`crate::poly::roots::balanced_companion`]); `None` below order 3 (the root finder's
+/// closed forms) or when a coefficient or a scaled entry is not finite.
+#[allow(clippy::type_complexity)]
+fn shared_companion(g: &TransferFunction) -> Result<Option<(Result<Vec<Complex64>>, StateSpace)>> {
+    let n = g.order();
+    if n < 3 {
+        return Ok(None);
+    }
+    let c = g.den().coeffs();
+    let lead = c[0];
+    let tail: Vec<f64> = c[1..].iter().map(|x| x / lead).collect();
+    if tail.iter().any(|x| !x.is_finite()) {
+        return Ok(None);
+    }
+    let (a, d, ev) = crate::poly::roots::balanced_companion(&tail);
+    let mut ss = StateSpace::from_tf(g)?;
+    ss.a = DMatrix::from_row_slice(n, n, &a);
+    for (i, &di) in d.iter().enumerate() {
+        ss.b[(i, 0)] /= di;
+        ss.c[(0, i)] *= di;
+    }
+    if ss.b.iter().chain(ss.c.iter()).any(|x| !x.is_finite()) {
+        return Ok(None);
+    }
+    let poles = ev.ok_or_else(|| LtiError::invalid("the companion iteration did not converge"));
+    Ok(Some((poles, ss)))
 }
 
 /// Σ p_k s^k with s^k → h^(n−k)·a(z)^k·b(z)^(n−k), a and b linear (descending pairs).

@@ -33,8 +33,29 @@ pub(super) fn companion_eigenvalues(tail: &[f64]) -> Option<Vec<Complex64>> {
     hqr(&mut a, n)
 }
 
-/// Parlett–Reinsch balancing by powers of two (exact; keeps the Hessenberg form).
-fn balance(a: &mut [f64], n: usize) {
+/// The companion matrix of sⁿ + a₁sⁿ⁻¹ + … + aₙ (`tail` = [a₁, …, aₙ], as
+/// [`companion_eigenvalues`] builds it: the first row −a, ones below the diagonal) balanced,
+/// D⁻¹·A·D (row-major), with D's diagonal, and its eigenvalues (`None` when the iteration
+/// does not converge within the cap): one balancing for a caller that needs both the
+/// eigenvalues and a well-scaled realisation (the ZOH of a transfer function).
+pub(crate) fn balanced_companion(tail: &[f64]) -> (Vec<f64>, Vec<f64>, Option<Vec<Complex64>>) {
+    let n = tail.len();
+    let mut a = vec![0.0; n * n];
+    for (j, &c) in tail.iter().enumerate() {
+        a[j] = -c;
+    }
+    for i in 1..n {
+        a[i * n + i - 1] = 1.0;
+    }
+    let d = balance(&mut a, n);
+    let ev = hqr(&mut a.clone(), n);
+    (a, d, ev)
+}
+
+/// Parlett–Reinsch balancing by powers of two (exact; keeps the Hessenberg form): A becomes
+/// D⁻¹·A·D; returns D's diagonal.
+fn balance(a: &mut [f64], n: usize) -> Vec<f64> {
+    let mut d = vec![1.0; n];
     const RADIX: f64 = 2.0;
     const SQRDX: f64 = RADIX * RADIX;
     for _sweep in 0..200 {
@@ -64,6 +85,7 @@ fn balance(a: &mut [f64], n: usize) {
             }
             if (c + r) / f < 0.95 * s {
                 done = false;
+                d[i] *= f;
                 let gi = 1.0 / f;
                 for j in 0..n {
                     a[i * n + j] *= gi;
@@ -77,6 +99,7 @@ fn balance(a: &mut [f64], n: usize) {
             break;
         }
     }
+    d
 }
 
 /// Eigenvalues of an upper Hessenberg matrix (row-major, destroyed) by the Francis
@@ -287,6 +310,39 @@ mod tests {
     fn sorted(mut v: Vec<Complex64>) -> Vec<Complex64> {
         v.sort_by(|a, b| a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im)));
         v
+    }
+
+    #[test]
+    fn balanced_companion_is_the_similarity_it_reports() {
+        // coefficients over 14 decades: the balancing moves them; D⁻¹·A·D rebuilt from the
+        // returned diagonal is the returned matrix bit for bit (powers of two), and the
+        // eigenvalues are companion_eigenvalues' own
+        let tail = [1e3, 2e6, 3.5e7, 1e10, 4e11, 1e14, 2e14];
+        let n = tail.len();
+        let (a, d, ev) = balanced_companion(&tail);
+        // powers of two, not all 1
+        assert!(d.iter().all(|x| x.to_bits() & ((1u64 << 52) - 1) == 0));
+        assert!(d.iter().any(|&x| x.to_bits() != 1f64.to_bits()));
+        for i in 0..n {
+            for j in 0..n {
+                let raw = if i == 0 {
+                    -tail[j]
+                } else if j + 1 == i {
+                    1.0
+                } else {
+                    0.0
+                };
+                assert_eq!(
+                    a[i * n + j].to_bits(),
+                    (raw / d[i] * d[j]).to_bits(),
+                    "({i}, {j})"
+                );
+            }
+        }
+        assert_eq!(
+            sorted(ev.unwrap()),
+            sorted(companion_eigenvalues(&tail).unwrap())
+        );
     }
 
     #[test]

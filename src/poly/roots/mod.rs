@@ -48,5 +48,6 @@ mod solve;
 
 pub(crate) use bound::snap_to_axis;
 pub(crate) use candidates::candidates;
+pub(crate) use companion::balanced_companion;
 pub use order::{flatten, sort_roots};
 pub use solve::roots;
