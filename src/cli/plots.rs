@@ -360,6 +360,8 @@ fn bode_grid_figure(
             .zip(&frs)
             .map(|(c, fr)| (c.input, c.output, fr))
             .collect(),
+        // a discrete plant: the Nyquist frequency π/T is marked in every cell
+        nyquist_frequency: plant.domain().dt().map(|dt| std::f64::consts::PI / dt),
     };
     let mut opts = opts.clone();
     if opts.title.is_none() {

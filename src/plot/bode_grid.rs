@@ -11,12 +11,13 @@ use super::layout::{
     top_margin,
 };
 use super::options::{PlotOptions, check_text};
-use super::raster::Canvas;
+use super::raster::{Canvas, Color};
 use super::render::render;
-use super::style::{Theme, series_color};
+use super::style::{LineStyle, Theme, series_color};
 use super::text::{HAlign, Measured, VAlign, cap_height, descent};
 use crate::analysis::FrequencyResponse;
 use crate::error::{LtiError, Result};
+use crate::fmt::fmt_sig;
 
 /// The channels of a MIMO plant for [`bode_grid_png`].
 ///
@@ -29,6 +30,7 @@ use crate::error::{LtiError, Result};
 ///     inputs: vec!["u1".into()],
 ///     outputs: vec!["y1".into()],
 ///     cells: vec![(0, 0, &fr)],
+///     nyquist_frequency: None,
 /// };
 /// assert_eq!(grid.cells.len(), 1);
 /// ```
@@ -40,6 +42,9 @@ pub struct BodeGrid<'a> {
     pub outputs: Vec<String>,
     /// (input, output, response), 0-based; a cell not listed stays empty.
     pub cells: Vec<(usize, usize, &'a FrequencyResponse)>,
+    /// π/T of a discrete plant (T its sampling period): a dash-dot line in every cell, named
+    /// under the ω axis; `None` in continuous time.
+    pub nyquist_frequency: Option<f64>,
 }
 
 fn check(g: &BodeGrid) -> Result<()> {
@@ -49,6 +54,13 @@ fn check(g: &BodeGrid) -> Result<()> {
     }
     for name in g.inputs.iter().chain(&g.outputs) {
         check_text("a signal name", name)?;
+    }
+    if let Some(w) = g.nyquist_frequency
+        && !(w.is_finite() && w > 0.0)
+    {
+        return bad(format!(
+            "the Nyquist frequency must be finite and > 0, got {w}"
+        ));
     }
     for (i, o, r) in &g.cells {
         if *i >= g.inputs.len() || *o >= g.outputs.len() {
@@ -99,7 +111,7 @@ fn check(g: &BodeGrid) -> Result<()> {
 /// };
 /// let grid = BodeGrid { inputs: vec!["u1".into(), "u2".into()],
 ///                       outputs: vec!["y1".into(), "y2".into()],
-///                       cells: vec![(0, 0, &fr), (1, 1, &fr)] };
+///                       cells: vec![(0, 0, &fr), (1, 1, &fr)], nyquist_frequency: None };
 /// bode_grid_png("/tmp/grid.png", &grid, &PlotOptions::default()).unwrap();
 /// ```
 pub fn bode_grid_png(path: impl AsRef<Path>, grid: &BodeGrid, opts: &PlotOptions) -> Result<()> {
@@ -128,7 +140,12 @@ fn ranges(grid: &BodeGrid) -> Result<(Span, Span, Span)> {
                 .map(move |k| (r.w[k], r.magnitude_db[k], r.phase_deg[k]))
         })
     };
-    let w = bounds(pts().map(|p| p.0)).unwrap_or((0.1, 10.0));
+    let mut w = bounds(pts().map(|p| p.0)).unwrap_or((0.1, 10.0));
+    // a discrete plant's response ends at π/T: a little room beyond it, so that its line
+    // stands inside the frames (as in the single-channel Bode diagram)
+    if let Some(wn) = grid.nyquist_frequency {
+        w.1 = w.1.max(wn * 1.3);
+    }
     let (mut lo, mut hi) = bounds(pts().map(|p| p.1)).unwrap_or((-1.0, 1.0));
     lo = lo.max(hi - 300.0);
     let pad = 0.04 * (hi - lo).max(1.0);
@@ -255,6 +272,11 @@ fn draw(c: &mut Canvas, th: &Theme, grid: &BodeGrid, title: Option<&str>) -> Res
                     c.stroke(&run, th.line, col, &[]);
                 }
             }
+            if let Some(wn) = grid.nyquist_frequency {
+                let (grey, width) = (Color(90, 90, 90), (th.line * 0.8).max(1.0));
+                fm.vline(c, wn, width, grey, LineStyle::DashDot);
+                fp.vline(c, wn, width, grey, LineStyle::DashDot);
+            }
             let (first_col, last_row) = (i == 0, o + 1 == p);
             fm.draw_axes(c, th, false, first_col)?;
             fp.draw_axes(c, th, last_row, first_col)?;
@@ -263,7 +285,11 @@ fn draw(c: &mut Canvas, th: &Theme, grid: &BodeGrid, title: Option<&str>) -> Res
                 fp.draw_axis_titles(c, th, None, Some("deg"), th.pad)?;
             }
             if last_row {
-                fp.draw_axis_titles(c, th, Some("ω (rad/s)"), None, th.pad)?;
+                let title = match grid.nyquist_frequency {
+                    Some(wn) => format!("ω (rad/s); dash-dot: π/T = {} rad/s", fmt_sig(wn, 3)),
+                    None => "ω (rad/s)".into(),
+                };
+                fp.draw_axis_titles(c, th, Some(&title), None, th.pad)?;
             }
             let caption = format!("{} → {}", grid.inputs[i], grid.outputs[o]);
             let t = Measured::new(&caption, th.note).shortened(g.cell_w);
@@ -299,12 +325,34 @@ mod tests {
     }
 
     #[test]
+    fn a_discrete_grid_marks_and_makes_room_for_pi_over_t() {
+        let fr = first_order();
+        let mut grid = BodeGrid {
+            inputs: vec!["u".into()],
+            outputs: vec!["y".into()],
+            cells: vec![(0, 0, &fr)],
+            nyquist_frequency: Some(31.4),
+        };
+        let (w, _, _) = ranges(&grid).unwrap();
+        assert!(w.1 >= 1.3 * 31.4, "{w:?}");
+        let path = std::env::temp_dir().join("ltikit-bode-grid-dt-test.png");
+        bode_grid_png(&path, &grid, &PlotOptions::default()).unwrap();
+        assert!(path.exists());
+        let _ = std::fs::remove_file(&path);
+        grid.nyquist_frequency = Some(f64::NAN);
+        let e = bode_grid_png(&path, &grid, &PlotOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("Nyquist frequency"), "{e}");
+        assert!(!path.exists());
+    }
+
+    #[test]
     fn bad_grids_are_refused() {
         let fr = first_order();
         let grid = |cells| BodeGrid {
             inputs: vec!["u".into()],
             outputs: vec!["y".into()],
             cells,
+            nyquist_frequency: None,
         };
         let dir = std::env::temp_dir().join("ltikit-bode-grid-test.png");
         let e = bode_grid_png(&dir, &grid(vec![]), &PlotOptions::default()).unwrap_err();
@@ -315,6 +363,7 @@ mod tests {
             inputs: (0..40).map(|k| format!("u{k}")).collect(),
             outputs: vec!["y".into()],
             cells: vec![(0, 0, &fr)],
+            nyquist_frequency: None,
         };
         let e = bode_grid_png(&dir, &many, &PlotOptions::default()).unwrap_err();
         assert!(e.to_string().contains("do not fit"), "{e}");
