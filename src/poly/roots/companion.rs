@@ -21,7 +21,15 @@ const ITER_PER_EIGENVALUE: usize = 60;
 /// converge within the cap.
 pub(super) fn companion_eigenvalues(tail: &[f64]) -> Option<Vec<Complex64>> {
     let n = tail.len();
-    // Row-major upper Hessenberg matrix: first row −a, ones on the subdiagonal.
+    let mut a = companion_matrix(tail);
+    balance(&mut a, n);
+    hqr(&mut a, n)
+}
+
+/// The companion matrix of sⁿ + a₁sⁿ⁻¹ + … + aₙ, row-major upper Hessenberg: the first row
+/// −a, ones on the subdiagonal.
+fn companion_matrix(tail: &[f64]) -> Vec<f64> {
+    let n = tail.len();
     let mut a = vec![0.0; n * n];
     for (j, &c) in tail.iter().enumerate() {
         a[j] = -c;
@@ -29,8 +37,7 @@ pub(super) fn companion_eigenvalues(tail: &[f64]) -> Option<Vec<Complex64>> {
     for i in 1..n {
         a[i * n + i - 1] = 1.0;
     }
-    balance(&mut a, n);
-    hqr(&mut a, n)
+    a
 }
 
 /// The companion matrix of sⁿ + a₁sⁿ⁻¹ + … + aₙ (`tail` = [a₁, …, aₙ], as
@@ -40,13 +47,7 @@ pub(super) fn companion_eigenvalues(tail: &[f64]) -> Option<Vec<Complex64>> {
 /// eigenvalues and a well-scaled realisation (the ZOH of a transfer function).
 pub(crate) fn balanced_companion(tail: &[f64]) -> (Vec<f64>, Vec<f64>, Option<Vec<Complex64>>) {
     let n = tail.len();
-    let mut a = vec![0.0; n * n];
-    for (j, &c) in tail.iter().enumerate() {
-        a[j] = -c;
-    }
-    for i in 1..n {
-        a[i * n + i - 1] = 1.0;
-    }
+    let mut a = companion_matrix(tail);
     let d = balance(&mut a, n);
     let ev = hqr(&mut a.clone(), n);
     (a, d, ev)
