@@ -37,6 +37,20 @@ pub(crate) fn check_square(a: &DMatrix<f64>, what: &str) -> Result<usize> {
     Ok(a.nrows())
 }
 
+/// Errors unless `b` (the input matrix of an equation with an n×n A) has n rows, finite
+/// entries and at most [`crate::limits::SIGNALS`] columns; returns its column count.
+pub(crate) fn check_input_matrix(b: &DMatrix<f64>, n: usize) -> Result<usize> {
+    if b.nrows() != n {
+        return Err(LtiError::invalid(format!(
+            "B must have {n} rows to match A ({n}×{n}), got {}×{}",
+            b.nrows(),
+            b.ncols()
+        )));
+    }
+    check_finite(b, "B")?;
+    crate::limits::SIGNALS.check_usize("`b`", b.ncols())
+}
+
 /// Errors at the first NaN or infinite entry (named by its row and column).
 pub(crate) fn check_finite(a: &DMatrix<f64>, what: &str) -> Result<()> {
     for j in 0..a.ncols() {

@@ -105,15 +105,7 @@ pub(crate) fn stable_or_eigenvalue(
     discrete: bool,
 ) -> Result<std::result::Result<CholeskySolution, C>> {
     let n = check_coefficient(a, "A")?;
-    if b.nrows() != n {
-        return Err(LtiError::invalid(format!(
-            "B must have {n} rows to match A ({n}×{n}), got {}×{}",
-            b.nrows(),
-            b.ncols()
-        )));
-    }
-    super::checks::check_finite(b, "B")?;
-    crate::limits::SIGNALS.check_usize("`b`", b.ncols())?;
+    super::checks::check_input_matrix(b, n)?;
     let opts = SchurOptions {
         balance: false,
         want_q: true,

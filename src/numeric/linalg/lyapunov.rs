@@ -182,7 +182,8 @@ fn is_symmetric(q: &DMatrix<f64>) -> bool {
     q == &q.transpose()
 }
 
-fn symmetrise(x: &mut DMatrix<f64>) {
+/// X ← (X + Xᵀ)/2, entry by entry (the Lyapunov and Riccati solutions).
+pub(super) fn symmetrise(x: &mut DMatrix<f64>) {
     let n = x.nrows();
     for j in 0..n {
         for i in 0..j {

@@ -44,7 +44,7 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use super::lyapunov::{check_coefficient, check_shape};
+use super::lyapunov::{check_coefficient, check_shape, symmetrise};
 use super::norms::frobenius;
 use super::schur::schur_eigenvalues;
 use crate::error::{LtiError, Result, complex_number, number};
@@ -125,15 +125,7 @@ fn prepare(
     let n = check_coefficient(a, "A")?;
     // a 2n × 2n Hamiltonian Schur form (or doubling) and Newton steps of order n
     crate::limits::DESIGN_STATES.check_usize("`a`", n)?;
-    if b.nrows() != n {
-        return Err(LtiError::invalid(format!(
-            "B must have {n} rows to match A ({n}×{n}), got {}×{}",
-            b.nrows(),
-            b.ncols()
-        )));
-    }
-    super::checks::check_finite(b, "B")?;
-    let m = crate::limits::SIGNALS.check_usize("`b`", b.ncols())?;
+    let m = super::checks::check_input_matrix(b, n)?;
     if m == 0 {
         return Err(LtiError::invalid("B must have at least one column (input)"));
     }
@@ -181,17 +173,6 @@ fn prepare(
         qt,
         g,
     })
-}
-
-fn symmetrise(x: &mut DMatrix<f64>) {
-    let n = x.nrows();
-    for j in 0..n {
-        for i in 0..j {
-            let v = 0.5 * (x[(i, j)] + x[(j, i)]);
-            x[(i, j)] = v;
-            x[(j, i)] = v;
-        }
-    }
 }
 
 /// Errors at an uncontrollable mode of (A, B) outside the stability region.
