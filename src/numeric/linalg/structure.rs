@@ -333,9 +333,8 @@ fn link_clusters(ev: &[Complex64], scale: f64) -> Vec<Vec<usize>> {
 /// A link of a spanning tree: its two members (indices into the eigenvalues) and length.
 type Link = (usize, usize, f64);
 
-/// The minimum spanning tree of the members `g` (Prim's algorithm from `g[0]`, as
-/// [`split_longest_link`] builds it): `g.len() − 1` links, member i's link to its parent in
-/// the order of `g`.
+/// The minimum spanning tree of the members `g` (Prim's algorithm from `g[0]`):
+/// `g.len() − 1` links, member i's link to its parent in the order of `g`.
 fn spanning_tree(g: &[usize], ev: &[Complex64]) -> Vec<Link> {
     let m = g.len();
     let mut in_tree = vec![false; m];
@@ -389,8 +388,8 @@ fn diameter_exceeds(g: &[usize], ev: &[Complex64], limit: f64) -> bool {
         .any(|(i, &x)| g[i + 1..].iter().any(|&y| dist(ev[x], ev[y]) > limit))
 }
 
-/// The members and spanning tree split at the tree's longest link (the last of equal ones,
-/// as [`split_longest_link`] cuts): the two subtrees with their members, in the order of `g`.
+/// The members and spanning tree split at the tree's longest link (the last of equal ones):
+/// the two subtrees with their members, in the order of `g`.
 /// `owner` is scratch space indexed by eigenvalue (any contents).
 fn cut_longest_link(
     g: Vec<usize>,
@@ -555,55 +554,17 @@ fn resolved_parts(
     parts
 }
 
-/// Splits a cluster in two at the longest edge of its minimum spanning tree.
+/// Splits a cluster in two at the longest link of its minimum spanning tree
+/// ([`spanning_tree`], cut by [`cut_longest_link`]): (the rest, the subtree below the cut),
+/// each in the order of `g`.
 fn split_longest_link(g: &[usize], ev: &[Complex64]) -> (Vec<usize>, Vec<usize>) {
-    // Prim's algorithm, remembering each member's attaching edge length.
-    let m = g.len();
-    let mut in_tree = vec![false; m];
-    let mut best = vec![f64::INFINITY; m];
-    let mut parent = vec![0usize; m];
-    best[0] = 0.0;
-    let mut order = Vec::with_capacity(m);
-    for _ in 0..m {
-        let next = (0..m)
-            .filter(|&i| !in_tree[i])
-            .min_by(|&x, &y| best[x].total_cmp(&best[y]))
-            .unwrap_or(0);
-        in_tree[next] = true;
-        order.push(next);
-        for i in 0..m {
-            let d = dist(ev[g[i]], ev[g[next]]);
-            if !in_tree[i] && d < best[i] {
-                best[i] = d;
-                parent[i] = next;
-            }
-        }
+    if g.len() < 2 {
+        return (g.to_vec(), Vec::new()); // no link to cut
     }
-    let cut = (1..m)
-        .max_by(|&x, &y| best[x].total_cmp(&best[y]))
-        .unwrap_or(1);
-    // The subtree below `cut`: members whose chain of parents reaches it.
-    let below = |mut i: usize| {
-        for _ in 0..m {
-            if i == cut {
-                return true;
-            }
-            if i == 0 {
-                return false;
-            }
-            i = parent[i];
-        }
-        false
-    };
-    let (mut left, mut right) = (Vec::new(), Vec::new());
-    for (i, &k) in g.iter().enumerate() {
-        if below(i) {
-            right.push(k);
-        } else {
-            left.push(k);
-        }
-    }
-    (left, right)
+    let tree = spanning_tree(g, ev);
+    let mut owner = vec![usize::MAX; ev.len()];
+    let [(rest, _), (below, _)] = cut_longest_link(g.to_vec(), tree, &mut owner);
+    (rest, below)
 }
 
 /// The reduced m×m problem of a cluster: W (n×m) and R (m×m), see the module docs.
