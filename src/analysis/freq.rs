@@ -192,9 +192,7 @@ fn worker_count(n: usize) -> usize {
     if n < 2 * PER_THREAD {
         return 1;
     }
-    static CORES: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
-    let cores = *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |c| c.get()));
-    cores.min(n / PER_THREAD).max(1)
+    crate::numeric::parallel::cores().min(n / PER_THREAD).max(1)
 }
 
 /// Checks that every frequency is finite and ≥ 0.

@@ -14,6 +14,7 @@ pub mod linalg;
 pub mod logm;
 pub mod lstsq;
 pub(crate) mod march;
+pub(crate) mod parallel;
 pub mod rk45;
 pub(crate) mod scalar;
 pub mod tol;

@@ -112,7 +112,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         "eigenvalues of A by the Schur form, minimal realisation by staircases, transmission \
          zeros by the system pencil",
     );
-    let (eigenvalues, minimal, reduced_poles, removed) = match second {
+    let (eigenvalues, minimal, reduced_poles, removed, found) = match second {
         Some((so, red)) => {
             let rayleigh = ss_modal::rayleigh_zeros(ss, so, &red);
             method = format!(
@@ -129,11 +129,18 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             let by_position = ev.by_position();
             let kept: Vec<Complex64> = red.kept.iter().map(|&p| by_position[p]).collect();
             let removed: Vec<Complex64> = red.removed.iter().map(|&p| by_position[p]).collect();
-            (ev, red.minimal, conjugate_closed(&group(&kept)), removed)
+            (
+                ev,
+                red.minimal,
+                conjugate_closed(&group(&kept)),
+                removed,
+                None,
+            )
         }
         None => {
             let minimal = minimal_realization(&ss.a, &ss.b, &ss.c, &ss.d, None)?;
             if n == 0 {
+                let rd = degree(&minimal, None)?;
                 return finish(
                     Vec::new(),
                     minimal,
@@ -141,6 +148,8 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                     Vec::new(),
                     None,
                     "no states",
+                    rd,
+                    None,
                 );
             }
             let removed: Vec<Complex64> = minimal
@@ -149,16 +158,29 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                 .chain(&minimal.unobservable)
                 .copied()
                 .collect();
+            known = finer_structure(ss, &minimal, &removed)?;
             // Nothing removed (the generic case): the minimal A is an orthogonal similarity
             // of the balanced A, so its eigen structure is A's — one eigenproblem, not two,
-            // and on the staircases' Hessenberg form (no second reduction). Else A's
-            // structure and the minimal part's, whose values are mapped to A's below.
-            let (st, reduced) = if minimal.order() == n {
-                (structure_of_similar(&ss.a, &minimal.a)?, None)
+            // and on the staircases' Hessenberg form (no second reduction) — and the zeros'
+            // eigenproblem, independent of it, runs beside it on a second core when both
+            // are large. Else A's structure and the minimal part's, whose values are mapped
+            // to A's below, and the zeros afterwards.
+            let (st, reduced, found) = if minimal.order() == n {
+                let rd = degree(&minimal, known.as_ref())?;
+                let zeros_here = known.is_none() && rd.r.is_some();
+                let (st, found) = crate::numeric::parallel::join(
+                    zeros_here && n >= PARALLEL_ORDER,
+                    || structure_of_similar(&ss.a, &minimal.a),
+                    || zeros_here.then(|| minimal_zeros(&minimal, rd.r)),
+                );
+                (st?, None, found.transpose()?)
             } else {
-                (a.eigen_structure()?, Some(roots_of_matrix(&minimal.a)?))
+                (
+                    a.eigen_structure()?,
+                    Some(roots_of_matrix(&minimal.a)?),
+                    None,
+                )
             };
-            known = finer_structure(ss, &minimal, &removed)?;
             if let Some(k) = &known {
                 method = format!(
                     "eigenvalues of A by the Schur form, minimal realisation by staircases; \
@@ -179,11 +201,68 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                     .collect(),
             };
             let removed = removed.iter().map(|&v| ev.nearest(v)).collect();
-            (ev, minimal, reduced, removed)
+            (ev, minimal, reduced, removed, found)
         }
     };
     let poles = eigenvalues.roots();
-    finish(poles, minimal, reduced_poles, removed, known, &method)
+    let rd = degree(&minimal, known.as_ref())?;
+    finish(
+        poles,
+        minimal,
+        reduced_poles,
+        removed,
+        known,
+        &method,
+        rd,
+        found,
+    )
+}
+
+/// Order from which the zeros' eigenproblem runs beside the poles' on a second core (the
+/// pair then costs about one; below it a thread costs more than it saves).
+const PARALLEL_ORDER: usize = 64;
+
+/// The relative degree and first Markov parameter of the channel: from the componentwise
+/// decision when it found a lower degree, else the pencil's normwise rule on the minimal
+/// realisation.
+fn degree(
+    minimal: &MinimalRealization,
+    known: Option<&ss_modal::KnownZeros>,
+) -> Result<crate::numeric::linalg::RelativeDegree> {
+    match known {
+        Some(k) => Ok(crate::numeric::linalg::RelativeDegree {
+            r: Some(k.r),
+            gain: k.gain,
+        }),
+        None => relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None),
+    }
+}
+
+/// The zeros of a minimal realisation of relative degree `r` (distinct values with their
+/// multiplicities, not yet snapped), and whether they are the eigenvalues of its Hessenberg
+/// zero dynamics (else the system pencil's).
+struct MinimalZeros {
+    distinct: Vec<(Complex64, usize)>,
+    by_hessenberg: bool,
+}
+
+fn minimal_zeros(minimal: &MinimalRealization, r: Option<usize>) -> Result<MinimalZeros> {
+    Ok(match hessenberg_zero_dynamics(minimal, r) {
+        Some(z) => MinimalZeros {
+            distinct: if z.nrows() == 0 {
+                Vec::new()
+            } else {
+                let st = StateMatrix::recognise(&z).eigen_structure()?;
+                st.clusters.iter().map(|c| (c.value, c.algebraic)).collect()
+            },
+            by_hessenberg: true,
+        },
+        None => MinimalZeros {
+            distinct: transmission_zeros(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?
+                .distinct,
+            by_hessenberg: false,
+        },
+    })
 }
 
 /// The structure of a single channel that the pencil's normwise rank decisions miss: when
@@ -214,8 +293,9 @@ fn finer_structure(
 }
 
 /// The pole–zero part from the poles, the minimal realisation, its poles and the removed
-/// modes: zeros are the transmission zeros of the minimal part, the gain its first non-zero
-/// Markov parameter.
+/// modes: zeros are the transmission zeros of the minimal part (`found` when computed
+/// already), the gain its first non-zero Markov parameter (`rd`, see [`degree`]).
+#[allow(clippy::too_many_arguments)] // the parts of one factorisation, passed once
 fn finish(
     poles: Vec<Root>,
     minimal: MinimalRealization,
@@ -223,16 +303,11 @@ fn finish(
     removed: Vec<Complex64>,
     known: Option<ss_modal::KnownZeros>,
     method: &str,
+    rd: crate::numeric::linalg::RelativeDegree,
+    found: Option<MinimalZeros>,
 ) -> Result<(PoleZero, f64, SsSource)> {
     crate::poly::roots::sort_roots(&mut reduced_poles);
     let cancelled = conjugate_closed(&group(&removed));
-    let rd = match &known {
-        Some(k) => crate::numeric::linalg::RelativeDegree {
-            r: Some(k.r),
-            gain: k.gain,
-        },
-        None => relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?,
-    };
     let zero = rd.r.is_none();
     let mut by_hessenberg = false;
     // G ≡ 0: the minimal realisation has order 0 and every mode of A is decoupled from the
@@ -243,20 +318,12 @@ fn finish(
     } else if let Some(k) = &known {
         conjugate_closed(&k.zeros)
     } else {
-        let distinct = match hessenberg_zero_dynamics(&minimal, rd.r) {
-            Some(z) => {
-                by_hessenberg = true;
-                if z.nrows() == 0 {
-                    Vec::new()
-                } else {
-                    let st = StateMatrix::recognise(&z).eigen_structure()?;
-                    st.clusters.iter().map(|c| (c.value, c.algebraic)).collect()
-                }
-            }
-            None => {
-                transmission_zeros(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?.distinct
-            }
+        let found = match found {
+            Some(f) => f,
+            None => minimal_zeros(&minimal, rd.r)?,
         };
+        by_hessenberg = found.by_hessenberg;
+        let distinct = found.distinct;
         let scale = crate::numeric::linalg::norms::norm_1_inf(&minimal.a);
         let nm = minimal.order().max(1);
         let snapped: Vec<(Complex64, usize)> = distinct
