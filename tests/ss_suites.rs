@@ -474,11 +474,50 @@ fn harold_minimal_realizations() {
     let r = run("analyze", &a, &b, &c, &d);
     assert_eq!(r["state_space"]["minimal_order"], 2);
 
-    // The second model (5 states, exact minimal order 4: the observability matrix's σ₅ is
-    // 4e-17) is not taken over: ltikit's observability staircase meets a last block of 1.0e-13
-    // against its tolerance n²·ε·‖·‖ = 2.4e-14 (the subdiagonal 3.2e-3 before it amplifies the
-    // rounding) and keeps order 5, as SLICOT's TB01PD (python-control's `minreal`) does;
-    // harold finds 4 through its cancellation distance with tol = 1e-6.
+    // The second model: 5 states, exact minimal order 4 (sympy: the observability matrix has
+    // rank 4 for every value of the entry −0.1; the eigenvalue 1 is unobservable). The
+    // observability staircase meets a last block of 1.0e-13 against its tolerance
+    // n²·ε·‖·‖ = 2.4e-14 (the subdiagonal 3.2e-3 before it amplifies the rounding) and keeps
+    // 5, as SLICOT's TB01PD (python-control's `minreal`) does; the eigenvector test after the
+    // staircases finds ‖C·v‖ = 1.1e-16 for the eigenvalue 1 and removes it (harold: 4, through
+    // its cancellation distance with tol = 1e-6).
+    let a = m(
+        5,
+        5,
+        &[
+            0., 1., 0., 0., 0., //
+            -0.1, -0.5, 1., -1., 0., //
+            0., 0., 0., 1., 0., //
+            0., 0., 0., 0., 1., //
+            0., 3.5, 1., -2., 2.,
+        ],
+    );
+    let b = m(5, 1, &[0., 1., 0., 0., 1.]);
+    let c = m(1, 5, &[0., 3.5, 1., -1., 0.]);
+    let d = m(1, 1, &[1.]);
+    let min = minimal_realization(&a, &b, &c, &d, None).unwrap();
+    assert_eq!(min.order(), 4);
+    assert!(min.uncontrollable.is_empty());
+    assert_eq!(min.unobservable.len(), 1);
+    assert!((min.unobservable[0] - Complex64::new(1.0, 0.0)).norm() < 1e-13);
+    // the same transfer function: G of the 4-state realisation against the 5-state model
+    for s in [
+        Complex64::new(0.3, 0.7),
+        Complex64::new(-2.0, 5.0),
+        Complex64::new(10.0, 0.1),
+    ] {
+        let g = |a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>| {
+            let n = a.nrows();
+            let m = DMatrix::<Complex64>::identity(n, n) * s - a.map(|x| Complex64::new(x, 0.0));
+            let x = m.lu().solve(&b.map(|x| Complex64::new(x, 0.0))).unwrap();
+            (c.map(|x| Complex64::new(x, 0.0)) * x)[(0, 0)] + 1.0
+        };
+        let (g5, g4) = (g(&a, &b, &c), g(&min.a, &min.b, &min.c));
+        assert!((g5 - g4).norm() <= 1e-13 * g5.norm(), "{s}: {g5} {g4}");
+    }
+    let r = run("analyze", &a, &b, &c, &d);
+    assert_eq!(r["state_space"]["minimal_order"], 4);
+    assert_eq!(r["state_space"]["observability"]["rank"], 4);
 
     let a = m(
         4,

@@ -351,12 +351,16 @@ impl StateSpace {
             m,
             p,
             eigenvalues,
+            // The minimal realisation's eigenvector test can find a mode that the
+            // staircases' block-wise rank decisions kept (numeric::linalg::minreal): each
+            // removed mode is a genuinely uncontrollable (unobservable) one, so the ranks
+            // stated never exceed what the removed modes leave.
             controllability: StaircaseRank {
-                rank: ctrl.dim,
+                rank: ctrl.dim.min(min.n_controllable),
                 tol: ctrl.abs_tol,
             },
             observability: StaircaseRank {
-                rank: obs.dim,
+                rank: obs.dim.min(n.saturating_sub(min.unobservable.len())),
                 tol: obs.abs_tol,
             },
             minimal_order: min.order(),
