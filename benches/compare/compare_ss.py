@@ -89,6 +89,12 @@ def main():
     out = subprocess.run(["cargo", "run", "--quiet", "--release", "--example", "bench_ss_json"],
                          cwd=ROOT, check=True, capture_output=True, text=True).stdout
     lt = json.loads(out)
+    # the same binary with ltikit's threads capped at one (LTIKIT_NUM_THREADS): a channel's
+    # factorisation runs its zeros' eigenproblem beside its poles' on a second core
+    one = subprocess.run(["cargo", "run", "--quiet", "--release", "--example", "bench_ss_json"],
+                         cwd=ROOT, check=True, capture_output=True, text=True,
+                         env={**os.environ, "LTIKIT_NUM_THREADS": "1"}).stdout
+    lt1 = json.loads(one)
     print(f"python-control {ct.__version__}, numpy {np.__version__}")
     print(f"{'operation':28} {'python (s)':>12} {'ltikit (s)':>12} {'ratio':>8}")
     py["freq_response_mimo_10k"] = py["freq_hessenberg_10k"]
@@ -124,6 +130,8 @@ def main():
     for key in ["eigenvalues", "channel_factored", "step_10k"]:
         p, l = pr[key], lt["random_" + key]
         print(f"  {key:26} {p:12.4g} {l:12.4g} {p / l:8.1f}")
+    p, l = pr["channel_factored"], lt1["random_channel_factored"]
+    print(f"  {'channel_factored, 1 thread':26} {p:12.4g} {l:12.4g} {p / l:8.1f}")
     for key in ["real_schur_with_q", "schur_eigenvalues", "modal_form", "minimal_realization", "transmission_zeros"]:
         print(f"  {key + ' (ltikit)':26} {'':12} {lt['random_' + key]:12.4g}")
     print(f"max relative difference Hessenberg vs modal sum: {lt['freq_max_rel_diff_vs_modal']:.2e}")

@@ -4,10 +4,22 @@
 
 use std::sync::OnceLock;
 
-/// The cores this process may use (1 when unknown), asked once.
+/// The environment variable that caps the threads ltikit starts (a positive integer; 1
+/// keeps every computation on the calling thread).
+pub(crate) const THREADS_VAR: &str = "LTIKIT_NUM_THREADS";
+
+/// The cores this process may use (1 when unknown), capped by [`THREADS_VAR`] when it holds
+/// a positive integer; asked once.
 pub(crate) fn cores() -> usize {
     static CORES: OnceLock<usize> = OnceLock::new();
-    *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |c| c.get()))
+    *CORES.get_or_init(|| {
+        let available = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let cap = std::env::var(THREADS_VAR)
+            .ok()
+            .and_then(|v| v.trim().parse::<usize>().ok())
+            .filter(|&k| k > 0);
+        cap.map_or(available, |k| k.min(available))
+    })
 }
 
 /// (a(), b()), with `b` on a second thread when `beside` and there is a second core.
