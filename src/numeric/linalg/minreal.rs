@@ -114,7 +114,7 @@ pub fn minimal_realization(
         return Ok(first);
     }
     let chosen = smaller_of_both_orders(a, b, c, d, tol, first)?;
-    eigenvector_test(chosen)
+    Ok(eigenvector_test(chosen))
 }
 
 /// The first realisation, or the other order's when the whole system's observability
@@ -266,7 +266,7 @@ enum Kind {
 /// block in coordinates that can amplify rounding (harold's second model: the unobservable
 /// mode 1 behind a subdiagonal of 3.2e-3 left a last block of 1.0e-13 against 2.4e-14, while
 /// its eigenvector gives ‖C·v‖ = 1.1e-16). Defective eigenvalues are left to the staircases.
-fn eigenvector_test(mut m: MinimalRealization) -> Result<MinimalRealization> {
+fn eigenvector_test(mut m: MinimalRealization) -> MinimalRealization {
     for kind in [Kind::Unobservable, Kind::Uncontrollable] {
         let tol = match kind {
             Kind::Unobservable => m.abs_tol.1,
@@ -277,7 +277,9 @@ fn eigenvector_test(mut m: MinimalRealization) -> Result<MinimalRealization> {
         }
         // at most one removal per state: every pass either removes a mode or stops
         for _ in 0..m.order() {
-            let Some((values, kept)) = remove_one_mode(&m, kind, tol)? else {
+            // an eigenvector computation that fails (no convergence) leaves the staircases'
+            // result as it is: the test can only remove modes, never be needed
+            let Ok(Some((values, kept))) = remove_one_mode(&m, kind, tol) else {
                 break;
             };
             m.a = kept.0;
@@ -292,7 +294,7 @@ fn eigenvector_test(mut m: MinimalRealization) -> Result<MinimalRealization> {
             }
         }
     }
-    Ok(m)
+    m
 }
 
 /// The realisation without one mode that fails the eigenvector test (see
