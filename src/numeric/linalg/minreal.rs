@@ -26,8 +26,9 @@
 //! against a tolerance of 2.4e-14: minimal order 3 instead of 2, as SLICOT's `TB01PD`
 //! (python-control's `minreal`) gives.
 //!
-//! Last, unless every rank decision was far above its tolerance (see `CERTAIN_MARGIN`), the
-//! Popov–Belevitch–Hautus test runs on what the staircases kept: a simple eigenvalue whose
+//! Last, when a direction the staircases kept was within `CERTAIN_MARGIN` of the tolerance
+//! (`Staircase::margin`) or the two orders disagreed, the Popov–Belevitch–Hautus test runs on
+//! what the staircases kept: a simple eigenvalue whose
 //! computed right eigenvector v has ‖C·v‖ (left eigenvector w: ‖wᵀ·B‖) and ‖A·v − λ·v‖ within
 //! the staircase's absolute tolerance is a mode the model is that close to having exactly
 //! unobservable (uncontrollable), and it is removed by an orthogonal similarity onto its
@@ -106,15 +107,22 @@ pub fn minimal_realization(
     let (mut a, mut b, mut c) = (a.clone(), b.clone(), c.clone());
     crate::numeric::balance::balance_system(&mut a, &mut b, &mut c);
     let (a, b, c) = (&a, &b, &c);
-    let (first, obs_margin) = controllable_then_observable(a, b, c, d, tol)?;
+    let (first, obs_margin, margin) = controllable_then_observable(a, b, c, d, tol)?;
     // Nothing removed and every rank decision of the second staircase far above its
     // tolerance: the staircase of the whole system cannot find fewer observable states (see
     // `CERTAIN_MARGIN`), and the first realisation stands.
     if first.order() == a.nrows() && obs_margin >= CERTAIN_MARGIN {
         return Ok(first);
     }
+    let first_order = first.order();
     let chosen = smaller_of_both_orders(a, b, c, d, tol, first)?;
-    Ok(eigenvector_test(chosen))
+    // The eigenvector test only where a rank decision was close: a kept direction within
+    // CERTAIN_MARGIN of the tolerance in either staircase, or the two orders disagreeing.
+    Ok(if margin < CERTAIN_MARGIN || chosen.order() != first_order {
+        eigenvector_test(chosen)
+    } else {
+        chosen
+    })
 }
 
 /// The first realisation, or the other order's when the whole system's observability
@@ -179,14 +187,15 @@ fn single_column_margin(st: &super::staircase::Staircase) -> f64 {
 }
 
 /// `TB01PD`'s order: the controllable part, then its observable part; with the margin of
-/// the second staircase's rank decisions ([`single_column_margin`]).
+/// the second staircase's rank decisions ([`single_column_margin`]) and the smallest margin
+/// of a kept direction in either staircase (`Staircase::margin`).
 fn controllable_then_observable(
     a: &DMatrix<f64>,
     b: &DMatrix<f64>,
     c: &DMatrix<f64>,
     d: &DMatrix<f64>,
     tol: Option<f64>,
-) -> Result<(MinimalRealization, f64)> {
+) -> Result<(MinimalRealization, f64, f64)> {
     let ctrl = staircase(a, b, c, tol, false, false)?;
     let nc = ctrl.dim;
     let uncontrollable = schur_eigenvalues(&ctrl.removed_block())?;
@@ -215,7 +224,7 @@ fn controllable_then_observable(
         n_controllable: nc,
         abs_tol: (ctrl.abs_tol, obs.abs_tol),
     };
-    Ok((minimal, margin))
+    Ok((minimal, margin, ctrl.margin.min(obs.margin)))
 }
 
 /// The other order: the observable part (`obs`, the staircase of the dual of the whole

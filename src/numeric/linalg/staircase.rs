@@ -60,6 +60,11 @@ pub struct Staircase {
     pub blocks: Vec<usize>,
     /// The absolute rank tolerance used (tol·‖[A B]‖_F).
     pub abs_tol: f64,
+    /// How far above the tolerance the kept directions were: the smallest pivot |R_kk| of
+    /// the rank-revealing QR factors, over every step and every kept k, over `abs_tol` (∞
+    /// when nothing was kept or the tolerance is 0). A small margin marks a rank decision
+    /// that rounding could have made.
+    pub margin: f64,
 }
 
 impl Staircase {
@@ -127,6 +132,7 @@ pub(crate) fn staircase(
     let norm = super::norms::frobenius(a.iter().chain(b.iter()));
     let abs_tol = tol.unwrap_or_else(|| default_tol(n)) * norm;
     let mut blocks = Vec::new();
+    let mut margin = f64::INFINITY;
     let mut r0 = 0; // first row not yet in the staircase
     let mut c_prev = 0; // first column of the block being compressed (in A)
     while r0 < n {
@@ -137,6 +143,11 @@ pub(crate) fn staircase(
         };
         let f = rank_revealing_qr(&cand, abs_tol);
         let rho = f.rank;
+        if abs_tol > 0.0 {
+            for k in 0..rho {
+                margin = margin.min(f.r[(k, k)].abs() / abs_tol);
+            }
+        }
         for refl in &f.reflectors {
             let r = Reflector {
                 offset: refl.offset + r0,
@@ -185,6 +196,7 @@ pub(crate) fn staircase(
         dim: r0,
         blocks,
         abs_tol,
+        margin,
     })
 }
 
@@ -223,6 +235,7 @@ pub fn observability_staircase(
         dim: dual.dim,
         blocks: dual.blocks,
         abs_tol: dual.abs_tol,
+        margin: dual.margin,
     })
 }
 
@@ -230,6 +243,24 @@ pub fn observability_staircase(
 mod tests {
     #![allow(clippy::float_cmp)] // these tests expect exact zeros and exact values
     use super::*;
+
+    /// The margin is the smallest kept pivot over the tolerance: here the coupling 3e-3 of
+    /// the second state (b already is e₁, so the first pivot is 1).
+    #[test]
+    fn margin_is_the_smallest_kept_pivot() {
+        let a = DMatrix::from_row_slice(2, 2, &[-1.0, 0.5, 3e-3, -2.0]);
+        let b = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+        let c = DMatrix::from_row_slice(1, 2, &[1.0, 1.0]);
+        let s = staircase(&a, &b, &c, None, false, false).unwrap();
+        assert_eq!(s.dim, 2);
+        let smallest = s.margin * s.abs_tol;
+        assert!((smallest - 3e-3).abs() <= 1e-15, "{smallest}");
+        // nothing kept: an infinite margin
+        let z = DMatrix::zeros(2, 1);
+        let s = staircase(&a, &z, &c, None, false, false).unwrap();
+        assert_eq!(s.dim, 0);
+        assert_eq!(s.margin, f64::INFINITY);
+    }
 
     #[test]
     fn orthogonal_similarity_and_zero_pattern() {
