@@ -118,11 +118,13 @@ pub fn minimal_realization(
     let chosen = smaller_of_both_orders(a, b, c, d, tol, first)?;
     // The eigenvector test only where a rank decision was close: a kept direction within
     // CERTAIN_MARGIN of the tolerance in either staircase, or the two orders disagreeing.
-    Ok(if margin < CERTAIN_MARGIN || chosen.order() != first_order {
-        eigenvector_test(chosen)
-    } else {
-        chosen
-    })
+    Ok(
+        if margin < CERTAIN_MARGIN || chosen.order() != first_order {
+            eigenvector_test(chosen)
+        } else {
+            chosen
+        },
+    )
 }
 
 /// The first realisation, or the other order's when the whole system's observability
