@@ -380,7 +380,7 @@ impl SecondOrder {
             }
         }
         let scale = crate::numeric::linalg::norms::norm_1_inf(a);
-        // the cluster diameter of a double eigenvalue (structure.rs: 2·r₂)
+        // the cluster diameter of a double eigenvalue (linalg/structure: 2·r₂)
         let critical_tol = 2.0 * crate::numeric::linalg::structure::radius(2, n, scale);
         let modes = lam
             .iter()

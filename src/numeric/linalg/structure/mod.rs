@@ -36,16 +36,15 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
+mod grouping;
+
+pub use grouping::MAX_DEFECTIVE_SIZE;
+pub(crate) use grouping::radius;
+use grouping::{RADIUS_GROWTH, dist, link_clusters, split};
+
 use super::complex_schur::{ComplexSchur, complex_schur};
 use super::schur::{RealSchur, SchurOptions, real_schur};
 use crate::error::Result;
-
-/// Largest cluster size whose radius grows with the size; larger clusters (semisimple ones
-/// such as the identity's) are held to the radius of this size.
-pub const MAX_DEFECTIVE_SIZE: usize = 6;
-
-/// Growth factor K in the cluster radius ν·(K·n·ε)^(1/m).
-const RADIUS_GROWTH: f64 = 64.0;
 
 /// One (possibly multiple) eigenvalue.
 #[derive(Clone, Debug, PartialEq)]
@@ -237,12 +236,6 @@ pub(crate) fn snap(v: Complex64, r: f64) -> Complex64 {
     }
 }
 
-/// Cluster radius for a cluster of m members (see the module docs).
-pub(crate) fn radius(m: usize, n: usize, scale: f64) -> f64 {
-    let m = m.clamp(1, MAX_DEFECTIVE_SIZE) as f64;
-    scale * (RADIUS_GROWTH * n.max(1) as f64 * f64::EPSILON).powf(1.0 / m)
-}
-
 /// The cluster mean; exactly real when the cluster is closed under conjugation.
 fn mean(g: &[usize], ev: &[Complex64]) -> Complex64 {
     let sum: Complex64 = g.iter().map(|&k| ev[k]).sum();
@@ -259,195 +252,6 @@ fn is_self_conjugate(g: &[usize], ev: &[Complex64], _z: Complex64) -> bool {
     let up = g.iter().filter(|&&k| ev[k].im > 0.0).count();
     let down = g.iter().filter(|&&k| ev[k].im < 0.0).count();
     up == down
-}
-
-/// Clustering top-down: the connected components of the graph linking eigenvalues closer
-/// than 2·r_6 (the largest radius), each split at the longest link of its minimum spanning
-/// tree until its diameter is within 2·r_m for its size m.
-///
-/// Top-down, not closest-pairs-first: the m members of a defective eigenvalue lie on a circle
-/// and are about equally far apart (a Jordan block of size 3 scatters into a near-equilateral
-/// triangle), so no pair of them may satisfy the bound r_2 of a pair although the three
-/// together satisfy r_3; a bottom-up merge would never form the triple.
-fn link_clusters(ev: &[Complex64], scale: f64) -> Vec<Vec<usize>> {
-    let n = ev.len();
-    let reach = 2.0 * radius(MAX_DEFECTIVE_SIZE, n, scale);
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| ev[a].re.total_cmp(&ev[b].re));
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut k: usize) -> usize {
-        while parent[k] != k {
-            parent[k] = parent[parent[k]];
-            k = parent[k];
-        }
-        k
-    }
-    for (ia, &a) in order.iter().enumerate() {
-        for &b in &order[ia + 1..] {
-            if ev[b].re - ev[a].re > reach {
-                break;
-            }
-            if dist(ev[a], ev[b]) <= reach {
-                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-                if ra != rb {
-                    parent[rb] = ra;
-                }
-            }
-        }
-    }
-    let mut components: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for k in 0..n {
-        let r = root(&mut parent, k);
-        components[r].push(k);
-    }
-    // Each component's minimum spanning tree once; a split at a tree's longest link leaves
-    // two subtrees that are the minimum spanning trees of their members (the cut property),
-    // so every later split is read off the same tree: O(m) per split instead of a new O(m²)
-    // tree (a random matrix's spectrum is one component, peeled a member at a time).
-    let mut work: Vec<(Vec<usize>, Vec<Link>)> = components
-        .into_iter()
-        .filter(|g| !g.is_empty())
-        .map(|g| {
-            let tree = spanning_tree(&g, ev);
-            (g, tree)
-        })
-        .collect();
-    let mut out = Vec::new();
-    let mut owner = vec![usize::MAX; n];
-    while let Some((g, tree)) = work.pop() {
-        if g.len() > 1 && diameter_exceeds(&g, ev, 2.0 * radius(g.len(), n, scale)) {
-            let [left, right] = cut_longest_link(g, tree, &mut owner);
-            work.push(left);
-            work.push(right);
-        } else {
-            out.push(g);
-        }
-    }
-    for g in &mut out {
-        g.sort_unstable();
-    }
-    out.sort_unstable_by_key(|g| g.first().copied().unwrap_or(0));
-    out
-}
-
-/// A link of a spanning tree: its two members (indices into the eigenvalues) and length.
-type Link = (usize, usize, f64);
-
-/// The minimum spanning tree of the members `g` (Prim's algorithm from `g[0]`):
-/// `g.len() − 1` links, member i's link to its parent in the order of `g`.
-fn spanning_tree(g: &[usize], ev: &[Complex64]) -> Vec<Link> {
-    let m = g.len();
-    let mut in_tree = vec![false; m];
-    let mut best = vec![f64::INFINITY; m];
-    let mut parent = vec![0usize; m];
-    best[0] = 0.0;
-    for _ in 0..m {
-        let next = (0..m)
-            .filter(|&i| !in_tree[i])
-            .min_by(|&x, &y| best[x].total_cmp(&best[y]))
-            .unwrap_or(0);
-        in_tree[next] = true;
-        for i in 0..m {
-            if !in_tree[i] {
-                let d = dist(ev[g[i]], ev[g[next]]);
-                if d < best[i] {
-                    best[i] = d;
-                    parent[i] = next;
-                }
-            }
-        }
-    }
-    (1..m).map(|i| (g[i], g[parent[i]], best[i])).collect()
-}
-
-/// Whether the largest distance between members of `g` exceeds `limit`: decided by the
-/// bounding box when it can be (a side longer than `limit`, or a diagonal within it), by
-/// all pairs otherwise.
-fn diameter_exceeds(g: &[usize], ev: &[Complex64], limit: f64) -> bool {
-    let (mut re0, mut re1, mut im0, mut im1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &k in g {
-        re0 = re0.min(ev[k].re);
-        re1 = re1.max(ev[k].re);
-        im0 = im0.min(ev[k].im);
-        im1 = im1.max(ev[k].im);
-    }
-    let (w, h) = (re1 - re0, im1 - im0);
-    if w > limit || h > limit {
-        return true;
-    }
-    if w.hypot(h) <= limit {
-        return false;
-    }
-    g.iter()
-        .enumerate()
-        .any(|(i, &x)| g[i + 1..].iter().any(|&y| dist(ev[x], ev[y]) > limit))
-}
-
-/// The members and spanning tree split at the tree's longest link (the last of equal ones):
-/// the two subtrees with their members, in the order of `g`.
-/// `owner` is scratch space indexed by eigenvalue (any contents).
-fn cut_longest_link(
-    g: Vec<usize>,
-    mut tree: Vec<Link>,
-    owner: &mut [usize],
-) -> [(Vec<usize>, Vec<Link>); 2] {
-    let cut = (0..tree.len())
-        .max_by(|&x, &y| tree[x].2.total_cmp(&tree[y].2))
-        .unwrap_or(0);
-    let (a, _, _) = tree.swap_remove(cut);
-    // union-find over the remaining links
-    for &k in &g {
-        owner[k] = k;
-    }
-    fn root(owner: &mut [usize], mut k: usize) -> usize {
-        while owner[k] != k {
-            owner[k] = owner[owner[k]];
-            k = owner[k];
-        }
-        k
-    }
-    for &(x, y, _) in &tree {
-        let (rx, ry) = (root(owner, x), root(owner, y));
-        if rx != ry {
-            owner[ry] = rx;
-        }
-    }
-    let ra = root(owner, a);
-    let (mut below, mut rest) = (Vec::new(), Vec::new());
-    for &k in &g {
-        if root(owner, k) == ra {
-            below.push(k);
-        } else {
-            rest.push(k);
-        }
-    }
-    let (mut tb, mut tr) = (Vec::new(), Vec::new());
-    for l in tree {
-        if root(owner, l.0) == ra {
-            tb.push(l);
-        } else {
-            tr.push(l);
-        }
-    }
-    [(rest, tr), (below, tb)]
-}
-
-/// |a − b| without libm's `hypot` where the squares cannot overflow or underflow (the
-/// clustering compares O(n²) distances: `hypot` was a sixth of a 256-state channel's
-/// factorisation); `hypot` otherwise. Equal to it within an ulp.
-fn dist(a: Complex64, b: Complex64) -> f64 {
-    let (dx, dy) = ((a.re - b.re).abs(), (a.im - b.im).abs());
-    let m = dx.max(dy);
-    if m > 1e-150 && m < 1e150 {
-        (dx * dx + dy * dy).sqrt()
-    } else {
-        dx.hypot(dy)
-    }
 }
 
 /// The backward error factor K in the resolution test: members λᵢ, λⱼ are resolved when
@@ -554,19 +358,6 @@ fn resolved_parts(
     parts
 }
 
-/// Splits a cluster in two at the longest link of its minimum spanning tree
-/// ([`spanning_tree`], cut by [`cut_longest_link`]): (the rest, the subtree below the cut),
-/// each in the order of `g`.
-fn split_longest_link(g: &[usize], ev: &[Complex64]) -> (Vec<usize>, Vec<usize>) {
-    if g.len() < 2 {
-        return (g.to_vec(), Vec::new()); // no link to cut
-    }
-    let tree = spanning_tree(g, ev);
-    let mut owner = vec![usize::MAX; ev.len()];
-    let [(rest, _), (below, _)] = cut_longest_link(g.to_vec(), tree, &mut owner);
-    (rest, below)
-}
-
 /// The reduced m×m problem of a cluster: W (n×m) and R (m×m), see the module docs.
 pub(crate) struct Reduced {
     /// Orthonormal basis of span W.
@@ -585,47 +376,6 @@ impl Reduced {
         let cols = self.v.columns(m - g.min(m), g.min(m));
         &self.q_w * cols
     }
-}
-
-/// A group larger than this that is not one eigenvalue is split into halves (at the median
-/// along its wider direction) instead of at its longest link, which in a tight cloud of
-/// distinct eigenvalues peels one member at a time: log₂ m reduced problems deep, not m.
-/// A multiple eigenvalue cut by such a split is missed (examined as smaller parts), never
-/// invented; groups this large are far beyond the defective sizes the radii allow.
-const BALANCED_SPLIT_ABOVE: usize = 32;
-
-/// A group that is not one eigenvalue, in two: at its longest link, or in halves when large.
-fn split(g: &[usize], ev: &[Complex64]) -> [Vec<usize>; 2] {
-    let (left, right) = if g.len() > BALANCED_SPLIT_ABOVE {
-        split_in_halves(g, ev)
-    } else {
-        split_longest_link(g, ev)
-    };
-    [left, right]
-}
-
-/// `g` cut at the median of its members' real or imaginary parts, whichever spread more.
-fn split_in_halves(g: &[usize], ev: &[Complex64]) -> (Vec<usize>, Vec<usize>) {
-    let spread = |f: &dyn Fn(Complex64) -> f64| {
-        let (lo, hi) = g
-            .iter()
-            .map(|&k| f(ev[k]))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(x), b.max(x))
-            });
-        hi - lo
-    };
-    let by_re = spread(&|z| z.re) >= spread(&|z| z.im);
-    let mut sorted = g.to_vec();
-    sorted.sort_by(|&a, &b| {
-        if by_re {
-            ev[a].re.total_cmp(&ev[b].re)
-        } else {
-            ev[a].im.total_cmp(&ev[b].im)
-        }
-    });
-    let right = sorted.split_off(sorted.len() / 2);
-    (sorted, right)
 }
 
 /// A group is rejected without its reduced problem only when the estimate of
