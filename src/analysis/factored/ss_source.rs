@@ -34,8 +34,8 @@ use crate::lti::StateSpace;
 use crate::numeric::linalg::hessenberg_zeros::{HessenbergSiso, is_upper_hessenberg};
 use crate::numeric::linalg::structure::{radius, snap};
 use crate::numeric::linalg::{
-    EigenStructure, HessenbergResponse, MinimalRealization, StateMatrix, minimal_realization,
-    relative_degree, transmission_zeros,
+    EigenStructure, HessenbergResponse, MinimalRealization, RelativeDegree, StateMatrix,
+    minimal_realization, relative_degree, transmission_zeros,
 };
 use crate::poly::Root;
 
@@ -112,7 +112,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
         "eigenvalues of A by the Schur form, minimal realisation by staircases, transmission \
          zeros by the system pencil",
     );
-    let (eigenvalues, minimal, reduced_poles, removed, found) = match second {
+    let (eigenvalues, minimal, reduced_poles, removed, rd, found) = match second {
         Some((so, red)) => {
             let rayleigh = ss_modal::rayleigh_zeros(ss, so, &red);
             method = format!(
@@ -125,6 +125,7 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                 }
             );
             known = rayleigh.or_else(|| ss_modal::model_zeros(ss, &red));
+            let rd = degree(known.as_ref(), || normwise_degree(&red.minimal))?;
             let ev = Eigenvalues::new(so.eigen_structure(), n);
             let by_position = ev.by_position();
             let kept: Vec<Complex64> = red.kept.iter().map(|&p| by_position[p]).collect();
@@ -134,13 +135,18 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                 red.minimal,
                 conjugate_closed(&group(&kept)),
                 removed,
+                rd,
                 None,
             )
         }
         None => {
             let minimal = minimal_realization(&ss.a, &ss.b, &ss.c, &ss.d, None)?;
+            // the pencil's normwise degree of the minimal realisation, once: the
+            // componentwise decision compares against it, and it stands when that finds
+            // nothing lower
+            let normwise = normwise_degree(&minimal)?;
             if n == 0 {
-                let rd = degree(&minimal, None)?;
+                let rd = degree(None, || Ok(normwise))?;
                 return finish(
                     Vec::new(),
                     minimal,
@@ -158,7 +164,8 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                 .chain(&minimal.unobservable)
                 .copied()
                 .collect();
-            known = finer_structure(ss, &minimal, &removed)?;
+            known = finer_structure(ss, &minimal, &removed, &normwise)?;
+            let rd = degree(known.as_ref(), || Ok(normwise))?;
             // Nothing removed (the generic case): the minimal A is an orthogonal similarity
             // of the balanced A, so its eigen structure is A's — one eigenproblem, not two,
             // and on the staircases' Hessenberg form (no second reduction) — and the zeros'
@@ -166,7 +173,6 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
             // are large. Else A's structure and the minimal part's, whose values are mapped
             // to A's below, and the zeros afterwards.
             let (st, reduced, found) = if minimal.order() == n {
-                let rd = degree(&minimal, known.as_ref())?;
                 let zeros_here = known.is_none() && rd.r.is_some();
                 let (st, found) = crate::numeric::parallel::join(
                     zeros_here && n >= PARALLEL_ORDER,
@@ -201,11 +207,10 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
                     .collect(),
             };
             let removed = removed.iter().map(|&v| ev.nearest(v)).collect();
-            (ev, minimal, reduced, removed, found)
+            (ev, minimal, reduced, removed, rd, found)
         }
     };
     let poles = eigenvalues.roots();
-    let rd = degree(&minimal, known.as_ref())?;
     finish(
         poles,
         minimal,
@@ -222,20 +227,25 @@ pub(crate) fn factor_state_space(ss: &StateSpace) -> Result<(PoleZero, f64, SsSo
 /// pair then costs about one; below it a thread costs more than it saves).
 const PARALLEL_ORDER: usize = 64;
 
-/// The relative degree and first Markov parameter of the channel: from the componentwise
-/// decision when it found a lower degree, else the pencil's normwise rule on the minimal
-/// realisation.
+/// The relative degree and first Markov parameter of the channel: from the zeros known
+/// already (the componentwise decision, or the modes) when there are such, else the pencil's
+/// normwise rule on the minimal realisation (`normwise`, asked only then).
 fn degree(
-    minimal: &MinimalRealization,
     known: Option<&ss_modal::KnownZeros>,
-) -> Result<crate::numeric::linalg::RelativeDegree> {
+    normwise: impl FnOnce() -> Result<RelativeDegree>,
+) -> Result<RelativeDegree> {
     match known {
-        Some(k) => Ok(crate::numeric::linalg::RelativeDegree {
+        Some(k) => Ok(RelativeDegree {
             r: Some(k.r),
             gain: k.gain,
         }),
-        None => relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None),
+        None => normwise(),
     }
+}
+
+/// The pencil's normwise relative degree of a minimal realisation.
+fn normwise_degree(minimal: &MinimalRealization) -> Result<RelativeDegree> {
+    relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)
 }
 
 /// The zeros of a minimal realisation of relative degree `r` (distinct values with their
@@ -274,6 +284,7 @@ fn finer_structure(
     ss: &StateSpace,
     minimal: &MinimalRealization,
     removed: &[Complex64],
+    normwise: &RelativeDegree,
 ) -> Result<Option<ss_modal::KnownZeros>> {
     use crate::numeric::linalg::componentwise::{
         componentwise_relative_degree, refined_channel_zeros,
@@ -281,7 +292,6 @@ fn finer_structure(
     let Some((r, gain)) = componentwise_relative_degree(&ss.a, &ss.b, &ss.c, &ss.d) else {
         return Ok(None);
     };
-    let normwise = relative_degree(&minimal.a, &minimal.b, &minimal.c, &minimal.d, None)?;
     if normwise.r.is_none_or(|rn| r >= rn) {
         return Ok(None);
     }
@@ -303,7 +313,7 @@ fn finish(
     removed: Vec<Complex64>,
     known: Option<ss_modal::KnownZeros>,
     method: &str,
-    rd: crate::numeric::linalg::RelativeDegree,
+    rd: RelativeDegree,
     found: Option<MinimalZeros>,
 ) -> Result<(PoleZero, f64, SsSource)> {
     crate::poly::roots::sort_roots(&mut reduced_poles);
