@@ -82,7 +82,7 @@ impl Reflector {
         for j in cols {
             let col = &mut m.column_mut(j);
             let slice = &mut col.as_mut_slice()[r0..r0 + k];
-            let f = self.tau * dot(slice, &self.v);
+            let f = self.tau * super::matvec::dot(slice, &self.v);
             for (a, v) in slice.iter_mut().zip(&self.v) {
                 *a -= f * v;
             }
@@ -132,35 +132,6 @@ impl Reflector {
             }
         }
     }
-}
-
-/// Σ aᵢbᵢ with sixteen partial sums (four vector registers): a single running sum is bound
-/// by the latency of the addition, which made the reflectors' left products a third of a
-/// 256-state staircase.
-#[inline]
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    const W: usize = 16;
-    let mut acc = [0.0; W];
-    let (ac, bc) = (a.chunks_exact(W), b.chunks_exact(W));
-    let tail: f64 = ac
-        .remainder()
-        .iter()
-        .zip(bc.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in ac.zip(bc) {
-        for k in 0..W {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    let mut w = W;
-    while w > 1 {
-        w /= 2;
-        for k in 0..w {
-            acc[k] += acc[k + w];
-        }
-    }
-    acc[0] + tail
 }
 
 /// An orthogonal n×n matrix as the product P₀·P₁·…·P_k of reflectors (formed explicitly).

@@ -61,9 +61,9 @@ fn mat_vec_portable(m: &DMatrix<f64>, x: &[f64], y: &mut [f64]) {
     }
 }
 
-/// y ← Mᵀ·x (the row vector xᵀM): one contiguous dot product per column of M, with four
-/// partial sums (for the few rows that nalgebra's `gemm` would send through its strided
-/// kernel: it takes matrixmultiply only above five rows).
+/// y ← Mᵀ·x (the row vector xᵀM): one contiguous dot product per column of M, [`dot`] (for
+/// the few rows that nalgebra's `gemm` would send through its strided kernel: it takes
+/// matrixmultiply only above five rows).
 pub(crate) fn vec_mat(x: &[f64], m: &DMatrix<f64>, y: &mut [f64]) {
     debug_assert_eq!((m.nrows(), m.ncols()), (x.len(), y.len()));
     let r = x.len();
@@ -76,10 +76,14 @@ pub(crate) fn vec_mat(x: &[f64], m: &DMatrix<f64>, y: &mut [f64]) {
     }
 }
 
-/// Σ aᵢbᵢ with four partial sums.
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+/// Σ aᵢbᵢ with sixteen partial sums (four vector registers): a single running sum is bound
+/// by the latency of the addition, which made the reflectors' left products (`householder.rs`) a third
+/// of a 256-state staircase.
+#[inline]
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    const W: usize = 16;
+    let mut acc = [0.0; W];
+    let (ac, bc) = (a.chunks_exact(W), b.chunks_exact(W));
     let tail: f64 = ac
         .remainder()
         .iter()
@@ -87,11 +91,18 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
         .map(|(x, y)| x * y)
         .sum();
     for (x, y) in ac.zip(bc) {
-        for k in 0..4 {
+        for k in 0..W {
             acc[k] += x[k] * y[k];
         }
     }
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+    let mut w = W;
+    while w > 1 {
+        w /= 2;
+        for k in 0..w {
+            acc[k] += acc[k + w];
+        }
+    }
+    acc[0] + tail
 }
 
 #[cfg(test)]
