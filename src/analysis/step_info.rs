@@ -785,12 +785,7 @@ mod tests {
         // that y's rounding leaves (clustered poles: large residues), under the documented
         // 1e-12 relative
         let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut r = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut r = move || crate::numeric::test_rng::unit(&mut x);
         let mut checked = 0;
         for case in 0..300 {
             let n_p = 1 + case % 5;

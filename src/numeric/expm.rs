@@ -590,12 +590,7 @@ mod tests {
         // norms, every degree: the vector recursion with its rescaling and its early exit
         // gives the formed powers' value
         let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-        let mut r = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut r = move || crate::numeric::test_rng::unit(&mut x) - 0.5;
         let mut positive = 0;
         for case in 0..60 {
             let n = 2 + case % 7;

@@ -17,6 +17,8 @@ pub(crate) mod march;
 pub(crate) mod parallel;
 pub mod rk45;
 pub(crate) mod scalar;
+#[cfg(test)]
+pub(crate) mod test_rng;
 pub mod tol;
 
 pub use eig::{eigenvalues, eigenvalues_checked};

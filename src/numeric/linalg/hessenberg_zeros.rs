@@ -156,13 +156,7 @@ mod tests {
     use crate::numeric::linalg::{controllability_staircase, invariant_zeros, schur_eigenvalues};
     use num_complex::Complex64;
 
-    /// Uniform in [−1, 1) from xorshift64.
-    fn uniform(seed: &mut u64) -> f64 {
-        *seed ^= *seed << 13;
-        *seed ^= *seed >> 7;
-        *seed ^= *seed << 17;
-        (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
+    use crate::numeric::test_rng::uniform;
 
     fn random_system(n: usize, seed: u64, d: f64) -> [DMatrix<f64>; 4] {
         let mut s = seed;

@@ -300,13 +300,7 @@ fn backward(lu: &DMatrix<f64>, b: &mut DMatrix<f64>, rows: &mut Vec<f64>) -> Opt
 mod tests {
     use super::*;
 
-    /// Uniform in [−1, 1) from xorshift64.
-    fn uniform(seed: &mut u64) -> f64 {
-        *seed ^= *seed << 13;
-        *seed ^= *seed >> 7;
-        *seed ^= *seed << 17;
-        (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
+    use crate::numeric::test_rng::uniform;
 
     #[test]
     fn blocked_solve_matches_the_unblocked_one_to_rounding() {

@@ -146,11 +146,9 @@ mod tests {
 
     /// Deterministic pseudo-random doubles over many binades.
     fn samples() -> impl Iterator<Item = f64> {
-        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
         (0..200_000).map(move |_| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
+            let s = crate::numeric::test_rng::next(&mut state);
             let mant = (s >> 12) as f64 / (1u64 << 52) as f64; // [0, 1)
             let e = ((s & 0xfff) % 120) as i32 - 60;
             (1.0 + mant) * 2f64.powi(e)

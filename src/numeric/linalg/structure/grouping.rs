@@ -295,12 +295,7 @@ mod tests {
     #[test]
     fn a_cut_tree_gives_the_parts_spanning_trees() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut u = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut u = || crate::numeric::test_rng::unit(&mut seed);
         let ev: Vec<Complex64> = (0..40).map(|_| c(u(), u())).collect();
         let g: Vec<usize> = (0..40).collect();
         let tree = spanning_tree(&g, &ev);
